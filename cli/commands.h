@@ -1,0 +1,18 @@
+// The subcommands of the pmrender command line. Each registers its options on the CLI11 app and
+// returns the callback that runs it; main() maps exceptions to exit codes.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace pm::cli {
+
+using Run = std::function<int()>;
+
+Run add_render_command(CLI::App& app);
+Run add_devices_command(CLI::App& app);
+
+// "640x480" -> width, height; throws InputError naming the option on anything else.
+void parse_resolution(const std::string& text, int* width, int* height);
+
+}  // namespace pm::cli

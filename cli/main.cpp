@@ -1,0 +1,37 @@
+// pmrender's entry point: subcommand dispatch and the exit-code contract
+// (0 success, 1 render or device failure, 2 bad usage or bad input).
+#include <cstdio>
+#include <iostream>
+
+#include "cli/commands.h"
+#include "render/errors.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"pmrender: global illumination by GPU photon mapping (Fabianowski & Dingliana 2009)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("pmrender ") + PMRENDER_VERSION);
+  pm::cli::Run render = pm::cli::add_render_command(app);
+  pm::cli::Run devices = pm::cli::add_devices_command(app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+
+  try {
+    if (app.got_subcommand("render")) return render();
+    if (app.got_subcommand("devices")) return devices();
+  } catch (const pm::InputError& e) {
+    std::cerr << "pmrender: " << e.what() << "\n";
+    return 2;
+  } catch (const pm::DeviceError& e) {
+    std::cerr << "pmrender: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "pmrender: " << e.what() << "\n";
+    return 1;
+  }
+  return 2;
+}

@@ -1,0 +1,85 @@
+/* Stage S5 (paper section 7): one work item per pixel traces the eye ray, follows up to
+   mirror_depth perfect-mirror bounces, adds direct light from every point light with a shadow
+   ray, and records a shading point per depth for the gather (S6). */
+#ifndef PM_CAMERA_PASS_H
+#define PM_CAMERA_PASS_H
+
+#include "brdf.h"
+#include "kernel_globals.h"
+#include "scene_traverse.h"
+
+PM_DEVICE Ray camera_primary_ray(const CameraParams* cam, uint x, uint y, uint width, uint height)
+{
+  float u = 2.0f * ((float)x + 0.5f) / (float)width - 1.0f;
+  float v = 1.0f - 2.0f * ((float)y + 0.5f) / (float)height;
+  Vec3 d = vec3_from_float4(cam->forward);
+  d = vec3_madd(d, vec3_from_float4(cam->right), u);
+  d = vec3_madd(d, vec3_from_float4(cam->up), v);
+  return ray_make(vec3_from_float4(cam->position), vec3_normalize(d));
+}
+
+/* Radiance reflected towards wo from the direct illumination of every point light:
+   L = sum f_r(wi, wo) * Phi / (4 pi r^2) * cos(theta_i), shadowed. */
+PM_DEVICE Vec3 direct_light(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 pos, Vec3 n,
+                            Vec3 wo)
+{
+  Vec3 sum = vec3_splat(0.0f);
+  Vec3 origin = offset_ray_origin(pos, n);
+  for (uint l = 0; l < p->light_count; ++l) {
+    PointLight light = kg->lights[l];
+    Vec3 to_light = vec3_sub(vec3_from_float4(light.position), origin);
+    float dist2 = vec3_dot(to_light, to_light);
+    if (!(dist2 > 0.0f)) continue;
+    float dist = pm_sqrtf(dist2);
+    Vec3 wi = vec3_scale(to_light, 1.0f / dist);
+    float cos_i = vec3_dot(n, wi);
+    if (cos_i <= 0.0f) continue;
+    Vec3 f = brdf_eval(m, n, wi, wo);
+    if (f.x == 0.0f && f.y == 0.0f && f.z == 0.0f) continue;
+    Ray shadow = ray_make(origin, wi);
+    SceneHit blocker = scene_trace(kg->scene_nodes, kg->triangles, &shadow, 0.0f, dist * (1.0f - 1e-5f), 1);
+    if (blocker.triangle >= 0) continue;
+    float irradiance_scale = cos_i / (4.0f * PM_PI * dist2);
+    sum = vec3_add(sum, vec3_scale(vec3_mul(f, vec3_from_float4(light.power)), irradiance_scale));
+  }
+  return sum;
+}
+
+PM_DEVICE void shading_point_clear(const KernelGlobals* kg, uint record)
+{
+  kg->shade_position[record] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_AS_FLOAT(-1));
+}
+
+PM_DEVICE void kernel_camera_pass(const KernelGlobals* kg, const LaunchParams* p, uint pixel)
+{
+  uint pixels = p->width * p->height;
+  Ray ray = camera_primary_ray(&p->camera, pixel % p->width, pixel / p->width, p->width, p->height);
+  Vec3 throughput = vec3_splat(1.0f);
+  Vec3 radiance = vec3_splat(0.0f);
+  uint depth = 0;
+  for (; depth <= p->mirror_depth; ++depth) {
+    uint record = depth * pixels + pixel;
+    SceneHit hit = scene_trace(kg->scene_nodes, kg->triangles, &ray, 0.0f, 1e30f, 0);
+    if (hit.triangle < 0) break;
+    Vec3 pos = vec3_madd(ray.origin, ray.direction, hit.t);
+    Vec3 n = scene_triangle_normal(kg->triangles, hit.triangle);
+    if (vec3_dot(n, ray.direction) > 0.0f) n = vec3_neg(n); /* shade the side the ray came from */
+    Vec3 wo = vec3_neg(ray.direction);
+    int material_index = scene_triangle_material(kg->triangles, hit.triangle);
+    Material m = material_load(kg->materials, material_index);
+
+    radiance = vec3_add(radiance, vec3_mul(throughput, direct_light(kg, p, &m, pos, n, wo)));
+    kg->shade_position[record] = vec3_to_float4(pos, PM_AS_FLOAT(material_index));
+    kg->shade_normal[record] = vec3_to_float4(n, 0.0f);
+    kg->shade_outgoing[record] = vec3_to_float4(wo, 0.0f);
+    kg->shade_weight[record] = vec3_to_float4(throughput, 0.0f);
+
+    if (!material_has_mirror(&m) || depth == p->mirror_depth) { ++depth; break; }
+    throughput = vec3_mul(throughput, material_mirror(&m));
+    ray = ray_make(offset_ray_origin(pos, n), vec3_reflect(ray.direction, n));
+  }
+  for (; depth <= p->mirror_depth; ++depth) shading_point_clear(kg, depth * pixels + pixel);
+  kg->film_direct[pixel] = vec3_to_float4(radiance, 0.0f);
+}
+
+#endif

@@ -1,0 +1,286 @@
+/* Stage S4, the photon map: a linear BVH over the photon hits' footprint AABBs (Fabianowski &
+   Dingliana 2009, sections 5.2, 5.3, 6.2) and its per-query traversal (section 6.3). Owns the
+   bounds reduction, Morton codes of hit positions, the binary radix tree (Karras 2012), the
+   bottom-up box / count pass with leaf fusion under the threshold T, the node layout, the query
+   iterator and T_auto. The (code, index) sort between the Morton and tree steps is the device
+   library's (CUB on CUDA, radix_sort.h on OpenCL).
+
+   Pipeline, each step "one call per work item", n hits, n <= 2^29 (int index arithmetic):
+     1. photon_map_bounds_tile     work item = tile of PM_PHOTON_MAP_BOUNDS_TILE boxes; run in passes
+                                   (positions as both lo_in and hi_in first, then the partials)
+                                   until one tile remains: its output [0] is the overall bounds.
+     2. photon_map_morton          i < n: codes[i], indices[i] = i.
+     3. sort (codes, indices) ascending by code (any stable or unstable sort: ties are broken by
+        sorted position below, which is exactly "augment the key with the index").
+     4. photon_map_build_node      i < n - 1: Karras's range + split of inner node i; parent links;
+                                   zeroes the visit counter of node i.
+     5. photon_map_bottom_up       k < n: sorted leaf boxes, child boxes, counts and leaf fusion.
+     6. photon_map_query_begin / photon_map_query_next per shading point (gather, S6).
+
+   Node layout (4 float4 per inner node p = 0 .. n-2, root = 0; both CHILD boxes live in the
+   parent, as in section 6.3, so one traversal step reads one node):
+     nodes[4p+0] = (left.lo.xyz,  left.ref)      nodes[4p+2] = (right.lo.xyz, right.ref)
+     nodes[4p+1] = (left.hi.xyz,  left.count)    nodes[4p+3] = (right.hi.xyz, right.count)
+   ref and count are uint bit patterns in .w. count = hits below the child. If ref has bit 31
+   (PM_PHOTON_MAP_LEAF) set, the child is a leaf: sorted hit positions [ref & 0x7FFFFFFF,
+   + count). Otherwise ref is the inner node to descend into. A child becomes a leaf when
+   count <= T (T = 1: only single hits; section 5.3's "stop splitting when the number of hits
+   reaches a threshold", built bottom-up as in section 6.2 by undoing splits below T).
+   The array keeps all n - 1 nodes (no compaction): nodes inside a fused subtree are written but
+   never reached. The root is always an inner node, so when n <= T the root's two children are
+   the leaves. n == 1 has no node at all; the query scans hit 0 directly.
+   The sorted positions index sorted_lo/sorted_hi (written by step 5) and, through the sorted
+   index array, the original hit records. */
+#ifndef PM_PHOTON_MAP_H
+#define PM_PHOTON_MAP_H
+
+#include "morton.h"
+#include "types.h"
+#include "vec3.h"
+
+/* Orders a child's box / count writes before its parent's visit counter on the device. */
+#ifndef PM_MEMORY_FENCE
+#define PM_MEMORY_FENCE()
+#endif
+
+#define PM_PHOTON_MAP_BOUNDS_TILE 256
+#define PM_PHOTON_MAP_LEAF 0x80000000u
+#define PM_PHOTON_MAP_NO_PARENT 0xFFFFFFFFu
+
+/* ---- 1. overall bounds of the hit positions (section 6.2: "their overall bounding volume") ---- */
+
+PM_DEVICE uint photon_map_bounds_tile_count(uint count)
+{
+  return (count + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
+}
+
+/* Work item = tile: reduces boxes [tile * TILE, min(count, (tile + 1) * TILE)) sequentially into
+   lo_out[tile], hi_out[tile]. An empty tile gives the empty box (+inf, -inf). */
+PM_DEVICE void photon_map_bounds_tile(uint tile, uint count, PM_GLOBAL const float4* lo_in,
+                                      PM_GLOBAL const float4* hi_in, PM_GLOBAL float4* lo_out,
+                                      PM_GLOBAL float4* hi_out)
+{
+  Vec3 lo = vec3_splat(PM_UINT_AS_FLOAT(0x7F800000u));
+  Vec3 hi = vec3_splat(PM_UINT_AS_FLOAT(0xFF800000u));
+  uint begin = tile * PM_PHOTON_MAP_BOUNDS_TILE;
+  uint end = pm_min_u(begin + PM_PHOTON_MAP_BOUNDS_TILE, count);
+  for (uint i = begin; i < end; ++i) {
+    lo = vec3_min(lo, vec3_from_float4(PM_LOAD(&lo_in[i])));
+    hi = vec3_max(hi, vec3_from_float4(PM_LOAD(&hi_in[i])));
+  }
+  lo_out[tile] = vec3_to_float4(lo, 0.0f);
+  hi_out[tile] = vec3_to_float4(hi, 0.0f);
+}
+
+/* ---- 2. Morton codes (sections 5.2, 6.2: 30-bit codes in the overall bounds) ---- */
+
+/* Work item = hit i. bounds_lo[0], bounds_hi[0]: the final output of step 1. */
+PM_DEVICE void photon_map_morton(uint i, PM_GLOBAL const float4* positions, PM_GLOBAL const float4* bounds_lo,
+                                 PM_GLOBAL const float4* bounds_hi, PM_GLOBAL uint* codes, PM_GLOBAL uint* indices)
+{
+  codes[i] = morton_code(vec3_from_float4(PM_LOAD(&positions[i])), vec3_from_float4(PM_LOAD(&bounds_lo[0])),
+                         vec3_from_float4(PM_LOAD(&bounds_hi[0])));
+  indices[i] = i;
+}
+
+/* ---- 4. binary radix tree over the sorted codes (Karras 2012, section 4) ---- */
+
+/* Length of the common prefix of the keys at sorted positions i and j, -1 outside [0, n).
+   Equal codes are told apart by the positions: key = (code, position) as 64 bits. */
+PM_DEVICE int photon_map_delta(PM_GLOBAL const uint* codes, int n, int i, int j)
+{
+  if (j < 0 || j >= n) return -1;
+  uint a = PM_LOAD(&codes[i]);
+  uint b = PM_LOAD(&codes[j]);
+  if (a != b) return pm_clz(a ^ b);
+  return 32 + pm_clz((uint)i ^ (uint)j);
+}
+
+/* Work item = inner node i < n - 1. Finds the node's key range [min(i, j), max(i, j)] and split
+   gamma; links the children to i: parent = (i << 1) | side, side 0 = left. Leaves (children
+   whose range is one key) link through leaf_parent, inner nodes through node_parent. */
+PM_DEVICE void photon_map_build_node(uint i, uint n, PM_GLOBAL const uint* codes, PM_GLOBAL uint* node_parent,
+                                     PM_GLOBAL uint* leaf_parent, PM_GLOBAL uint* visits)
+{
+  int ii = (int)i, nn = (int)n;
+  int d = photon_map_delta(codes, nn, ii, ii + 1) > photon_map_delta(codes, nn, ii, ii - 1) ? 1 : -1;
+  /* Upper bound of the range length, then the exact other end j by binary search. */
+  int delta_min = photon_map_delta(codes, nn, ii, ii - d);
+  int l_max = 2;
+  while (photon_map_delta(codes, nn, ii, ii + l_max * d) > delta_min) l_max <<= 1;
+  int l = 0;
+  for (int t = l_max >> 1; t >= 1; t >>= 1)
+    if (photon_map_delta(codes, nn, ii, ii + (l + t) * d) > delta_min) l += t;
+  int j = ii + l * d;
+  /* Split: the last position (in direction d) sharing more than the node's prefix with i. */
+  int delta_node = photon_map_delta(codes, nn, ii, j);
+  int s = 0;
+  int t = l;
+  do {
+    t = (t + 1) >> 1;
+    if (photon_map_delta(codes, nn, ii, ii + (s + t) * d) > delta_node) s += t;
+  } while (t > 1);
+  int gamma = ii + s * d + pm_min_i(d, 0);
+
+  uint left = i << 1, right = (i << 1) | 1u;
+  if (pm_min_i(ii, j) == gamma) leaf_parent[gamma] = left;
+  else node_parent[gamma] = left;
+  if (pm_max_i(ii, j) == gamma + 1) leaf_parent[gamma + 1] = right;
+  else node_parent[gamma + 1] = right;
+  if (i == 0) node_parent[0] = PM_PHOTON_MAP_NO_PARENT;
+  visits[i] = 0;
+}
+
+/* ---- 5. bottom-up boxes, counts and leaf fusion (section 6.2) ---- */
+
+/* Work item = leaf k < n (sorted position). Stores the hit's AABB at sorted_lo/hi[k], then walks
+   up: at each parent it writes its subtree's slot (box, ref, count), and only the second work
+   item to arrive at a node (atomic visit counter) goes on, with the union of both slots. A slot
+   whose count <= threshold is written as a leaf interval, which undoes the splits below T. Every
+   slot of every node is written exactly once whatever the arrival order, so the result does not
+   depend on scheduling. Needs n >= 2 and the visit counters zeroed (step 4 does that). */
+PM_DEVICE void photon_map_bottom_up(uint k, uint n, uint leaf_threshold, PM_GLOBAL const uint* sorted_index,
+                                    PM_GLOBAL const float4* hit_lo, PM_GLOBAL const float4* hit_hi,
+                                    PM_GLOBAL const uint* node_parent, PM_GLOBAL const uint* leaf_parent,
+                                    PM_GLOBAL uint* visits, PM_GLOBAL float4* nodes, PM_GLOBAL float4* sorted_lo,
+                                    PM_GLOBAL float4* sorted_hi)
+{
+  uint hit = PM_LOAD(&sorted_index[k]);
+  Vec3 lo = vec3_from_float4(PM_LOAD(&hit_lo[hit]));
+  Vec3 hi = vec3_from_float4(PM_LOAD(&hit_hi[hit]));
+  sorted_lo[k] = vec3_to_float4(lo, 0.0f);
+  sorted_hi[k] = vec3_to_float4(hi, 0.0f);
+  if (n < 2) return;
+
+  uint threshold = leaf_threshold > 1u ? leaf_threshold : 1u;
+  uint child = k;     /* current subtree: its node index (inner) or k (leaf) */
+  uint first = k;     /* its first sorted position */
+  uint count = 1u;    /* its hit count */
+  uint link = leaf_parent[k];
+  while (link != PM_PHOTON_MAP_NO_PARENT) {
+    uint p = link >> 1;
+    uint side = link & 1u;
+    uint ref = count <= threshold ? (first | PM_PHOTON_MAP_LEAF) : child;
+    nodes[4 * p + 2 * side] = vec3_to_float4(lo, PM_UINT_AS_FLOAT(ref));
+    nodes[4 * p + 2 * side + 1] = vec3_to_float4(hi, PM_UINT_AS_FLOAT(count));
+    /* Release: our slot must be visible before the counter says it is there. */
+    PM_MEMORY_FENCE();
+    if (pm_atomic_add_u32(&visits[p], 1u) == 0u) return; /* first arrival: the sibling finishes p */
+    /* Acquire: read the sibling's slot only after its writer's counter increment (and never
+       from a stale cache line). Plain loads, not PM_LOAD: this data is written in this pass. */
+    PM_MEMORY_FENCE();
+    uint other = 2 * (1u - side);
+    float4 sib_lo = nodes[4 * p + other];
+    float4 sib_hi = nodes[4 * p + other + 1];
+    uint sib_count = PM_AS_UINT(sib_hi.w);
+    lo = vec3_min(lo, vec3_from_float4(sib_lo));
+    hi = vec3_max(hi, vec3_from_float4(sib_hi));
+    if (side == 1u) first -= sib_count; /* the left sibling's interval ends just before ours */
+    count += sib_count;
+    child = p;
+    link = node_parent[p];
+  }
+}
+
+/* ---- 6. query: every hit whose footprint AABB contains x (section 6.3) ---- */
+
+typedef struct PhotonMapQuery {
+  Vec3 x;
+  uint cur, end;       /* sorted positions still to scan: [cur, end) */
+  uint check;          /* nonzero: test each scanned hit's own AABB (fused leaf or overflow) */
+  uint sp, stack_limit;
+  uint nodes_visited;  /* statistics: inner nodes read */
+  uint overflows;      /* statistics: subtrees scanned linearly because the stack was full */
+  uint stack[PM_TRAVERSAL_STACK];
+} PhotonMapQuery;
+
+/* Inclusive test, so points on a face count; the stored boxes are exact unions (min/max), so a
+   parent box never misses a point its hits contain. NaN x is in no box. */
+PM_DEVICE int photon_map_box_contains(float4 lo, float4 hi, Vec3 x)
+{
+  return lo.x <= x.x && x.x <= hi.x && lo.y <= x.y && x.y <= hi.y && lo.z <= x.z && x.z <= hi.z;
+}
+
+/* stack_limit: PM_TRAVERSAL_STACK for rendering; smaller values (down to 0 = scan everything)
+   force the overflow path in tests. A radix tree over (30-bit code, 32-bit position) keys is at
+   most 62 inner nodes deep, so 64 entries never overflow in practice; the fallback keeps the
+   result exact anyway: a child that cannot be pushed is scanned as its interval of hits. */
+PM_DEVICE void photon_map_query_begin(PhotonMapQuery* q, Vec3 x, uint n, uint stack_limit)
+{
+  q->x = x;
+  q->cur = 0;
+  q->end = 0;
+  q->check = 1;
+  q->sp = 0;
+  q->stack_limit = pm_min_u(stack_limit, (uint)PM_TRAVERSAL_STACK);
+  q->nodes_visited = 0;
+  q->overflows = 0;
+  if (n >= 2 && q->stack_limit > 0) {
+    q->stack[q->sp++] = 0; /* the root */
+  } else {
+    q->end = n; /* no tree, or no stack for the root: scan every hit */
+    q->overflows = n >= 2 ? 1u : 0u;
+  }
+}
+
+/* Next sorted position whose hit AABB contains q->x, or -1 when done. Each such hit is returned
+   exactly once; the caller evaluates the ellipsoid itself (section 6.3: accumulate the hits whose
+   footprints overlap x). Read-only inputs: nodes and sorted_lo/hi from step 5. */
+PM_DEVICE int photon_map_query_next(PhotonMapQuery* q, PM_GLOBAL const float4* nodes,
+                                    PM_GLOBAL const float4* sorted_lo, PM_GLOBAL const float4* sorted_hi)
+{
+  for (;;) {
+    while (q->cur < q->end) {
+      uint k = q->cur++;
+      if (!q->check || photon_map_box_contains(PM_LOAD(&sorted_lo[k]), PM_LOAD(&sorted_hi[k]), q->x))
+        return (int)k;
+    }
+    if (q->sp == 0) return -1;
+    uint node = q->stack[--q->sp];
+    q->nodes_visited++;
+    /* The two children's intervals are adjacent (left ends where right starts), so whatever of
+       them has to be scanned is one interval [begin, end). */
+    uint begin = 0xFFFFFFFFu, end = 0u, check = 0u;
+    for (uint side = 0; side < 2u; ++side) {
+      float4 lo = PM_LOAD(&nodes[4 * node + 2 * side]);
+      float4 hi = PM_LOAD(&nodes[4 * node + 2 * side + 1]);
+      if (!photon_map_box_contains(lo, hi, q->x)) continue;
+      uint ref = PM_AS_UINT(lo.w);
+      uint count = PM_AS_UINT(hi.w);
+      uint first;
+      if (ref & PM_PHOTON_MAP_LEAF) {
+        first = ref & ~PM_PHOTON_MAP_LEAF;
+        if (count > 1u) check = 1u; /* a single hit's box was just tested exactly */
+      } else if (q->sp < q->stack_limit) {
+        q->stack[q->sp++] = ref;
+        continue;
+      } else {
+        /* Overflow: Karras's inner node index is the right end of a left child's range and the
+           left end of a right child's range. */
+        first = side == 0u ? ref + 1u - count : ref;
+        check = 1u;
+        q->overflows++;
+      }
+      begin = pm_min_u(begin, first);
+      end = end > first + count ? end : first + count;
+    }
+    q->cur = begin;
+    q->end = end;
+    q->check = check;
+  }
+}
+
+/* ---- T_auto (section 5.3) ---- */
+
+/* max(1, round(c * total footprint area / total scene surface area)); 1 for a NaN ratio or a
+   scene area that is not positive, capped at 2^30 (also for an overflowing ratio). c is
+   calibrated elsewhere. */
+PM_DEVICE uint photon_map_auto_leaf_size(float total_footprint_area, float total_scene_area, float c)
+{
+  float t = c * (total_footprint_area / total_scene_area);
+  if (!(total_scene_area > 0.0f) || !(t >= 1.0f)) return 1u; /* also NaN */
+  if (t >= 1073741824.0f) return 1073741824u;                /* also +inf */
+  return (uint)pm_floorf(t + 0.5f);
+}
+
+#endif

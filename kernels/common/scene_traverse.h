@@ -1,0 +1,108 @@
+/* Per-ray traversal of the scene BVH built on the host (render/scene_bvh.h documents the node
+   layout: 4 float4 per node with both child boxes stored in the parent). One private stack of
+   PM_TRAVERSAL_STACK entries per ray; the builder guarantees the depth fits. */
+#ifndef PM_SCENE_TRAVERSE_H
+#define PM_SCENE_TRAVERSE_H
+
+#include "ray.h"
+#include "types.h"
+
+typedef struct SceneHit {
+  float t;
+  int triangle; /* leaf-order index, -1 for a miss */
+} SceneHit;
+
+PM_DEVICE Vec3 scene_triangle_vertex(PM_GLOBAL const float4* triangles, int tri, int corner)
+{
+  float4 v = PM_LOAD(&triangles[3 * tri + corner]);
+  return vec3(v.x, v.y, v.z);
+}
+
+PM_DEVICE int scene_triangle_material(PM_GLOBAL const float4* triangles, int tri)
+{
+  return PM_AS_INT(PM_LOAD(&triangles[3 * tri]).w);
+}
+
+/* Geometric normal (unnormalised orientation follows the stored winding). */
+PM_DEVICE Vec3 scene_triangle_normal(PM_GLOBAL const float4* triangles, int tri)
+{
+  Vec3 v0 = scene_triangle_vertex(triangles, tri, 0);
+  Vec3 e1 = vec3_sub(scene_triangle_vertex(triangles, tri, 1), v0);
+  Vec3 e2 = vec3_sub(scene_triangle_vertex(triangles, tri, 2), v0);
+  return vec3_normalize(vec3_cross(e1, e2));
+}
+
+/* Intersects triangles [first, first + count) and narrows hit->t. Returns 1 on any hit. */
+PM_DEVICE int scene_intersect_leaf(PM_GLOBAL const float4* triangles, const Ray* ray, int first, int count,
+                                   float t_min, SceneHit* hit)
+{
+  int found = 0;
+  for (int i = first; i < first + count; ++i) {
+    float t;
+    if (ray_triangle(ray, scene_triangle_vertex(triangles, i, 0), scene_triangle_vertex(triangles, i, 1),
+                     scene_triangle_vertex(triangles, i, 2), t_min, hit->t, &t)) {
+      hit->t = t;
+      hit->triangle = i;
+      found = 1;
+    }
+  }
+  return found;
+}
+
+/* Closest hit in (t_min, t_max), or with any_hit set the first one found (shadow rays). */
+PM_DEVICE SceneHit scene_trace(PM_GLOBAL const float4* nodes, PM_GLOBAL const float4* triangles, const Ray* ray,
+                               float t_min, float t_max, int any_hit)
+{
+  SceneHit hit;
+  hit.t = t_max;
+  hit.triangle = -1;
+  int stack[PM_TRAVERSAL_STACK];
+  int sp = 0;
+  int node = 0;
+  for (;;) {
+    float4 n0 = PM_LOAD(&nodes[4 * node + 0]);
+    float4 n1 = PM_LOAD(&nodes[4 * node + 1]);
+    float4 n2 = PM_LOAD(&nodes[4 * node + 2]);
+    float4 n3 = PM_LOAD(&nodes[4 * node + 3]);
+    int child[2];
+    int count[2];
+    child[0] = PM_AS_INT(n3.x);
+    child[1] = PM_AS_INT(n3.y);
+    count[0] = PM_AS_INT(n3.z);
+    count[1] = PM_AS_INT(n3.w);
+    float t_left = ray_box_entry(ray, vec3(n0.x, n0.z, n2.x), vec3(n0.y, n0.w, n2.y), hit.t);
+    float t_right = ray_box_entry(ray, vec3(n1.x, n1.z, n2.z), vec3(n1.y, n1.w, n2.w), hit.t);
+    int visit_left = t_left < 1e38f && child[0] >= 0;
+    int visit_right = t_right < 1e38f && child[1] >= 0;
+
+    /* Leaves are intersected at once; only inner nodes go on the stack. */
+    if (visit_left && count[0] > 0) {
+      if (scene_intersect_leaf(triangles, ray, child[0], count[0], t_min, &hit) && any_hit) return hit;
+      visit_left = 0;
+    }
+    if (visit_right && count[1] > 0) {
+      if (scene_intersect_leaf(triangles, ray, child[1], count[1], t_min, &hit) && any_hit) return hit;
+      visit_right = 0;
+    }
+    /* A leaf hit may have shortened the ray past an inner child's entry. */
+    visit_left = visit_left && t_left < hit.t;
+    visit_right = visit_right && t_right < hit.t;
+
+    if (visit_left && visit_right) {
+      int near_child = t_left <= t_right ? child[0] : child[1];
+      int far_child = t_left <= t_right ? child[1] : child[0];
+      stack[sp++] = far_child;
+      node = near_child;
+    } else if (visit_left) {
+      node = child[0];
+    } else if (visit_right) {
+      node = child[1];
+    } else {
+      if (sp == 0) break;
+      node = stack[--sp];
+    }
+  }
+  return hit;
+}
+
+#endif

@@ -1,0 +1,13 @@
+/* Every stage function a backend's entry points call, in one include. Backends include their
+   compat.h first, then this. */
+#ifndef PM_STAGES_H
+#define PM_STAGES_H
+
+#include "kernel_globals.h"
+#include "kernel_list.h"
+#include "camera_pass.h"
+#include "film.h"
+#include "radix_sort.h"
+#include "layout_probe.h"
+
+#endif

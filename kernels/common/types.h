@@ -1,0 +1,58 @@
+/* Structs shared between the host and every device backend. Only 4-byte scalars and 16-byte
+   float4/uint4 members, in an order that needs no padding, so the layout is identical in C++,
+   CUDA and OpenCL C. render/device_layout.cpp static_asserts each size on the host and
+   tests/opencl_layout_test.cpp checks the OpenCL compiler's view. */
+#ifndef PM_TYPES_H
+#define PM_TYPES_H
+
+/* Modified Phong material (Lafortune & Willems 1994) with a perfect-mirror term.
+   diffuse.rgb = rho_d, glossy.rgb = rho_s and glossy.w = Phong exponent, mirror.rgb = mirror
+   reflectance. Energy conservation (rho_d + rho_s + mirror <= 1 per channel) is checked on load. */
+typedef struct Material {
+  float4 diffuse;
+  float4 glossy;
+  float4 mirror;
+} Material;
+
+/* Isotropic point light: position.xyz in metres, power.rgb in watts (radiant flux). */
+typedef struct PointLight {
+  float4 position;
+  float4 power;
+} PointLight;
+
+/* Pinhole camera. right and up are scaled so that a pixel's ray direction is
+   forward + u * right + v * up with u, v in [-1, 1]. */
+typedef struct CameraParams {
+  float4 position;
+  float4 forward;
+  float4 right;
+  float4 up;
+} CameraParams;
+
+/* Every scalar a kernel launch needs, passed by value to every kernel. */
+typedef struct LaunchParams {
+  CameraParams camera;
+  uint width;
+  uint height;
+  uint triangle_count;
+  uint light_count;
+
+  uint mirror_depth;    /* eye-ray mirror bounces followed (default 1) */
+  uint seed;
+  uint frame;
+  uint work_offset;     /* first work item of a batched launch */
+
+  float ray_epsilon;    /* scale of the scene, for robust ray offsets (metres) */
+  uint sort_count;      /* portable radix sort: number of keys */
+  uint sort_shift;      /* portable radix sort: bit offset of the current digit */
+  uint sort_tile_count; /* portable radix sort: tiles of PM_SORT_TILE keys */
+} LaunchParams;
+
+#define PM_SORT_RADIX_BITS 4
+#define PM_SORT_RADIX (1 << PM_SORT_RADIX_BITS)
+#define PM_SORT_TILE 256
+
+/* Bounds of the per-ray traversal stack; the host BVH builder guarantees depth below this. */
+#define PM_TRAVERSAL_STACK 64
+
+#endif

@@ -1,0 +1,52 @@
+/* CUDA backend of the shared kernel code: qualifiers, bit casts, math and atomics as CUDA spells
+   them. The shared headers in kernels/common/ use only the PM_* names defined here. */
+#ifndef PM_COMPAT_CUDA_H
+#define PM_COMPAT_CUDA_H
+
+#include <stdint.h>
+
+#define PM_CUDA_BACKEND 1
+#define PM_DEVICE static __device__ __forceinline__
+#define PM_GLOBAL
+#define PM_CONSTANT const
+#define PM_RESTRICT __restrict__
+
+typedef unsigned int uint;
+
+#define PM_MAKE_FLOAT4(a, b, c, d) make_float4((a), (b), (c), (d))
+#define PM_MAKE_UINT4(a, b, c, d) make_uint4((a), (b), (c), (d))
+#define PM_MAKE_FLOAT2(a, b) make_float2((a), (b))
+
+#define PM_AS_FLOAT(i) __int_as_float((int)(i))
+#define PM_AS_INT(f) __float_as_int(f)
+#define PM_AS_UINT(f) __float_as_uint(f)
+#define PM_UINT_AS_FLOAT(u) __uint_as_float((unsigned)(u))
+
+#define pm_sqrtf sqrtf
+#define pm_rsqrtf rsqrtf
+#define pm_fabsf fabsf
+#define pm_fminf fminf
+#define pm_fmaxf fmaxf
+#define pm_sinf sinf
+#define pm_cosf cosf
+#define pm_tanf tanf
+#define pm_powf powf
+#define pm_expf expf
+#define pm_logf logf
+#define pm_floorf floorf
+#define pm_fmaf fmaf
+#define pm_copysignf copysignf
+#define pm_isfinite(x) isfinite(x)
+#define pm_sincosf(a, s, c) sincosf((a), (s), (c))
+#define pm_clz(x) __clz((int)(x))
+#define pm_min_i(a, b) min((int)(a), (int)(b))
+#define pm_max_i(a, b) max((int)(a), (int)(b))
+#define pm_min_u(a, b) min((unsigned)(a), (unsigned)(b))
+
+#define pm_atomic_add_u32(p, v) atomicAdd((unsigned*)(p), (unsigned)(v))
+#define pm_atomic_add_i32(p, v) atomicAdd((int*)(p), (int)(v))
+
+/* Read-only data goes through the non-coherent cache. */
+#define PM_LOAD(p) __ldg(p)
+
+#endif

@@ -1,0 +1,53 @@
+/* OpenCL C backend of the shared kernel code: qualifiers, bit casts, math and atomics as
+   OpenCL C 1.2 spells them (PoCL and vendor GPU drivers). Embedded into the binary together
+   with kernels/common/ at build time. */
+#ifndef PM_COMPAT_OPENCL_H
+#define PM_COMPAT_OPENCL_H
+
+#define PM_OPENCL_BACKEND 1
+#define PM_DEVICE static inline
+#define PM_GLOBAL __global
+#define PM_CONSTANT __constant
+#define PM_RESTRICT restrict
+
+/* Random123's OpenCL feature header defines uint32_t and uint64_t; take them from there so the
+   typedefs exist exactly once. */
+#include <Random123/philox.h>
+typedef int int32_t;
+
+#define PM_MAKE_FLOAT4(a, b, c, d) ((float4)((a), (b), (c), (d)))
+#define PM_MAKE_UINT4(a, b, c, d) ((uint4)((a), (b), (c), (d)))
+#define PM_MAKE_FLOAT2(a, b) ((float2)((a), (b)))
+
+#define PM_AS_FLOAT(i) as_float((int)(i))
+#define PM_AS_INT(f) as_int(f)
+#define PM_AS_UINT(f) as_uint(f)
+#define PM_UINT_AS_FLOAT(u) as_float((uint)(u))
+
+#define pm_sqrtf sqrt
+#define pm_rsqrtf rsqrt
+#define pm_fabsf fabs
+#define pm_fminf fmin
+#define pm_fmaxf fmax
+#define pm_sinf sin
+#define pm_cosf cos
+#define pm_tanf tan
+#define pm_powf pow
+#define pm_expf exp
+#define pm_logf log
+#define pm_floorf floor
+#define pm_fmaf fma
+#define pm_copysignf copysign
+#define pm_isfinite(x) isfinite(x)
+#define pm_sincosf(a, s, c) (*(s) = sincos((a), (c)))
+#define pm_clz(x) ((int)clz((uint)(x)))
+#define pm_min_i(a, b) min((int)(a), (int)(b))
+#define pm_max_i(a, b) max((int)(a), (int)(b))
+#define pm_min_u(a, b) min((uint)(a), (uint)(b))
+
+#define pm_atomic_add_u32(p, v) atomic_add((volatile __global uint*)(p), (uint)(v))
+#define pm_atomic_add_i32(p, v) atomic_add((volatile __global int*)(p), (int)(v))
+
+#define PM_LOAD(p) (*(p))
+
+#endif

@@ -1,0 +1,253 @@
+// OpenCL implementation of the device interface: one in-order queue, buffers as cl_mem, the
+// embedded kernel source built once per device (drivers such as PoCL and NVIDIA's cache the
+// binary themselves), every buffer slot passed as a kernel argument in PM_BUFFER_LIST order.
+#include "kernels/opencl/opencl_device.h"
+
+#include <CL/cl.h>
+#include <CL/cl_ext.h>
+
+#include <cstring>
+#include <string>
+
+#include "render/errors.h"
+#include "render/portable_sort.h"
+
+namespace pm {
+
+extern const char kOpenclKernelSource[];
+extern const size_t kOpenclKernelSourceSize;
+
+namespace {
+
+const char* cl_error_name(cl_int code) {
+  switch (code) {
+#define PM_CL_ERROR(name) case name: return #name;
+    PM_CL_ERROR(CL_DEVICE_NOT_FOUND) PM_CL_ERROR(CL_DEVICE_NOT_AVAILABLE) PM_CL_ERROR(CL_COMPILER_NOT_AVAILABLE)
+    PM_CL_ERROR(CL_MEM_OBJECT_ALLOCATION_FAILURE) PM_CL_ERROR(CL_OUT_OF_RESOURCES) PM_CL_ERROR(CL_OUT_OF_HOST_MEMORY)
+    PM_CL_ERROR(CL_BUILD_PROGRAM_FAILURE) PM_CL_ERROR(CL_INVALID_VALUE) PM_CL_ERROR(CL_INVALID_PLATFORM)
+    PM_CL_ERROR(CL_INVALID_DEVICE) PM_CL_ERROR(CL_INVALID_CONTEXT) PM_CL_ERROR(CL_INVALID_COMMAND_QUEUE)
+    PM_CL_ERROR(CL_INVALID_MEM_OBJECT) PM_CL_ERROR(CL_INVALID_PROGRAM) PM_CL_ERROR(CL_INVALID_KERNEL_NAME)
+    PM_CL_ERROR(CL_INVALID_KERNEL) PM_CL_ERROR(CL_INVALID_ARG_INDEX) PM_CL_ERROR(CL_INVALID_ARG_VALUE)
+    PM_CL_ERROR(CL_INVALID_ARG_SIZE) PM_CL_ERROR(CL_INVALID_KERNEL_ARGS) PM_CL_ERROR(CL_INVALID_WORK_GROUP_SIZE)
+    PM_CL_ERROR(CL_INVALID_BUFFER_SIZE) PM_CL_ERROR(CL_INVALID_GLOBAL_WORK_SIZE) PM_CL_ERROR(CL_INVALID_EVENT)
+    PM_CL_ERROR(CL_INVALID_OPERATION) PM_CL_ERROR(CL_PLATFORM_NOT_FOUND_KHR)
+#undef PM_CL_ERROR
+    default: return "unknown OpenCL error";
+  }
+}
+
+void check(cl_int code, const char* call, const char* file, int line) {
+  if (code == CL_SUCCESS) return;
+  throw DeviceError(std::string("OpenCL: ") + call + " failed with " + cl_error_name(code) + " (" +
+                    std::to_string(code) + ") at " + file + ":" + std::to_string(line));
+}
+#define PM_CL_CHECK(call) check((call), #call, __FILE__, __LINE__)
+
+struct DeviceEntry {
+  cl_platform_id platform;
+  cl_device_id device;
+};
+
+std::vector<DeviceEntry> enumerate() {
+  std::vector<DeviceEntry> entries;
+  cl_uint platform_count = 0;
+  // No ICD or no platform is "no OpenCL devices", not an error.
+  if (clGetPlatformIDs(0, nullptr, &platform_count) != CL_SUCCESS || platform_count == 0) return entries;
+  std::vector<cl_platform_id> platforms(platform_count);
+  PM_CL_CHECK(clGetPlatformIDs(platform_count, platforms.data(), nullptr));
+  for (cl_platform_id platform : platforms) {
+    cl_uint device_count = 0;
+    if (clGetDeviceIDs(platform, CL_DEVICE_TYPE_ALL, 0, nullptr, &device_count) != CL_SUCCESS) continue;
+    std::vector<cl_device_id> devices(device_count);
+    PM_CL_CHECK(clGetDeviceIDs(platform, CL_DEVICE_TYPE_ALL, device_count, devices.data(), nullptr));
+    for (cl_device_id device : devices) entries.push_back({platform, device});
+  }
+  return entries;
+}
+
+std::string device_string(cl_device_id device, cl_device_info what) {
+  size_t size = 0;
+  PM_CL_CHECK(clGetDeviceInfo(device, what, 0, nullptr, &size));
+  std::string value(size, '\0');
+  PM_CL_CHECK(clGetDeviceInfo(device, what, size, value.data(), nullptr));
+  while (!value.empty() && value.back() == '\0') value.pop_back();
+  return value;
+}
+
+std::string platform_string(cl_platform_id platform, cl_platform_info what) {
+  size_t size = 0;
+  PM_CL_CHECK(clGetPlatformInfo(platform, what, 0, nullptr, &size));
+  std::string value(size, '\0');
+  PM_CL_CHECK(clGetPlatformInfo(platform, what, size, value.data(), nullptr));
+  while (!value.empty() && value.back() == '\0') value.pop_back();
+  return value;
+}
+
+DeviceInfo describe(const DeviceEntry& entry, int index) {
+  DeviceInfo info;
+  info.backend = "opencl";
+  info.index = index;
+  info.name = device_string(entry.device, CL_DEVICE_NAME);
+  info.platform = platform_string(entry.platform, CL_PLATFORM_NAME);
+  info.driver = device_string(entry.device, CL_DRIVER_VERSION);
+  cl_ulong memory = 0;
+  cl_uint units = 0;
+  PM_CL_CHECK(clGetDeviceInfo(entry.device, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof(memory), &memory, nullptr));
+  PM_CL_CHECK(clGetDeviceInfo(entry.device, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof(units), &units, nullptr));
+  info.memory_bytes = memory;
+  info.compute_units = static_cast<int>(units);
+  return info;
+}
+
+class OpenclDevice final : public Device {
+ public:
+  OpenclDevice(const DeviceEntry& entry, int index) : device_(entry.device) {
+    info_ = describe(entry, index);
+    cl_int err = CL_SUCCESS;
+    context_ = clCreateContext(nullptr, 1, &device_, nullptr, nullptr, &err);
+    PM_CL_CHECK(err);
+    queue_ = clCreateCommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE, &err);
+    PM_CL_CHECK(err);
+    build_program();
+  }
+
+  ~OpenclDevice() override {
+    sort_scratch_ = PortableSortScratch();
+    for (cl_kernel kernel : kernels_)
+      if (kernel) clReleaseKernel(kernel);
+    if (program_) clReleaseProgram(program_);
+    if (queue_) clReleaseCommandQueue(queue_);
+    if (context_) clReleaseContext(context_);
+  }
+
+  const DeviceInfo& info() const override { return info_; }
+
+  DeviceBuffer allocate(size_t bytes, const char* what) override {
+    cl_int err = CL_SUCCESS;
+    cl_mem mem = clCreateBuffer(context_, CL_MEM_READ_WRITE, bytes > 0 ? bytes : 4, nullptr, &err);
+    if (err != CL_SUCCESS)
+      throw DeviceError(std::string("OpenCL: clCreateBuffer of ") + std::to_string(bytes) + " bytes for " + what +
+                        " failed with " + cl_error_name(err));
+    return DeviceBuffer(this, mem, bytes);
+  }
+
+  void release(void* handle) noexcept override { clReleaseMemObject(static_cast<cl_mem>(handle)); }
+
+  void upload(DeviceBuffer& dst, const void* src, size_t bytes, size_t offset) override {
+    if (bytes == 0) return;
+    PM_CL_CHECK(clEnqueueWriteBuffer(queue_, mem(dst), CL_TRUE, offset, bytes, src, 0, nullptr, nullptr));
+  }
+
+  void download(const DeviceBuffer& src, void* dst, size_t bytes, size_t offset) override {
+    if (bytes == 0) return;
+    PM_CL_CHECK(clEnqueueReadBuffer(queue_, mem(src), CL_TRUE, offset, bytes, dst, 0, nullptr, nullptr));
+  }
+
+  void fill_zero(DeviceBuffer& dst, size_t bytes) override {
+    if (bytes == 0) return;
+    const cl_uint zero = 0;
+    PM_CL_CHECK(clEnqueueFillBuffer(queue_, mem(dst), &zero, sizeof(zero), 0, bytes, 0, nullptr, nullptr));
+  }
+
+  void copy(const DeviceBuffer& src, DeviceBuffer& dst, size_t bytes) override {
+    if (bytes == 0) return;
+    PM_CL_CHECK(clEnqueueCopyBuffer(queue_, mem(src), mem(dst), 0, 0, bytes, 0, nullptr, nullptr));
+  }
+
+  void launch(KernelId id, uint32_t work_items, const LaunchParams& params) override {
+    if (work_items == 0) return;
+    cl_kernel kernel = kernels_[static_cast<size_t>(id)];
+    cl_uint arg = 0;
+    for (void* handle : slots()) {
+      cl_mem buffer = static_cast<cl_mem>(handle);
+      PM_CL_CHECK(clSetKernelArg(kernel, arg++, sizeof(cl_mem), &buffer));
+    }
+    PM_CL_CHECK(clSetKernelArg(kernel, arg++, sizeof(LaunchParams), &params));
+    cl_uint items = work_items;
+    PM_CL_CHECK(clSetKernelArg(kernel, arg++, sizeof(cl_uint), &items));
+    const size_t local = 64;
+    const size_t global = (size_t(work_items) + local - 1) / local * local;
+    cl_int err = clEnqueueNDRangeKernel(queue_, kernel, 1, nullptr, &global, &local, 0, nullptr, nullptr);
+    if (err != CL_SUCCESS)
+      throw DeviceError(std::string("OpenCL: launching kernel ") + kernel_name(id) + " on " +
+                        std::to_string(work_items) + " work items failed with " + cl_error_name(err));
+  }
+
+  void sort_pairs(SortBuffers& buffers, uint32_t count, int key_bits) override {
+    portable_sort_pairs(*this, sort_scratch_, buffers, count, key_bits);
+  }
+
+  void synchronize() override { PM_CL_CHECK(clFinish(queue_)); }
+
+  TimerEvent record_timer() override {
+    cl_event event = nullptr;
+    PM_CL_CHECK(clEnqueueMarkerWithWaitList(queue_, 0, nullptr, &event));
+    return TimerEvent(event, [](void* e) { clReleaseEvent(static_cast<cl_event>(e)); });
+  }
+
+  double elapsed_ms(const TimerEvent& start, const TimerEvent& end) override {
+    cl_event events[2] = {static_cast<cl_event>(start.get()), static_cast<cl_event>(end.get())};
+    PM_CL_CHECK(clWaitForEvents(2, events));
+    cl_ulong t0 = 0, t1 = 0;
+    PM_CL_CHECK(clGetEventProfilingInfo(events[0], CL_PROFILING_COMMAND_END, sizeof(t0), &t0, nullptr));
+    PM_CL_CHECK(clGetEventProfilingInfo(events[1], CL_PROFILING_COMMAND_END, sizeof(t1), &t1, nullptr));
+    return double(t1 - t0) * 1e-6;
+  }
+
+ private:
+  static cl_mem mem(const DeviceBuffer& buffer) { return static_cast<cl_mem>(buffer.handle()); }
+
+  void build_program() {
+    const char* source = kOpenclKernelSource;
+    const size_t length = kOpenclKernelSourceSize;
+    cl_int err = CL_SUCCESS;
+    program_ = clCreateProgramWithSource(context_, 1, &source, &length, &err);
+    PM_CL_CHECK(err);
+    // No -cl-fast-relaxed-math: it implies finite-math-only, and the slab tests rely on IEEE
+    // infinities for axis-parallel rays.
+    err = clBuildProgram(program_, 1, &device_, "-cl-std=CL1.2 -cl-mad-enable", nullptr, nullptr);
+    if (err != CL_SUCCESS) {
+      size_t size = 0;
+      clGetProgramBuildInfo(program_, device_, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size);
+      std::string log(size, '\0');
+      clGetProgramBuildInfo(program_, device_, CL_PROGRAM_BUILD_LOG, size, log.data(), nullptr);
+      throw DeviceError("OpenCL: building the kernels for " + info_.name + " failed with " + cl_error_name(err) +
+                        "; build log:\n" + log);
+    }
+    for (size_t i = 0; i < kKernelCount; ++i) {
+      std::string name = std::string("pm_") + kernel_name(static_cast<KernelId>(i));
+      kernels_[i] = clCreateKernel(program_, name.c_str(), &err);
+      if (err != CL_SUCCESS)
+        throw DeviceError("OpenCL: clCreateKernel(" + name + ") failed with " + cl_error_name(err));
+    }
+  }
+
+  DeviceInfo info_;
+  cl_device_id device_ = nullptr;
+  cl_context context_ = nullptr;
+  cl_command_queue queue_ = nullptr;
+  cl_program program_ = nullptr;
+  cl_kernel kernels_[kKernelCount] = {};
+  PortableSortScratch sort_scratch_;
+};
+
+}  // namespace
+
+std::vector<DeviceInfo> list_opencl_devices() {
+  std::vector<DeviceInfo> infos;
+  std::vector<DeviceEntry> entries = enumerate();
+  for (size_t i = 0; i < entries.size(); ++i) infos.push_back(describe(entries[i], static_cast<int>(i)));
+  return infos;
+}
+
+std::unique_ptr<Device> create_opencl_device(int index) {
+  std::vector<DeviceEntry> entries = enumerate();
+  if (entries.empty())
+    throw DeviceError("OpenCL: no OpenCL device found (is an ICD such as pocl-opencl-icd installed?)");
+  if (index < 0 || index >= static_cast<int>(entries.size()))
+    throw InputError("--device " + std::to_string(index) + ": OpenCL has " + std::to_string(entries.size()) +
+                     " device(s); see 'pmrender devices'");
+  return std::make_unique<OpenclDevice>(entries[index], index);
+}
+
+}  // namespace pm

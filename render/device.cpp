@@ -1,0 +1,85 @@
+// Backend-neutral parts of the device interface: buffer ownership, names for the generated
+// enums, and the registry that lists devices and opens one by backend name.
+#include "render/device.h"
+
+#include <utility>
+
+#include "kernels/opencl/opencl_device.h"
+#include "render/errors.h"
+#if PMRENDER_HAVE_CUDA
+#include "kernels/cuda/cuda_device.h"
+#endif
+
+namespace pm {
+
+DeviceBuffer& DeviceBuffer::operator=(DeviceBuffer&& other) noexcept {
+  if (this != &other) {
+    reset();
+    owner_ = std::exchange(other.owner_, nullptr);
+    handle_ = std::exchange(other.handle_, nullptr);
+    bytes_ = std::exchange(other.bytes_, 0);
+  }
+  return *this;
+}
+
+void DeviceBuffer::reset() {
+  if (owner_ && handle_) owner_->release(handle_);
+  owner_ = nullptr;
+  handle_ = nullptr;
+  bytes_ = 0;
+}
+
+const char* kernel_name(KernelId id) {
+  static const char* const names[] = {
+#define PM_KERNEL_NAME(name) #name,
+      PM_KERNEL_LIST(PM_KERNEL_NAME)
+#undef PM_KERNEL_NAME
+  };
+  return names[static_cast<int>(id)];
+}
+
+const char* buffer_slot_name(BufferSlot slot) {
+  static const char* const names[] = {
+#define PM_SLOT_NAME(type, name) #name,
+      PM_BUFFER_LIST(PM_SLOT_NAME)
+#undef PM_SLOT_NAME
+  };
+  return names[static_cast<int>(slot)];
+}
+
+std::vector<std::string> compiled_backends() {
+#if PMRENDER_HAVE_CUDA
+  return {"cuda", "opencl"};
+#else
+  return {"opencl"};
+#endif
+}
+
+std::vector<DeviceInfo> list_devices() {
+  std::vector<DeviceInfo> all;
+#if PMRENDER_HAVE_CUDA
+  for (DeviceInfo& info : list_cuda_devices()) all.push_back(std::move(info));
+#endif
+  for (DeviceInfo& info : list_opencl_devices()) all.push_back(std::move(info));
+  return all;
+}
+
+std::unique_ptr<Device> create_device(const std::string& backend, int index) {
+  if (backend == "auto") {
+#if PMRENDER_HAVE_CUDA
+    if (!list_cuda_devices().empty()) return create_cuda_device(index);
+#endif
+    return create_opencl_device(index);
+  }
+  if (backend == "cuda") {
+#if PMRENDER_HAVE_CUDA
+    return create_cuda_device(index);
+#else
+    throw InputError("--backend cuda: this pmrender was built without CUDA (rebuild with nvcc available)");
+#endif
+  }
+  if (backend == "opencl") return create_opencl_device(index);
+  throw InputError("--backend: unknown backend '" + backend + "' (expected auto, cuda or opencl)");
+}
+
+}  // namespace pm

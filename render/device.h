@@ -1,0 +1,102 @@
+// The one host interface to a compute device: allocate, copy, fill, launch, sort, time and
+// synchronize. The renderer talks only to this; kernels/cuda/ and kernels/opencl/ implement it.
+// Every failure throws DeviceError naming the failing call, its file and line.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/kernel_abi.h"
+
+namespace pm {
+
+struct DeviceInfo {
+  std::string backend;       // "cuda" or "opencl"
+  int index = 0;             // index within the backend, as --device takes it
+  std::string name;          // e.g. "NVIDIA H200" or "pthread-skylake-avx512"
+  std::string platform;      // OpenCL platform or CUDA runtime
+  std::string driver;        // driver version
+  uint64_t memory_bytes = 0;
+  int compute_units = 0;
+};
+
+class Device;
+
+// Owning handle to device memory; released when it goes out of scope.
+class DeviceBuffer {
+ public:
+  DeviceBuffer() = default;
+  DeviceBuffer(Device* owner, void* handle, size_t bytes) : owner_(owner), handle_(handle), bytes_(bytes) {}
+  DeviceBuffer(DeviceBuffer&& other) noexcept { *this = std::move(other); }
+  DeviceBuffer& operator=(DeviceBuffer&& other) noexcept;
+  DeviceBuffer(const DeviceBuffer&) = delete;
+  DeviceBuffer& operator=(const DeviceBuffer&) = delete;
+  ~DeviceBuffer() { reset(); }
+
+  void reset();
+  void* handle() const { return handle_; }
+  size_t bytes() const { return bytes_; }
+  explicit operator bool() const { return handle_ != nullptr; }
+
+ private:
+  Device* owner_ = nullptr;
+  void* handle_ = nullptr;
+  size_t bytes_ = 0;
+};
+
+struct SortBuffers {
+  DeviceBuffer keys, values, keys_alt, values_alt;
+};
+
+// A point in the device's command stream; the difference of two is device time.
+using TimerEvent = std::shared_ptr<void>;
+
+class Device {
+ public:
+  virtual ~Device() = default;
+  virtual const DeviceInfo& info() const = 0;
+
+  virtual DeviceBuffer allocate(size_t bytes, const char* what) = 0;
+  virtual void upload(DeviceBuffer& dst, const void* src, size_t bytes, size_t offset = 0) = 0;
+  virtual void download(const DeviceBuffer& src, void* dst, size_t bytes, size_t offset = 0) = 0;
+  virtual void fill_zero(DeviceBuffer& dst, size_t bytes) = 0;
+  virtual void copy(const DeviceBuffer& src, DeviceBuffer& dst, size_t bytes) = 0;
+
+  // Kernels read their buffers from the slot table; a slot left unbound is null on the device.
+  void bind(BufferSlot slot, const DeviceBuffer& buffer) { slots_[static_cast<size_t>(slot)] = buffer.handle(); }
+  void unbind(BufferSlot slot) { slots_[static_cast<size_t>(slot)] = nullptr; }
+  virtual void launch(KernelId kernel, uint32_t work_items, const LaunchParams& params) = 0;
+
+  // Sorts count (key, value) pairs by the low key_bits of the key, stably. The pairs start in
+  // keys/values, which hold the result on return; keys_alt/values_alt are scratch of equal size.
+  // CUDA runs CUB; OpenCL runs the portable radix sort kernels (render/portable_sort.h).
+  virtual void sort_pairs(SortBuffers& buffers, uint32_t count, int key_bits) = 0;
+
+  virtual void synchronize() = 0;
+
+  // Device-side timers, for benchmarks only: a render that never records one never pays for them.
+  virtual TimerEvent record_timer() = 0;
+  virtual double elapsed_ms(const TimerEvent& start, const TimerEvent& end) = 0;
+
+  // Called by DeviceBuffer.
+  virtual void release(void* handle) noexcept = 0;
+
+ protected:
+  const std::array<void*, kBufferSlotCount>& slots() const { return slots_; }
+
+ private:
+  std::array<void*, kBufferSlotCount> slots_{};
+};
+
+// Every device of every compiled-in backend that can be opened on this machine.
+std::vector<DeviceInfo> list_devices();
+// Backend names compiled into this binary ("cuda" only when built with CUDA).
+std::vector<std::string> compiled_backends();
+// backend: "auto" (CUDA when a CUDA device exists, else OpenCL), "cuda" or "opencl".
+std::unique_ptr<Device> create_device(const std::string& backend, int index);
+
+}  // namespace pm

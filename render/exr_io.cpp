@@ -1,0 +1,343 @@
+// OpenEXR output and input of FrameImage: atomic scanline writing (half or float, ZIP), reading
+// every RGB layer back, and the completeness check used by --resume. The only file that talks to
+// OpenEXR; host code only, never compiled by nvcc.
+#include "render/exr_io.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfCompression.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+#include <Imath/half.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "render/errors.h"
+
+namespace pm {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr float kHalfMax = 65504.0f;  // largest finite half; anything above would become Inf
+constexpr std::array<const char*, 3> kComponents = {"R", "G", "B"};
+
+std::string channel_name(const std::string& layer, const char* component) {
+  return layer.empty() ? std::string(component) : layer + "." + component;
+}
+
+std::string layer_label(const std::string& layer) {
+  return layer.empty() ? "combined" : "'" + layer + "'";
+}
+
+std::string errno_text(const std::string& what) { return what + ": " + std::strerror(errno); }
+
+// A malformed image is a bug in the caller; catch it before anything touches the disk.
+void check_image_shape(const std::string& path, const FrameImage& image) {
+  auto fail = [&](const std::string& why) {
+    throw DeviceError("cannot write EXR file '" + path + "': " + why);
+  };
+  if (image.width <= 0 || image.height <= 0) {
+    fail("image size is " + std::to_string(image.width) + "x" + std::to_string(image.height));
+  }
+  if (image.layers.empty()) fail("image has no layers");
+  const size_t expected = size_t(image.width) * size_t(image.height) * 3;
+  std::set<std::string> seen;
+  for (const ImageLayer& layer : image.layers) {
+    if (!seen.insert(layer.name).second) fail("duplicate layer " + layer_label(layer.name));
+    if (layer.rgb.size() != expected) {
+      fail("layer " + layer_label(layer.name) + " has " + std::to_string(layer.rgb.size()) +
+           " values, expected " + std::to_string(expected));
+    }
+  }
+}
+
+void check_finite(const std::string& path, const FrameImage& image) {
+  for (const ImageLayer& layer : image.layers) {
+    for (size_t i = 0; i < layer.rgb.size(); ++i) {
+      if (std::isfinite(layer.rgb[i])) continue;
+      const size_t pixel = i / 3;
+      throw DeviceError("refusing to write NaN/Inf to '" + path + "': layer " +
+                        layer_label(layer.name) + " pixel (" +
+                        std::to_string(pixel % size_t(image.width)) + ", " +
+                        std::to_string(pixel / size_t(image.width)) + ") channel " +
+                        kComponents[i % 3] + " is " + std::to_string(layer.rgb[i]));
+    }
+  }
+}
+
+// Writes through a plain file descriptor rather than std::ofstream so that the data can be
+// fsync'ed before the rename, and so that no error is lost: OutputFile's destructor writes the
+// line offset table and swallows any exception doing so, hence the remembered first error.
+class DescriptorOStream : public Imf::OStream {
+ public:
+  DescriptorOStream(const std::string& path, int fd) : Imf::OStream(path.c_str()), fd_(fd) {}
+
+  void write(const char c[], int n) override {
+    while (n > 0) {
+      const ssize_t written = ::write(fd_, c, size_t(n));
+      if (written < 0) {
+        if (errno == EINTR) continue;
+        fail(errno_text("write"));
+      }
+      c += written;
+      n -= int(written);
+      position_ += uint64_t(written);
+    }
+  }
+  uint64_t tellp() override { return position_; }
+  void seekp(uint64_t pos) override {
+    if (::lseek(fd_, off_t(pos), SEEK_SET) < 0) fail(errno_text("seek"));
+    position_ = pos;
+  }
+  const std::string& first_error() const { return first_error_; }
+
+ private:
+  [[noreturn]] void fail(const std::string& message) {
+    if (first_error_.empty()) first_error_ = message;
+    throw std::runtime_error(message);
+  }
+  int fd_;
+  uint64_t position_ = 0;
+  std::string first_error_;
+};
+
+// A hidden file next to the target (same folder, so the final rename cannot cross file systems).
+// Removed by the destructor unless renamed onto the target.
+class TemporaryFile {
+ public:
+  explicit TemporaryFile(const fs::path& target) {
+    // pid and counter keep concurrent writers, in this process or others, off each other's file.
+    static std::atomic<unsigned> counter{0};
+    path_ = target.parent_path() / ("." + target.filename().string() + ".tmp-" +
+                                    std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd_ < 0) throw std::runtime_error(errno_text("cannot create '" + path_.string() + "'"));
+  }
+  ~TemporaryFile() {
+    if (fd_ >= 0) ::close(fd_);
+    if (!renamed_) ::unlink(path_.c_str());
+  }
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+
+  const fs::path& path() const { return path_; }
+  int fd() const { return fd_; }
+
+  // fsync first: without it a crash soon after the rename can leave an empty target on some
+  // file systems, which is exactly the partial file the rename is meant to avoid.
+  void sync_and_close() {
+    if (::fsync(fd_) != 0) throw std::runtime_error(errno_text("fsync"));
+    const int fd = fd_;
+    fd_ = -1;
+    if (::close(fd) != 0) throw std::runtime_error(errno_text("close"));
+  }
+  void rename_onto(const fs::path& target) {
+    if (std::rename(path_.c_str(), target.c_str()) != 0) {
+      throw std::runtime_error(errno_text("cannot rename '" + path_.string() + "' onto it"));
+    }
+    renamed_ = true;
+  }
+
+ private:
+  fs::path path_;
+  int fd_ = -1;
+  bool renamed_ = false;
+};
+
+// Makes the rename itself durable. Best effort: some file systems refuse fsync on folders.
+void sync_folder(const fs::path& folder) {
+  const int fd = ::open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
+void write_exr_atomically(const std::string& path, const FrameImage& image, bool full_float) {
+  const Imf::PixelType type = full_float ? Imf::FLOAT : Imf::HALF;
+  Imf::Header header(image.width, image.height);
+  header.compression() = Imf::ZIP_COMPRESSION;
+  for (const auto& [name, value] : image.attributes) {
+    header.insert(name, Imf::StringAttribute(value));
+  }
+
+  // Half pixels need converted copies; float pixels are read straight from the layers.
+  std::vector<std::vector<half>> half_copies;
+  const size_t value_size = full_float ? sizeof(float) : sizeof(half);
+  const size_t x_stride = 3 * value_size;
+  const size_t y_stride = x_stride * size_t(image.width);
+  Imf::FrameBuffer frame_buffer;
+  for (const ImageLayer& layer : image.layers) {
+    char* base = nullptr;
+    if (full_float) {
+      // OutputFile only reads through the slice; Slice just has no const pointer type.
+      base = reinterpret_cast<char*>(const_cast<float*>(layer.rgb.data()));
+    } else {
+      std::vector<half>& copy = half_copies.emplace_back(layer.rgb.size());
+      for (size_t i = 0; i < layer.rgb.size(); ++i) {
+        copy[i] = half(std::clamp(layer.rgb[i], -kHalfMax, kHalfMax));
+      }
+      base = reinterpret_cast<char*>(copy.data());
+    }
+    for (size_t c = 0; c < kComponents.size(); ++c) {
+      const std::string channel = channel_name(layer.name, kComponents[c]);
+      header.channels().insert(channel, Imf::Channel(type));
+      frame_buffer.insert(channel, Imf::Slice(type, base + c * value_size, x_stride, y_stride));
+    }
+  }
+
+  const fs::path target(path);
+  if (!target.parent_path().empty()) {
+    std::error_code error;
+    fs::create_directories(target.parent_path(), error);
+    if (error) {
+      throw std::runtime_error("cannot create folder '" + target.parent_path().string() +
+                               "': " + error.message());
+    }
+  }
+
+  TemporaryFile temporary(target);
+  DescriptorOStream stream(temporary.path().string(), temporary.fd());
+  {
+    Imf::OutputFile file(stream, header);
+    file.setFrameBuffer(frame_buffer);
+    file.writePixels(image.height);
+  }  // the destructor writes the offset table; its errors only show in the stream
+  if (!stream.first_error().empty()) throw std::runtime_error(stream.first_error());
+  temporary.sync_and_close();
+  temporary.rename_onto(target);
+  sync_folder(target.parent_path());
+}
+
+FrameImage read_exr_layers(const std::string& path) {
+  Imf::InputFile file(path.c_str());
+  const Imf::Header& header = file.header();
+  const Imath::Box2i window = header.dataWindow();
+  const int64_t width = int64_t(window.max.x) - window.min.x + 1;
+  const int64_t height = int64_t(window.max.y) - window.min.y + 1;
+  if (width <= 0 || height <= 0) throw InputError("EXR file '" + path + "' has an empty image");
+
+  // Which of R, G, B each prefix has. std::map sorts "" (the combined layer) first.
+  std::map<std::string, std::array<bool, 3>> groups;
+  const Imf::ChannelList& channels = header.channels();
+  for (auto it = channels.begin(); it != channels.end(); ++it) {
+    const std::string name = it.name();
+    const size_t dot = name.rfind('.');
+    const std::string prefix = dot == std::string::npos ? "" : name.substr(0, dot);
+    const std::string component = dot == std::string::npos ? name : name.substr(dot + 1);
+    const auto found = std::find_if(kComponents.begin(), kComponents.end(),
+                                    [&](const char* c) { return component == c; });
+    if (found == kComponents.end()) continue;  // A, Z and other non-colour channels
+    if (it.channel().xSampling != 1 || it.channel().ySampling != 1) {
+      throw InputError("EXR file '" + path + "': subsampled channel '" + name +
+                       "' is not supported");
+    }
+    groups[prefix][size_t(found - kComponents.begin())] = true;
+  }
+  if (groups.empty()) throw InputError("EXR file '" + path + "' has no R, G, B channels");
+
+  FrameImage image;
+  image.width = int(width);
+  image.height = int(height);
+  image.layers.reserve(groups.size());
+  Imf::FrameBuffer frame_buffer;
+  for (const auto& [prefix, present] : groups) {
+    for (size_t c = 0; c < kComponents.size(); ++c) {
+      if (!present[c]) {
+        throw InputError("EXR file '" + path + "': layer " + layer_label(prefix) + " has no " +
+                         kComponents[c] + " channel");
+      }
+    }
+    ImageLayer& layer = image.layers.emplace_back();
+    layer.name = prefix;
+    layer.rgb.resize(size_t(width) * size_t(height) * 3);
+    for (size_t c = 0; c < kComponents.size(); ++c) {
+      // Make() offsets the pointer by the data window's origin, which need not be (0, 0).
+      frame_buffer.insert(channel_name(prefix, kComponents[c]),
+                          Imf::Slice::Make(Imf::FLOAT, layer.rgb.data() + c, window,
+                                           3 * sizeof(float), 3 * sizeof(float) * size_t(width)));
+    }
+  }
+  file.setFrameBuffer(frame_buffer);
+  file.readPixels(window.min.y, window.max.y);
+
+  for (auto it = header.begin(); it != header.end(); ++it) {
+    // Compare the type name instead of dynamic_cast: RTTI across the shared library boundary
+    // is not something to depend on.
+    if (std::strcmp(it.attribute().typeName(), Imf::StringAttribute::staticTypeName()) == 0) {
+      image.attributes.emplace_back(it.name(),
+                                    static_cast<const Imf::StringAttribute&>(it.attribute()).value());
+    }
+  }
+  return image;
+}
+
+}  // namespace
+
+void write_exr(const std::string& path, const FrameImage& image, bool full_float) {
+  check_image_shape(path, image);
+  check_finite(path, image);
+  try {
+    write_exr_atomically(path, image, full_float);
+  } catch (const std::exception& e) {
+    throw DeviceError("cannot write EXR file '" + path + "': " + e.what());
+  }
+}
+
+FrameImage read_exr(const std::string& path) {
+  try {
+    return read_exr_layers(path);
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw InputError("cannot read EXR file '" + path + "': " + e.what());
+  }
+}
+
+bool exr_is_complete(const std::string& path) {
+  try {
+    Imf::InputFile file(path.c_str());
+    if (!file.isComplete()) return false;
+    // isComplete() only checks the line offset table, which sits near the start of the file,
+    // so a copy cut short after the table passes it. Decoding one channel reads every chunk.
+    const Imf::Header& header = file.header();
+    const Imath::Box2i window = header.dataWindow();
+    const Imf::ChannelList& channels = header.channels();
+    for (auto it = channels.begin(); it != channels.end(); ++it) {
+      if (it.channel().xSampling != 1 || it.channel().ySampling != 1) continue;
+      const size_t width = size_t(int64_t(window.max.x) - window.min.x + 1);
+      const size_t height = size_t(int64_t(window.max.y) - window.min.y + 1);
+      std::vector<float> scratch(width * height);
+      Imf::FrameBuffer frame_buffer;
+      frame_buffer.insert(it.name(), Imf::Slice::Make(Imf::FLOAT, scratch.data(), window,
+                                                      sizeof(float), sizeof(float) * width));
+      file.setFrameBuffer(frame_buffer);
+      file.readPixels(window.min.y, window.max.y);
+      return true;
+    }
+    return true;  // only subsampled channels: the offset table is all there is to go on
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+}  // namespace pm

@@ -1,0 +1,42 @@
+// OpenEXR output and input of FrameImage. Only declarations here: OpenEXR's headers stay inside
+// exr_io.cpp because Imath's half clashes with CUDA's, and this header may reach .cu files
+// through others.
+#pragma once
+
+#include <string>
+
+#include "render/image.h"
+
+namespace pm {
+
+// Writes the image as a scanline OpenEXR file with ZIP compression. Channels are HALF unless
+// full_float is true, then FLOAT. Layers become channel prefixes (combined = R,G,B; "direct" =
+// direct.R, direct.G, direct.B); each attribute becomes a string attribute in the header.
+//
+// - Any NaN or Inf in any layer is refused (pm::DeviceError "refusing to write NaN/Inf ...").
+//   The renderer guarantees finite output; this is the last guard before the file.
+// - In half mode, values beyond the half range (+-65504) are clamped to it instead of becoming
+//   Inf. Use full_float for images that really are that bright.
+// - The write is atomic: the data goes to a hidden temporary file in the target's folder, is
+//   flushed to disk, and is then renamed onto the target. Missing parent folders are created.
+//   On any failure the temporary is removed, an existing target is left untouched, and
+//   pm::DeviceError is thrown naming the path (exit code 1: an output failure, not bad input).
+// - A malformed FrameImage (zero size, wrong rgb length, duplicate or no layers) is also a
+//   pm::DeviceError: it is a bug in the caller, not the user's input.
+void write_exr(const std::string& path, const FrameImage& image, bool full_float);
+
+// Reads every RGB layer of the file's first part. Channels are grouped by the text before their
+// last '.'; R, G, B without a prefix form the combined layer "", which comes first in layers;
+// other layers follow in channel-list (alphabetical) order. Groups with none of R, G, B (e.g. a
+// lone "A" or "Z") are ignored. Every string attribute of the header is returned, including
+// standard ones such as "owner" when present. Values are returned as read; no finiteness check.
+// A missing or unreadable file, a non-EXR file, a layer lacking one of R, G, B, or a file with no
+// RGB layer at all is a pm::InputError naming the file.
+FrameImage read_exr(const std::string& path);
+
+// True when the file opens as an EXR and every scanline chunk of it can be read, i.e. it was
+// written to the end (used by --resume to skip finished frames). Decodes the pixels of one
+// channel to be sure, so it costs about one image read. Never throws; any problem is "false".
+bool exr_is_complete(const std::string& path);
+
+}  // namespace pm

@@ -1,0 +1,62 @@
+// Host driver of the portable radix sort: per 4-bit digit, histogram -> chunk scan -> total scan
+// -> stable scatter, ping-ponging between the pair buffers (see kernels/common/radix_sort.h).
+#include "render/portable_sort.h"
+
+#include <utility>
+
+namespace pm {
+
+namespace {
+
+uint32_t tile_count(uint32_t count) { return (count + PM_SORT_TILE - 1) / PM_SORT_TILE; }
+
+size_t histogram_bytes(uint32_t count) {
+  size_t entries = size_t(PM_SORT_RADIX) * tile_count(count);
+  size_t chunks = (entries + PM_SORT_TILE - 1) / PM_SORT_TILE;
+  return (entries + chunks) * sizeof(uint32_t);
+}
+
+}  // namespace
+
+DeviceBuffer& PortableSortScratch::histogram(Device& device, uint32_t count) {
+  size_t needed = histogram_bytes(count);
+  if (histogram_.bytes() < needed) histogram_ = device.allocate(needed, "radix sort histogram");
+  return histogram_;
+}
+
+void portable_sort_pairs(Device& device, PortableSortScratch& scratch, SortBuffers& buffers, uint32_t count,
+                         int key_bits) {
+  if (count <= 1) return;
+  LaunchParams params{};
+  params.sort_count = count;
+  params.sort_tile_count = tile_count(count);
+  uint32_t entries = PM_SORT_RADIX * params.sort_tile_count;
+  uint32_t chunks = (entries + PM_SORT_TILE - 1) / PM_SORT_TILE;
+  device.bind(BufferSlot::sort_histogram, scratch.histogram(device, count));
+
+  DeviceBuffer* keys = &buffers.keys;
+  DeviceBuffer* values = &buffers.values;
+  DeviceBuffer* keys_alt = &buffers.keys_alt;
+  DeviceBuffer* values_alt = &buffers.values_alt;
+  int passes = (key_bits + PM_SORT_RADIX_BITS - 1) / PM_SORT_RADIX_BITS;
+  for (int pass = 0; pass < passes; ++pass) {
+    params.sort_shift = uint32_t(pass * PM_SORT_RADIX_BITS);
+    device.bind(BufferSlot::sort_keys, *keys);
+    device.bind(BufferSlot::sort_values, *values);
+    device.bind(BufferSlot::sort_keys_alt, *keys_alt);
+    device.bind(BufferSlot::sort_values_alt, *values_alt);
+    device.launch(KernelId::sort_histogram, params.sort_tile_count, params);
+    device.launch(KernelId::sort_scan_chunks, chunks, params);
+    device.launch(KernelId::sort_scan_totals, 1, params);
+    device.launch(KernelId::sort_scatter, params.sort_tile_count, params);
+    std::swap(keys, keys_alt);
+    std::swap(values, values_alt);
+  }
+  // An odd number of passes leaves the result in the alternate buffers: hand them over.
+  if (keys != &buffers.keys) {
+    std::swap(buffers.keys, buffers.keys_alt);
+    std::swap(buffers.values, buffers.values_alt);
+  }
+}
+
+}  // namespace pm

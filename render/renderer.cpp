@@ -1,0 +1,154 @@
+// Frame orchestration over the Device interface: scene upload once, then per frame the camera
+// pass and the film resolve, and the read-back into a FrameImage with its layers.
+#include "render/renderer.h"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+#include "render/errors.h"
+#include "render/scene_bvh.h"
+
+namespace pm {
+
+namespace {
+
+Float3 sub(Float3 a, Float3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+Float3 cross(Float3 a, Float3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+Float3 scaled(Float3 a, float s) { return {a.x * s, a.y * s, a.z * s}; }
+Float3 normalized(Float3 a) { return scaled(a, 1.0f / std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z)); }
+float4 to_float4(Float3 a) { return float4{a.x, a.y, a.z, 0.0f}; }
+
+template <typename T>
+DeviceBuffer upload_vector(Device& device, const std::vector<T>& data, const char* what) {
+  DeviceBuffer buffer = device.allocate(data.size() * sizeof(T), what);
+  device.upload(buffer, data.data(), data.size() * sizeof(T));
+  return buffer;
+}
+
+std::vector<float> rgb_from_float4(const std::vector<float4>& pixels) {
+  std::vector<float> rgb(pixels.size() * 3);
+  for (size_t i = 0; i < pixels.size(); ++i) {
+    rgb[3 * i + 0] = pixels[i].x;
+    rgb[3 * i + 1] = pixels[i].y;
+    rgb[3 * i + 2] = pixels[i].z;
+  }
+  return rgb;
+}
+
+}  // namespace
+
+std::string RenderSettings::describe() const {
+  std::ostringstream s;
+  s << "mirror_depth=" << mirror_depth << " seed=" << seed;
+  return s.str();
+}
+
+CameraParams make_camera_params(const CameraDesc& camera, int width, int height) {
+  Float3 forward = normalized(sub(camera.look_at, camera.position));
+  Float3 right = normalized(cross(forward, camera.up));
+  Float3 up = cross(right, forward);
+  float tan_half = std::tan(camera.vertical_fov_degrees * 0.5f * float(M_PI) / 180.0f);
+  float aspect = float(width) / float(height);
+  CameraParams params{};
+  params.position = to_float4(camera.position);
+  params.forward = to_float4(forward);
+  params.right = to_float4(scaled(right, tan_half * aspect));
+  params.up = to_float4(scaled(up, tan_half));
+  return params;
+}
+
+Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& settings)
+    : device_(device), scene_(scene), settings_(settings) {
+  width_ = settings.width > 0 ? settings.width : scene.camera.width;
+  height_ = settings.height > 0 ? settings.height : scene.camera.height;
+  if (settings.mirror_depth < 0 || settings.mirror_depth > 16)
+    throw InputError("--mirror-depth: expected 0 to 16, got " + std::to_string(settings.mirror_depth));
+  upload_scene();
+  allocate_frame_buffers();
+}
+
+void Renderer::upload_scene() {
+  SceneBvh bvh = build_scene_bvh(scene_);
+  scene_nodes_ = upload_vector(device_, bvh.nodes, "scene BVH nodes");
+  triangles_ = upload_vector(device_, bvh.triangles, "scene triangles");
+
+  std::vector<Material> materials;
+  for (const MaterialDesc& m : scene_.materials) {
+    Material gpu{};
+    gpu.diffuse = to_float4(m.diffuse);
+    gpu.glossy = float4{m.glossy.x, m.glossy.y, m.glossy.z, m.glossy_exponent};
+    gpu.mirror = to_float4(m.mirror);
+    materials.push_back(gpu);
+  }
+  materials_ = upload_vector(device_, materials, "materials");
+
+  std::vector<PointLight> lights;
+  for (const LightDesc& l : scene_.lights) lights.push_back(PointLight{to_float4(l.position), to_float4(l.power)});
+  lights_ = upload_vector(device_, lights, "point lights");
+
+  device_.bind(BufferSlot::scene_nodes, scene_nodes_);
+  device_.bind(BufferSlot::triangles, triangles_);
+  device_.bind(BufferSlot::materials, materials_);
+  device_.bind(BufferSlot::lights, lights_);
+}
+
+void Renderer::allocate_frame_buffers() {
+  const size_t pixels = size_t(width_) * size_t(height_);
+  const size_t records = pixels * size_t(settings_.mirror_depth + 1);
+  shade_position_ = device_.allocate(records * sizeof(float4), "shading point positions");
+  shade_normal_ = device_.allocate(records * sizeof(float4), "shading point normals");
+  shade_outgoing_ = device_.allocate(records * sizeof(float4), "shading point directions");
+  shade_weight_ = device_.allocate(records * sizeof(float4), "shading point weights");
+  film_direct_ = device_.allocate(pixels * sizeof(float4), "direct light layer");
+  film_combined_ = device_.allocate(pixels * sizeof(float4), "combined layer");
+  device_.bind(BufferSlot::shade_position, shade_position_);
+  device_.bind(BufferSlot::shade_normal, shade_normal_);
+  device_.bind(BufferSlot::shade_outgoing, shade_outgoing_);
+  device_.bind(BufferSlot::shade_weight, shade_weight_);
+  device_.bind(BufferSlot::film_direct, film_direct_);
+  device_.bind(BufferSlot::film_combined, film_combined_);
+}
+
+LaunchParams Renderer::frame_params(int frame) const {
+  LaunchParams p{};
+  p.camera = make_camera_params(scene_.camera, width_, height_);
+  p.width = uint32_t(width_);
+  p.height = uint32_t(height_);
+  p.triangle_count = uint32_t(scene_.triangle_count());
+  p.light_count = uint32_t(scene_.lights.size());
+  p.mirror_depth = uint32_t(settings_.mirror_depth);
+  p.seed = settings_.seed;
+  p.frame = uint32_t(frame);
+  return p;
+}
+
+FrameImage Renderer::render_frame(int frame, FrameStats* stats) {
+  const auto start = std::chrono::steady_clock::now();
+  const LaunchParams params = frame_params(frame);
+  const uint32_t pixels = params.width * params.height;
+  device_.launch(KernelId::camera_pass, pixels, params);
+  device_.launch(KernelId::film_resolve, pixels, params);
+
+  std::vector<float4> combined(pixels), direct(pixels);
+  device_.download(film_combined_, combined.data(), pixels * sizeof(float4));
+  device_.download(film_direct_, direct.data(), pixels * sizeof(float4));
+  const auto end = std::chrono::steady_clock::now();
+
+  int repaired = 0;
+  for (const float4& px : combined) repaired += px.w != 0.0f;
+
+  FrameImage image;
+  image.width = width_;
+  image.height = height_;
+  image.layers.push_back(ImageLayer{"", rgb_from_float4(combined)});
+  image.layers.push_back(ImageLayer{"direct", rgb_from_float4(direct)});
+  if (stats) {
+    stats->render_ms = std::chrono::duration<double, std::milli>(end - start).count();
+    stats->repaired_pixels = repaired;
+  }
+  return image;
+}
+
+}  // namespace pm

@@ -1,0 +1,57 @@
+// Frame orchestration: owns the device-side copy of one scene and runs the stages of a frame
+// (S5 camera, S7 film; photon stages join here) through the backend-neutral Device interface.
+// The scene BVH is built and uploaded once per Renderer, i.e. once per sequence.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "render/device.h"
+#include "render/image.h"
+#include "render/scene.h"
+
+namespace pm {
+
+struct RenderSettings {
+  int mirror_depth = 1;  // eye-ray perfect-mirror bounces followed
+  uint32_t seed = 1;
+  int width = 0;   // 0: the scene camera's resolution
+  int height = 0;
+
+  std::string describe() const;  // one line for EXR headers and logs
+};
+
+struct FrameStats {
+  double render_ms = 0;       // wall time from first launch to the frame's data back on the host
+  int repaired_pixels = 0;    // non-finite pixels the film stage replaced by black
+};
+
+class Renderer {
+ public:
+  Renderer(Device& device, const Scene& scene, const RenderSettings& settings);
+
+  FrameImage render_frame(int frame, FrameStats* stats = nullptr);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  void upload_scene();
+  void allocate_frame_buffers();
+  LaunchParams frame_params(int frame) const;
+
+  Device& device_;
+  const Scene& scene_;
+  RenderSettings settings_;
+  int width_ = 0;
+  int height_ = 0;
+
+  DeviceBuffer scene_nodes_, triangles_, materials_, lights_;
+  DeviceBuffer shade_position_, shade_normal_, shade_outgoing_, shade_weight_;
+  DeviceBuffer film_direct_, film_combined_;
+};
+
+// The camera basis the kernels expect (kernels/common/types.h CameraParams).
+CameraParams make_camera_params(const CameraDesc& camera, int width, int height);
+
+}  // namespace pm

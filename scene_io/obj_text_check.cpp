@@ -1,0 +1,267 @@
+// Owns the pre-parse validation of OBJ text (see obj_text_check.h for why it exists): vertex
+// coordinates, element indices, usemtl names and mtllib files, each error with its line number.
+#include "scene_io/obj_text_check.h"
+
+#include <cerrno>
+#include <cfloat>
+#include <climits>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <unordered_set>
+
+#include "scene_io/load_error.h"
+
+namespace pm {
+namespace {
+
+enum class ObjStatement { kOther, kVertex, kTexcoord, kNormal, kFace, kLine, kPoint, kUsemtl, kMtllib };
+
+bool is_blank(char c) { return c == ' ' || c == '\t'; }
+
+// Classifies a line (leading blanks already skipped) with the same tests tinyobjloader uses, so
+// both passes agree on what each line is. *rest is set to the text after the keyword.
+ObjStatement classify(const std::string& line, size_t start, size_t* rest) {
+  auto keyword_then_blank = [&](const char* keyword) {
+    size_t n = std::strlen(keyword);
+    if (line.compare(start, n, keyword) != 0) return false;
+    if (start + n >= line.size() || !is_blank(line[start + n])) return false;
+    *rest = start + n;
+    return true;
+  };
+  if (keyword_then_blank("v")) return ObjStatement::kVertex;
+  if (keyword_then_blank("vt")) return ObjStatement::kTexcoord;
+  if (keyword_then_blank("vn")) return ObjStatement::kNormal;
+  if (keyword_then_blank("f")) return ObjStatement::kFace;
+  if (keyword_then_blank("l")) return ObjStatement::kLine;
+  if (keyword_then_blank("p")) return ObjStatement::kPoint;
+  if (line.compare(start, 6, "usemtl") == 0) {  // tinyobjloader needs no blank after usemtl
+    *rest = start + 6;
+    return ObjStatement::kUsemtl;
+  }
+  if (keyword_then_blank("mtllib")) return ObjStatement::kMtllib;
+  return ObjStatement::kOther;
+}
+
+std::vector<std::string> split_blanks(const std::string& line, size_t from) {
+  std::vector<std::string> tokens;
+  size_t i = from;
+  while (i < line.size()) {
+    while (i < line.size() && is_blank(line[i])) ++i;
+    size_t begin = i;
+    while (i < line.size() && !is_blank(line[i])) ++i;
+    if (i > begin) tokens.push_back(line.substr(begin, i - begin));
+  }
+  return tokens;
+}
+
+// Only what tinyobjloader's own number parser understands (no hex, inf or nan spellings), so a
+// value that passes here is the value it will read.
+bool parse_decimal(const std::string& token, double* value) {
+  if (token.empty() || token.find_first_not_of("0123456789+-.eE") != std::string::npos) return false;
+  char* end = nullptr;
+  *value = std::strtod(token.c_str(), &end);
+  return end == token.c_str() + token.size();
+}
+
+bool parse_index(const std::string& text, long* value) {
+  if (text.empty()) return false;
+  char* end = nullptr;
+  errno = 0;
+  *value = std::strtol(text.c_str(), &end, 10);
+  return errno == 0 && end == text.c_str() + text.size() && *value >= INT_MIN && *value <= INT_MAX;
+}
+
+struct AttributeCounts {
+  size_t vertices = 0, texcoords = 0, normals = 0;
+};
+
+// Checks one index of one kind: positive indices may refer to any vertex in the file (like
+// tinyobjloader, which resolves them after reading everything), negative ones count back from the
+// vertices defined so far.
+void check_index(const std::string& where, const std::string& element, const std::string& kind,
+                 const std::string& text, size_t total, size_t so_far) {
+  long index = 0;
+  if (!parse_index(text, &index)) {
+    throw_input_error(where, element + " " + kind + " index '" + text + "' is not an integer");
+  }
+  if (index == 0) {
+    throw_input_error(where, element + " " + kind + " index 0 is invalid (OBJ indices start at 1)");
+  }
+  const std::string plural = kind == "vertex" ? "vertices" : kind + "s";
+  if (index > 0 && static_cast<size_t>(index) > total) {
+    throw_input_error(where, element + " " + kind + " index " + std::to_string(index) +
+                                 " out of range (" + std::to_string(total) + " " + plural + ")");
+  }
+  if (index < 0 && static_cast<size_t>(-index) > so_far) {
+    throw_input_error(where, element + " " + kind + " index " + std::to_string(index) +
+                                 " out of range (" + std::to_string(so_far) + " " + plural +
+                                 " before this line)");
+  }
+}
+
+// One corner "v", "v/vt", "v//vn" or "v/vt/vn".
+void check_corner(const std::string& where, const std::string& element, const std::string& corner,
+                  const AttributeCounts& total, const AttributeCounts& so_far) {
+  std::vector<std::string> parts;
+  size_t begin = 0;
+  for (;;) {
+    size_t slash = corner.find('/', begin);
+    parts.push_back(corner.substr(begin, slash == std::string::npos ? std::string::npos : slash - begin));
+    if (slash == std::string::npos) break;
+    begin = slash + 1;
+  }
+  bool well_formed = parts.size() <= 3 && !parts[0].empty() &&
+                     (parts.size() < 2 || !parts[1].empty() || parts.size() == 3) &&
+                     (parts.size() < 3 || !parts[2].empty());
+  if (!well_formed) {
+    throw_input_error(where, element + " corner '" + corner + "' is not of the form v, v/vt, v//vn or v/vt/vn");
+  }
+  check_index(where, element, "vertex", parts[0], total.vertices, so_far.vertices);
+  if (parts.size() >= 2 && !parts[1].empty()) {
+    check_index(where, element, "texture coordinate", parts[1], total.texcoords, so_far.texcoords);
+  }
+  if (parts.size() == 3) check_index(where, element, "normal", parts[2], total.normals, so_far.normals);
+}
+
+void check_vertex(const std::string& where, const std::vector<std::string>& coordinates) {
+  if (coordinates.size() < 3) {
+    throw_input_error(where, "vertex has " + std::to_string(coordinates.size()) +
+                                 " coordinates (need x y z)");
+  }
+  for (size_t i = 0; i < 3; ++i) {
+    double value = 0;
+    if (!parse_decimal(coordinates[i], &value)) {
+      throw_input_error(where, "vertex coordinate '" + coordinates[i] + "' is not a finite decimal number");
+    }
+    if (!std::isfinite(value) || std::fabs(value) > FLT_MAX) {
+      throw_input_error(where, "vertex coordinate '" + coordinates[i] + "' is not a finite float");
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> split_obj_lines(const std::string& text) {
+  std::vector<std::string> lines;
+  size_t begin = 0;
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] != '\n' && text[i] != '\r') continue;
+    lines.push_back(text.substr(begin, i - begin));
+    if (text[i] == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+    begin = i + 1;
+  }
+  if (begin < text.size()) lines.push_back(text.substr(begin));
+  return lines;
+}
+
+std::vector<std::string> split_mtllib_names(const std::string& rest_of_line) {
+  std::vector<std::string> names;
+  std::string name;
+  bool escaping = false;
+  for (char c : rest_of_line) {
+    if (!escaping && c == '\\') {
+      escaping = true;
+      continue;
+    }
+    if (!escaping && c == ' ') {
+      if (!name.empty()) names.push_back(name);
+      name.clear();
+      continue;
+    }
+    escaping = false;
+    name += c;
+  }
+  if (!name.empty()) names.push_back(name);
+  return names;
+}
+
+std::string resolve_mtl_file(const std::string& obj_dir, const std::string& name) {
+  namespace fs = std::filesystem;
+  fs::path path = fs::path(name).is_absolute() ? fs::path(name) : fs::path(obj_dir) / name;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return "";
+  std::ifstream probe(path);
+  return probe ? path.string() : "";
+}
+
+ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_dir,
+                            const std::string& text, bool check_mtllib) {
+  const std::vector<std::string> lines = split_obj_lines(text);
+
+  // Pass 1: totals, because positive indices may point at vertices defined further down.
+  AttributeCounts total;
+  for (const std::string& line : lines) {
+    size_t start = line.find_first_not_of(" \t");
+    if (start == std::string::npos) continue;
+    size_t rest = 0;
+    switch (classify(line, start, &rest)) {
+      case ObjStatement::kVertex: ++total.vertices; break;
+      case ObjStatement::kTexcoord: ++total.texcoords; break;
+      case ObjStatement::kNormal: ++total.normals; break;
+      default: break;
+    }
+  }
+
+  // Pass 2: validate each statement with its line number.
+  ObjTextFacts facts;
+  facts.vertex_count = total.vertices;
+  std::unordered_set<std::string> seen_materials;
+  AttributeCounts so_far;
+  for (size_t number = 1; number <= lines.size(); ++number) {
+    const std::string& line = lines[number - 1];
+    size_t start = line.find_first_not_of(" \t");
+    if (start == std::string::npos) continue;
+    size_t rest = 0;
+    const ObjStatement statement = classify(line, start, &rest);
+    if (statement == ObjStatement::kOther) continue;
+    const std::string where = file_line(obj_path, number);
+    switch (statement) {
+      case ObjStatement::kVertex:
+        check_vertex(where, split_blanks(line, rest));
+        ++so_far.vertices;
+        break;
+      case ObjStatement::kTexcoord: ++so_far.texcoords; break;
+      case ObjStatement::kNormal: ++so_far.normals; break;
+      case ObjStatement::kFace:
+      case ObjStatement::kLine:
+      case ObjStatement::kPoint: {
+        const std::string element = statement == ObjStatement::kFace   ? "face"
+                                    : statement == ObjStatement::kLine ? "line element"
+                                                                       : "point element";
+        const std::vector<std::string> corners = split_blanks(line, rest);
+        if (statement == ObjStatement::kFace && corners.size() < 3) {
+          throw_input_error(where, "face has " + std::to_string(corners.size()) +
+                                       " corners (need at least 3)");
+        }
+        for (const std::string& corner : corners) check_corner(where, element, corner, total, so_far);
+        break;
+      }
+      case ObjStatement::kUsemtl: {
+        std::vector<std::string> words = split_blanks(line, rest);
+        if (words.empty()) throw_input_error(where, "usemtl without a material name");
+        if (seen_materials.insert(words[0]).second) facts.usemtl_names.push_back({words[0], number});
+        break;
+      }
+      case ObjStatement::kMtllib: {
+        if (!check_mtllib) break;
+        const std::vector<std::string> names = split_mtllib_names(line.substr(rest + 1));
+        bool any_opens = false;
+        for (const std::string& name : names) any_opens = any_opens || !resolve_mtl_file(obj_dir, name).empty();
+        if (names.empty()) throw_input_error(where, "mtllib without a file name");
+        if (!any_opens) {
+          std::string tried;
+          for (const std::string& name : names) tried += (tried.empty() ? "'" : " or '") + name + "'";
+          throw_input_error(where, "mtllib: cannot open " + tried);
+        }
+        break;
+      }
+      case ObjStatement::kOther: break;
+    }
+  }
+  return facts;
+}
+
+}  // namespace pm

@@ -1,0 +1,42 @@
+// Owns the line-by-line validation of OBJ text that runs before tinyobjloader parses it.
+// tinyobjloader 2.0rc10 (Debian 12) accepts some broken input silently — "v nan 0 0" becomes 0,
+// out-of-range positive face indices pass through, and its out-of-range warning carries the last
+// line number rather than the face's — so this pass rejects such lines itself, with the real line,
+// and collects the usemtl/mtllib facts the mesh loader needs.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace pm {
+
+struct ObjUsemtl {
+  std::string name;
+  size_t first_line = 0;  // 1-based line of its first usemtl statement
+};
+
+struct ObjTextFacts {
+  std::vector<ObjUsemtl> usemtl_names;  // distinct names, in order of first use
+  size_t vertex_count = 0;
+};
+
+// Splits text into lines the way tinyobjloader does ("\n", "\r\n" and a lone "\r" all end a line),
+// so line numbers agree with its own messages.
+std::vector<std::string> split_obj_lines(const std::string& text);
+
+// Throws InputError "<obj_path>: line N: <problem>" for:
+//   vertices without 3 decimal, finite (float-range) coordinates;
+//   face/line/point elements with a malformed, zero or out-of-range v/vt/vn index, faces with
+//   fewer than 3 corners; usemtl without a name; and, when check_mtllib is set, an mtllib line
+//   none of whose files can be opened (relative to obj_dir).
+ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_dir,
+                            const std::string& text, bool check_mtllib);
+
+// Resolves an mtllib file name the way the mesh loader opens it: relative to the OBJ's folder
+// unless absolute. Returns "" when it is not a readable regular file.
+std::string resolve_mtl_file(const std::string& obj_dir, const std::string& name);
+
+// tinyobjloader's split of an mtllib line: on spaces, with "\ " escaping a space.
+std::vector<std::string> split_mtllib_names(const std::string& rest_of_line);
+
+}  // namespace pm

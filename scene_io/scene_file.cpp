@@ -1,0 +1,338 @@
+// Owns loading a pmrender JSON scene (format version 1, docs/scene-format.md) into pm::Scene:
+// the top-level keys, JSON materials, meshes (through obj_mesh), lights, camera, unit conversion
+// to metres and the usemtl name -> material resolution (JSON materials first, then MTL).
+#include "scene_io/scene_file.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+
+#include "scene_io/json_reader.h"
+#include "scene_io/load_error.h"
+#include "scene_io/obj_mesh.h"
+
+namespace pm {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char kFormatName[] = "pmrender-scene";
+const int kMaxResolution = 16384;
+const char* const kChannelNames[3] = {"red", "green", "blue"};
+
+float component(const Float3& v, int i) { return i == 0 ? v.x : (i == 1 ? v.y : v.z); }
+
+// Converts a position from scene units to metres; fails on the field if that overflows a float.
+Float3 to_metres(const Float3& units, double meters_per_unit, const JsonField& field) {
+  const double m[3] = {units.x * meters_per_unit, units.y * meters_per_unit, units.z * meters_per_unit};
+  for (double v : m) {
+    if (!std::isfinite(static_cast<float>(v))) field.fail("beyond float range once converted to metres");
+  }
+  return Float3{static_cast<float>(m[0]), static_cast<float>(m[1]), static_cast<float>(m[2])};
+}
+
+// --- materials -------------------------------------------------------------------------------
+
+Float3 read_reflectance(const JsonField& field) {
+  const Float3 value = field.float3();
+  for (size_t i = 0; i < 3; ++i) {
+    const float v = component(value, static_cast<int>(i));
+    if (v < 0 || v > 1) field.element(i).fail("must be in [0, 1], got " + describe_json_value(field.element(i).value()));
+  }
+  return value;
+}
+
+MaterialDesc read_json_material(const JsonField& field, const std::string& name) {
+  field.expect_object_with_keys({"diffuse", "glossy", "exponent", "mirror"});
+  MaterialDesc desc;  // defaults: diffuse 0.8 grey, no glossy or mirror, exponent 1
+  desc.name = name;
+  if (field.has("diffuse")) desc.diffuse = read_reflectance(field.member("diffuse"));
+  if (field.has("glossy")) desc.glossy = read_reflectance(field.member("glossy"));
+  if (field.has("mirror")) desc.mirror = read_reflectance(field.member("mirror"));
+  if (field.has("exponent")) {
+    const JsonField exponent = field.member("exponent");
+    const double value = exponent.finite_number();
+    if (value < 0 || value > 1e6) exponent.fail("must be in [0, 1e6], got " + describe_json_value(exponent.value()));
+    desc.glossy_exponent = static_cast<float>(value);
+  }
+  // Hand-written materials that reflect more than they receive are mistakes; say so instead of
+  // quietly rescaling (MTL files, written by exporters, are rescaled instead: mtl_material.h).
+  for (int c = 0; c < 3; ++c) {
+    const double sum = double(component(desc.diffuse, c)) + component(desc.glossy, c) + component(desc.mirror, c);
+    if (sum > 1.0) {
+      field.fail("diffuse + glossy + mirror = " + std::to_string(sum) + " exceeds 1 in the " +
+                 kChannelNames[c] + " channel");
+    }
+  }
+  return desc;
+}
+
+std::map<std::string, MaterialDesc> read_json_materials(const JsonField& root) {
+  std::map<std::string, MaterialDesc> materials;
+  if (!root.has("materials")) return materials;
+  const JsonField field = root.member("materials");
+  if (!field.value().is_object()) field.fail("expected an object, got " + describe_json_value(field.value()));
+  for (const auto& item : field.value().items()) {
+    if (item.key().empty()) field.fail("material names must not be empty");
+    materials[item.key()] = read_json_material(JsonField(field.file(), item.value(), field.path() + "." + item.key()), item.key());
+  }
+  return materials;
+}
+
+// Builds Scene.materials in first-use order. Keys say where a material came from, so an MTL
+// material and a JSON material of the same name, or two MTL files' "wall", stay distinct.
+class MaterialTable {
+ public:
+  explicit MaterialTable(std::vector<MaterialDesc>* materials) : materials_(materials) {}
+
+  uint32_t index_of(const std::string& key, const std::function<MaterialDesc()>& make) {
+    auto it = index_by_key_.find(key);
+    if (it != index_by_key_.end()) return it->second;
+    const uint32_t index = static_cast<uint32_t>(materials_->size());
+    materials_->push_back(make());
+    index_by_key_[key] = index;
+    return index;
+  }
+
+ private:
+  std::vector<MaterialDesc>* materials_;
+  std::map<std::string, uint32_t> index_by_key_;
+};
+
+// --- meshes ----------------------------------------------------------------------------------
+
+struct LoadContext {
+  std::string json_path;
+  fs::path json_dir;
+  double meters_per_unit = 1.0;
+  std::map<std::string, MaterialDesc> json_materials;
+  SceneLoadReport* report;
+};
+
+std::string check_mesh_file(const JsonField& file_field, const LoadContext& ctx) {
+  const std::string name = file_field.non_empty_string();
+  const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : ctx.json_dir / name;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) file_field.fail("cannot open '" + name + "' (it is a directory)");
+  std::ifstream probe(path);
+  if (!probe) file_field.fail("cannot open '" + name + "' (" + std::strerror(errno) + ")");
+  return path.string();
+}
+
+// Where one usemtl name of a mesh points: a JSON material (by name) or an MTL material.
+struct UsemtlTarget {
+  const MaterialDesc* json = nullptr;
+  const MtlMaterial* mtl = nullptr;
+};
+
+UsemtlTarget resolve_usemtl(const ObjMesh& mesh, const ObjUsemtl& usemtl, const std::string& obj_path,
+                            const LoadContext& ctx) {
+  UsemtlTarget target;
+  auto json_it = ctx.json_materials.find(usemtl.name);
+  if (json_it != ctx.json_materials.end()) {
+    target.json = &json_it->second;
+    return target;
+  }
+  auto mtl_it = mesh.mtl_materials.find(usemtl.name);
+  if (mtl_it != mesh.mtl_materials.end()) {
+    target.mtl = &mtl_it->second;
+    return target;
+  }
+  throw_input_error(file_line(obj_path, usemtl.first_line),
+                    "usemtl '" + usemtl.name + "': no such material in the scene's materials or the OBJ's MTL files");
+}
+
+void append_mesh(const JsonField& field, LoadContext& ctx, MaterialTable& table, Scene& scene) {
+  field.expect_object_with_keys({"file", "material"});
+  const std::string obj_path = check_mesh_file(field.member("file"), ctx);
+
+  // "material" replaces every face's material, so the OBJ's own (and its MTL files) are unused.
+  std::string override_name;
+  if (field.has("material")) {
+    const JsonField material = field.member("material");
+    override_name = material.non_empty_string();
+    if (!ctx.json_materials.count(override_name)) {
+      material.fail("unknown material '" + override_name + "' (not defined under materials)");
+    }
+  }
+
+  const ObjMesh mesh = load_obj_mesh(obj_path, override_name.empty());
+
+  std::vector<UsemtlTarget> targets;
+  if (override_name.empty()) {
+    for (const ObjUsemtl& usemtl : mesh.usemtl_names) targets.push_back(resolve_usemtl(mesh, usemtl, obj_path, ctx));
+  }
+
+  // Materials enter the table on first use, so unused ones do not reach the renderer.
+  std::vector<int64_t> slot_material(targets.size() + 1, -1);  // slot 0 is "no usemtl"
+  auto material_for = [&](int32_t usemtl) -> uint32_t {
+    int64_t& cached = slot_material[static_cast<size_t>(usemtl + 1)];
+    if (cached >= 0) return static_cast<uint32_t>(cached);
+    if (!override_name.empty()) {
+      cached = table.index_of("json:" + override_name, [&] { return ctx.json_materials.at(override_name); });
+    } else if (usemtl < 0) {
+      // Faces without usemtl take "default": a JSON material of that name, else built-in grey.
+      auto json_default = ctx.json_materials.find("default");
+      if (json_default != ctx.json_materials.end()) {
+        cached = table.index_of("json:default", [&] { return json_default->second; });
+      } else {
+        cached = table.index_of("builtin:default", [] {
+          MaterialDesc grey;
+          grey.name = "default";
+          return grey;
+        });
+      }
+    } else if (const MaterialDesc* json = targets[static_cast<size_t>(usemtl)].json) {
+      cached = table.index_of("json:" + json->name, [&] { return *json; });
+    } else {
+      const MtlMaterial* mtl = targets[static_cast<size_t>(usemtl)].mtl;
+      cached = table.index_of("mtl:" + mtl->mtl_file + ":" + mtl->name,
+                              [&] { return material_from_mtl(*mtl, &ctx.report->warnings); });
+    }
+    return static_cast<uint32_t>(cached);
+  };
+
+  const size_t base = scene.positions.size();
+  if (base + mesh.positions.size() > UINT32_MAX) field.fail("too many vertices in the scene for 32-bit indices");
+  const JsonField file_field = field.member("file");
+  for (const Float3& p : mesh.positions) scene.positions.push_back(to_metres(p, ctx.meters_per_unit, file_field));
+  for (uint32_t index : mesh.indices) scene.indices.push_back(static_cast<uint32_t>(base + index));
+  for (int32_t usemtl : mesh.triangle_usemtl) scene.triangle_material.push_back(material_for(usemtl));
+
+  if (mesh.degenerate_triangles_dropped > 0) {
+    ctx.report->degenerate_triangles_dropped += mesh.degenerate_triangles_dropped;
+    ctx.report->warnings.push_back(single_line(obj_path + ": " + std::to_string(mesh.degenerate_triangles_dropped) +
+                                               " degenerate triangles dropped"));
+  }
+}
+
+// --- lights and camera -----------------------------------------------------------------------
+
+std::vector<LightDesc> read_lights(const JsonField& root, double meters_per_unit) {
+  // A photon mapper without lights has nothing to trace, so an empty list is an input error.
+  if (!root.has("lights")) throw_input_error(root.file() + ": lights", "at least one light is required");
+  const JsonField lights = root.member("lights");
+  const size_t count = lights.expect_array();
+  if (count == 0) lights.fail("at least one light is required");
+  std::vector<LightDesc> result;
+  double total_power = 0;
+  for (size_t i = 0; i < count; ++i) {
+    const JsonField field = lights.element(i);
+    field.expect_object_with_keys({"name", "position", "power"});
+    LightDesc light;
+    light.name = field.has("name") ? field.member("name").non_empty_string() : "light" + std::to_string(i);
+    const JsonField position = field.member("position");
+    light.position = to_metres(position.float3(), meters_per_unit, position);
+    const JsonField power = field.member("power");
+    light.power = power.float3();
+    for (size_t c = 0; c < 3; ++c) {
+      const float watts = component(light.power, static_cast<int>(c));
+      if (watts < 0) power.element(c).fail("must be >= 0 W, got " + describe_json_value(power.element(c).value()));
+      total_power += watts;
+    }
+    result.push_back(light);
+  }
+  if (total_power == 0) lights.fail("every light has zero power");
+  return result;
+}
+
+float length(const Float3& v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
+
+CameraDesc read_camera(const JsonField& root, double meters_per_unit) {
+  const JsonField field = root.member("camera");
+  field.expect_object_with_keys({"position", "look_at", "up", "vertical_fov", "resolution"});
+  CameraDesc camera;  // defaults: up +y, 45 degrees, 512 x 512
+  const JsonField position = field.member("position");
+  camera.position = to_metres(position.float3(), meters_per_unit, position);
+  const JsonField look_at = field.member("look_at");
+  camera.look_at = to_metres(look_at.float3(), meters_per_unit, look_at);
+  const Float3 view{camera.look_at.x - camera.position.x, camera.look_at.y - camera.position.y,
+                    camera.look_at.z - camera.position.z};
+  const float view_length = length(view);
+  if (!(view_length > 0)) look_at.fail("equals camera.position (no view direction)");
+
+  // up is a direction, so it is not scaled. It must leave a "right" axis: |view x up| is
+  // |sin| of their angle times both lengths, and near zero means (anti)parallel.
+  const bool up_given = field.has("up");
+  if (up_given) camera.up = field.member("up").float3();
+  const float up_length = length(camera.up);
+  const Float3 cross{view.y * camera.up.z - view.z * camera.up.y, view.z * camera.up.x - view.x * camera.up.z,
+                     view.x * camera.up.y - view.y * camera.up.x};
+  if (up_given && !(up_length > 0)) field.member("up").fail("must not be the zero vector");
+  if (!(length(cross) > 1e-6f * view_length * up_length)) {
+    if (up_given) field.member("up").fail("is parallel to the view direction (look_at - position)");
+    field.fail("the default up [0, 1, 0] is parallel to the view direction; set camera.up");
+  }
+
+  if (field.has("vertical_fov")) {
+    const JsonField fov = field.member("vertical_fov");
+    const double degrees = fov.finite_number();
+    if (!(degrees > 0 && degrees < 180)) fov.fail("must be in (0, 180) degrees, got " + describe_json_value(fov.value()));
+    camera.vertical_fov_degrees = static_cast<float>(degrees);
+  }
+  if (field.has("resolution")) {
+    const JsonField resolution = field.member("resolution");
+    resolution.expect_array(2);
+    camera.width = static_cast<int>(resolution.element(0).integer_in(1, kMaxResolution));
+    camera.height = static_cast<int>(resolution.element(1).integer_in(1, kMaxResolution));
+  }
+  return camera;
+}
+
+}  // namespace
+
+Scene load_scene_file(const std::string& path, SceneLoadReport* report) {
+  SceneLoadReport local_report;
+  LoadContext ctx;
+  ctx.json_path = path;
+  ctx.json_dir = fs::path(path).parent_path();
+  ctx.report = report ? report : &local_report;
+
+  const nlohmann::json document = parse_json_file_strict(path);
+  const JsonField root(path, document, "");
+  if (!document.is_object()) root.fail("expected a JSON object at the top level, got " + describe_json_value(document));
+
+  // Identify the format before anything else, so a newer file gets "unsupported version" rather
+  // than complaints about keys this build does not know.
+  const JsonField format = root.member("format");
+  if (format.non_empty_string() != kFormatName) {
+    format.fail(std::string("expected \"") + kFormatName + "\", got \"" + format.value().get<std::string>() + "\"");
+  }
+  const JsonField version = root.member("version");
+  const long long version_number = version.integer_in(0, 1000000);
+  if (version_number != kSceneFormatVersion) {
+    version.fail("unsupported version " + std::to_string(version_number) + " (this build reads version " +
+                 std::to_string(kSceneFormatVersion) + ")");
+  }
+  if (root.has("animation")) root.member("animation").fail("not part of format version 1");
+  root.expect_object_with_keys({"format", "version", "name", "meters_per_unit", "meshes", "materials", "lights", "camera"});
+
+  Scene scene;
+  scene.source = path;
+  scene.name = root.has("name") ? root.member("name").non_empty_string() : fs::path(path).stem().string();
+  if (root.has("meters_per_unit")) {
+    const JsonField mpu = root.member("meters_per_unit");
+    ctx.meters_per_unit = mpu.finite_number();
+    if (!(ctx.meters_per_unit > 0)) mpu.fail("must be > 0, got " + describe_json_value(mpu.value()));
+  }
+  ctx.json_materials = read_json_materials(root);
+
+  const JsonField meshes = root.member("meshes");
+  const size_t mesh_count = meshes.expect_array();
+  MaterialTable table(&scene.materials);
+  for (size_t i = 0; i < mesh_count; ++i) append_mesh(meshes.element(i), ctx, table, scene);
+  if (scene.triangle_count() == 0) {
+    meshes.fail("the scene has no triangles (" + std::to_string(mesh_count) + " meshes, " +
+                std::to_string(ctx.report->degenerate_triangles_dropped) + " degenerate triangles dropped)");
+  }
+
+  scene.lights = read_lights(root, ctx.meters_per_unit);
+  scene.camera = read_camera(root, ctx.meters_per_unit);
+  return scene;
+}
+
+}  // namespace pm

@@ -1,0 +1,141 @@
+/* Host "backend" for the photon map kernels (kernels/common/photon_map.h), for the unit tests:
+   runs every step's work-item function over all its items, in forward, reverse or shuffled
+   order, exactly as a device launch would call it (one call per item, no shared state besides
+   the buffers). The (code, index) sort is std::sort, standing in for the device library. */
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <numeric>
+#include <random>
+#include <utility>
+#include <vector>
+
+// clang-format off
+#include "kernels/common/compat_host.h"
+#include "kernels/common/vec3.h"
+#include "kernels/common/types.h"
+#include "kernels/common/photon_map.h"
+// clang-format on
+
+namespace pm_photon_map_test {
+
+enum class Order { kForward, kReverse, kRandom };
+
+template <class F>
+void run_items(uint count, Order order, uint32_t seed, F&& item)
+{
+  std::vector<uint> ids(count);
+  std::iota(ids.begin(), ids.end(), 0u);
+  if (order == Order::kReverse) std::reverse(ids.begin(), ids.end());
+  if (order == Order::kRandom) std::shuffle(ids.begin(), ids.end(), std::mt19937(seed));
+  for (uint i : ids) item(i);
+}
+
+struct HostPhotonMap {
+  uint n = 0;
+  uint threshold = 1;
+  std::vector<uint> codes;         // sorted
+  std::vector<uint> sorted_index;  // sorted position -> original hit
+  std::vector<float4> sorted_lo, sorted_hi;
+  std::vector<uint> node_parent, leaf_parent, visits;
+  std::vector<float4> nodes;       // 4 per inner node
+};
+
+// Never written by a correct build: lets the tests see any slot the bottom-up pass missed.
+constexpr uint kPoison = 0x7FBADBADu;
+
+// Overall bounds by repeated tile passes, as the device runs them. Needs at least one box.
+inline void reduce_bounds(const std::vector<float4>& lo_in, const std::vector<float4>& hi_in, float4* lo,
+                          float4* hi)
+{
+  std::vector<float4> cur_lo = lo_in, cur_hi = hi_in;
+  uint count = (uint)cur_lo.size();
+  do {
+    uint tiles = photon_map_bounds_tile_count(count);
+    std::vector<float4> out_lo(tiles), out_hi(tiles);
+    run_items(tiles, Order::kForward, 0, [&](uint t) {
+      photon_map_bounds_tile(t, count, cur_lo.data(), cur_hi.data(), out_lo.data(), out_hi.data());
+    });
+    cur_lo.swap(out_lo);
+    cur_hi.swap(out_hi);
+    count = tiles;
+  } while (count > 1);
+  *lo = cur_lo[0];
+  *hi = cur_hi[0];
+}
+
+inline void sort_pairs(std::vector<uint>* codes, std::vector<uint>* indices)
+{
+  std::vector<std::pair<uint, uint>> pairs(codes->size());
+  for (size_t i = 0; i < pairs.size(); ++i) pairs[i] = {(*codes)[i], (*indices)[i]};
+  std::sort(pairs.begin(), pairs.end());
+  for (size_t i = 0; i < pairs.size(); ++i) {
+    (*codes)[i] = pairs[i].first;
+    (*indices)[i] = pairs[i].second;
+  }
+}
+
+// Steps 4 and 5 from already sorted codes (lets tests build adversarial code sequences).
+inline HostPhotonMap build_from_sorted(std::vector<uint> codes, std::vector<uint> sorted_index,
+                                       const std::vector<float4>& lo, const std::vector<float4>& hi,
+                                       uint threshold, Order order, uint32_t seed)
+{
+  HostPhotonMap m;
+  m.n = (uint)codes.size();
+  m.threshold = threshold;
+  m.codes = std::move(codes);
+  m.sorted_index = std::move(sorted_index);
+  uint inner = m.n > 1 ? m.n - 1 : 0;
+  float poison = PM_UINT_AS_FLOAT(kPoison);
+  m.nodes.assign(4 * (size_t)inner, PM_MAKE_FLOAT4(poison, poison, poison, poison));
+  m.node_parent.assign(inner, kPoison);
+  m.leaf_parent.assign(m.n, kPoison);
+  m.visits.assign(inner, 7u);  // step 4 must zero them
+  m.sorted_lo.assign(m.n, PM_MAKE_FLOAT4(poison, poison, poison, poison));
+  m.sorted_hi = m.sorted_lo;
+  run_items(inner, order, seed, [&](uint i) {
+    photon_map_build_node(i, m.n, m.codes.data(), m.node_parent.data(), m.leaf_parent.data(), m.visits.data());
+  });
+  run_items(m.n, order, seed + 1, [&](uint k) {
+    photon_map_bottom_up(k, m.n, threshold, m.sorted_index.data(), lo.data(), hi.data(), m.node_parent.data(),
+                         m.leaf_parent.data(), m.visits.data(), m.nodes.data(), m.sorted_lo.data(),
+                         m.sorted_hi.data());
+  });
+  return m;
+}
+
+// The whole stage S4 on the host.
+inline HostPhotonMap build(const std::vector<float4>& positions, const std::vector<float4>& lo,
+                           const std::vector<float4>& hi, uint threshold, Order order, uint32_t seed)
+{
+  uint n = (uint)positions.size();
+  float4 b_lo, b_hi;
+  reduce_bounds(positions, positions, &b_lo, &b_hi);
+  std::vector<uint> codes(n), indices(n);
+  run_items(n, order, seed, [&](uint i) {
+    photon_map_morton(i, positions.data(), &b_lo, &b_hi, codes.data(), indices.data());
+  });
+  sort_pairs(&codes, &indices);
+  return build_from_sorted(std::move(codes), std::move(indices), lo, hi, threshold, order, seed + 2);
+}
+
+struct QueryResult {
+  std::vector<uint> hits;  // original hit indices, in the order the iterator gave them
+  uint nodes_visited = 0;
+  uint overflows = 0;
+};
+
+inline QueryResult query(const HostPhotonMap& m, Vec3 x, uint stack_limit)
+{
+  QueryResult r;
+  PhotonMapQuery q;
+  photon_map_query_begin(&q, x, m.n, stack_limit);
+  for (int k; (k = photon_map_query_next(&q, m.nodes.data(), m.sorted_lo.data(), m.sorted_hi.data())) >= 0;)
+    r.hits.push_back(m.sorted_index[k]);
+  r.nodes_visited = q.nodes_visited;
+  r.overflows = q.overflows;
+  return r;
+}
+
+}  // namespace pm_photon_map_test
