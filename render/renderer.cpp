@@ -59,6 +59,24 @@ CameraParams make_camera_params(const CameraDesc& camera, int width, int height)
   return params;
 }
 
+std::vector<Material> to_device_materials(const Scene& scene) {
+  std::vector<Material> materials;
+  for (const MaterialDesc& m : scene.materials) {
+    Material gpu{};
+    gpu.diffuse = to_float4(m.diffuse);
+    gpu.glossy = float4{m.glossy.x, m.glossy.y, m.glossy.z, m.glossy_exponent};
+    gpu.mirror = to_float4(m.mirror);
+    materials.push_back(gpu);
+  }
+  return materials;
+}
+
+std::vector<PointLight> to_device_lights(const Scene& scene) {
+  std::vector<PointLight> lights;
+  for (const LightDesc& l : scene.lights) lights.push_back(PointLight{to_float4(l.position), to_float4(l.power)});
+  return lights;
+}
+
 Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& settings)
     : device_(device), scene_(scene), settings_(settings) {
   width_ = settings.width > 0 ? settings.width : scene.camera.width;
@@ -74,19 +92,8 @@ void Renderer::upload_scene() {
   scene_nodes_ = upload_vector(device_, bvh.nodes, "scene BVH nodes");
   triangles_ = upload_vector(device_, bvh.triangles, "scene triangles");
 
-  std::vector<Material> materials;
-  for (const MaterialDesc& m : scene_.materials) {
-    Material gpu{};
-    gpu.diffuse = to_float4(m.diffuse);
-    gpu.glossy = float4{m.glossy.x, m.glossy.y, m.glossy.z, m.glossy_exponent};
-    gpu.mirror = to_float4(m.mirror);
-    materials.push_back(gpu);
-  }
-  materials_ = upload_vector(device_, materials, "materials");
-
-  std::vector<PointLight> lights;
-  for (const LightDesc& l : scene_.lights) lights.push_back(PointLight{to_float4(l.position), to_float4(l.power)});
-  lights_ = upload_vector(device_, lights, "point lights");
+  materials_ = upload_vector(device_, to_device_materials(scene_), "materials");
+  lights_ = upload_vector(device_, to_device_lights(scene_), "point lights");
 
   device_.bind(BufferSlot::scene_nodes, scene_nodes_);
   device_.bind(BufferSlot::triangles, triangles_);

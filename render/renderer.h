@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "render/device.h"
 #include "render/image.h"
@@ -53,5 +54,8 @@ class Renderer {
 
 // The camera basis the kernels expect (kernels/common/types.h CameraParams).
 CameraParams make_camera_params(const CameraDesc& camera, int width, int height);
+// The scene's materials and lights in the device structs' layout.
+std::vector<Material> to_device_materials(const Scene& scene);
+std::vector<PointLight> to_device_lights(const Scene& scene);
 
 }  // namespace pm

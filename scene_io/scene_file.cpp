@@ -168,7 +168,7 @@ void append_mesh(const JsonField& field, LoadContext& ctx, MaterialTable& table,
   }
 
   // Materials enter the table on first use, so unused ones do not reach the renderer.
-  std::vector<int64_t> slot_material(targets.size() + 1, -1);  // slot 0 is "no usemtl"
+  std::vector<int64_t> slot_material(mesh.usemtl_names.size() + 1, -1);  // slot 0: no usemtl
   auto material_for = [&](int32_t usemtl) -> uint32_t {
     int64_t& cached = slot_material[static_cast<size_t>(usemtl + 1)];
     if (cached >= 0) return static_cast<uint32_t>(cached);
