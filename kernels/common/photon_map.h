@@ -184,10 +184,13 @@ PM_DEVICE void photon_map_bottom_up(uint k, uint n, uint leaf_threshold, PM_GLOB
 
 /* ---- 6. query: every hit whose footprint AABB contains x (section 6.3) ---- */
 
+#define PM_PHOTON_MAP_NO_NODE 0xFFFFFFFFu
+
 typedef struct PhotonMapQuery {
   Vec3 x;
   uint cur, end;       /* sorted positions still to scan: [cur, end) */
   uint check;          /* nonzero: test each scanned hit's own AABB (fused leaf or overflow) */
+  uint node;           /* inner node to visit next without a pop, or PM_PHOTON_MAP_NO_NODE */
   uint sp, stack_limit;
   uint nodes_visited;  /* statistics: inner nodes read */
   uint overflows;      /* statistics: subtrees scanned linearly because the stack was full */
@@ -201,26 +204,22 @@ PM_DEVICE int photon_map_box_contains(float4 lo, float4 hi, Vec3 x)
   return lo.x <= x.x && x.x <= hi.x && lo.y <= x.y && x.y <= hi.y && lo.z <= x.z && x.z <= hi.z;
 }
 
-/* stack_limit: PM_TRAVERSAL_STACK for rendering; smaller values (down to 0 = scan everything)
-   force the overflow path in tests. A radix tree over (30-bit code, 32-bit position) keys is at
-   most 62 inner nodes deep, so 64 entries never overflow in practice; the fallback keeps the
-   result exact anyway: a child that cannot be pushed is scanned as its interval of hits. */
+/* stack_limit: PM_TRAVERSAL_STACK for rendering; smaller values (down to 0) force the overflow
+   path in tests. Only a node with two inner children containing x pushes one of them, so the
+   stack never holds more entries than the tree has levels; a radix tree over (30-bit code, 32-bit
+   position) keys has at most 62 inner levels, so 64 entries do not overflow. The fallback keeps
+   the result exact anyway: a child that cannot be pushed is scanned as its interval of hits. */
 PM_DEVICE void photon_map_query_begin(PhotonMapQuery* q, Vec3 x, uint n, uint stack_limit)
 {
   q->x = x;
   q->cur = 0;
-  q->end = 0;
+  q->end = n >= 2 ? 0u : n; /* no tree for 0 or 1 hits: scan them */
   q->check = 1;
+  q->node = n >= 2 ? 0u : PM_PHOTON_MAP_NO_NODE; /* the root */
   q->sp = 0;
   q->stack_limit = pm_min_u(stack_limit, (uint)PM_TRAVERSAL_STACK);
   q->nodes_visited = 0;
   q->overflows = 0;
-  if (n >= 2 && q->stack_limit > 0) {
-    q->stack[q->sp++] = 0; /* the root */
-  } else {
-    q->end = n; /* no tree, or no stack for the root: scan every hit */
-    q->overflows = n >= 2 ? 1u : 0u;
-  }
 }
 
 /* Next sorted position whose hit AABB contains q->x, or -1 when done. Each such hit is returned
@@ -235,34 +234,52 @@ PM_DEVICE int photon_map_query_next(PhotonMapQuery* q, PM_GLOBAL const float4* n
       if (!q->check || photon_map_box_contains(PM_LOAD(&sorted_lo[k]), PM_LOAD(&sorted_hi[k]), q->x))
         return (int)k;
     }
-    if (q->sp == 0) return -1;
-    uint node = q->stack[--q->sp];
+    uint node = q->node;
+    if (node == PM_PHOTON_MAP_NO_NODE) {
+      if (q->sp == 0) return -1;
+      node = q->stack[--q->sp];
+    }
+    q->node = PM_PHOTON_MAP_NO_NODE;
     q->nodes_visited++;
-    /* The two children's intervals are adjacent (left ends where right starts), so whatever of
-       them has to be scanned is one interval [begin, end). */
+    /* Leaf children containing x are scanned. The two children's intervals are adjacent (left
+       ends where right starts), so whatever has to be scanned is one interval [begin, end). */
     uint begin = 0xFFFFFFFFu, end = 0u, check = 0u;
+    uint inner_ref[2], inner_count[2];
+    inner_ref[0] = inner_ref[1] = PM_PHOTON_MAP_NO_NODE;
+    inner_count[0] = inner_count[1] = 0u;
     for (uint side = 0; side < 2u; ++side) {
       float4 lo = PM_LOAD(&nodes[4 * node + 2 * side]);
       float4 hi = PM_LOAD(&nodes[4 * node + 2 * side + 1]);
       if (!photon_map_box_contains(lo, hi, q->x)) continue;
       uint ref = PM_AS_UINT(lo.w);
       uint count = PM_AS_UINT(hi.w);
-      uint first;
       if (ref & PM_PHOTON_MAP_LEAF) {
-        first = ref & ~PM_PHOTON_MAP_LEAF;
+        uint first = ref & ~PM_PHOTON_MAP_LEAF;
+        begin = pm_min_u(begin, first);
+        end = end > first + count ? end : first + count;
         if (count > 1u) check = 1u; /* a single hit's box was just tested exactly */
-      } else if (q->sp < q->stack_limit) {
+      } else {
+        inner_ref[side] = ref;
+        inner_count[side] = count;
+      }
+    }
+    /* Inner children: descend into one directly; when both contain x, defer the one with fewer
+       hits (cheaper to scan should the stack be full). */
+    uint defer = inner_count[0] < inner_count[1] ? 0u : 1u;
+    q->node = inner_ref[1u - defer] != PM_PHOTON_MAP_NO_NODE ? inner_ref[1u - defer] : inner_ref[defer];
+    if (inner_ref[0] != PM_PHOTON_MAP_NO_NODE && inner_ref[1] != PM_PHOTON_MAP_NO_NODE) {
+      uint ref = inner_ref[defer];
+      if (q->sp < q->stack_limit) {
         q->stack[q->sp++] = ref;
-        continue;
       } else {
         /* Overflow: Karras's inner node index is the right end of a left child's range and the
-           left end of a right child's range. */
-        first = side == 0u ? ref + 1u - count : ref;
+           left end of a right child's range. Only one child goes here, so nothing to merge. */
+        uint count = inner_count[defer];
+        begin = defer == 0u ? ref + 1u - count : ref;
+        end = begin + count;
         check = 1u;
         q->overflows++;
       }
-      begin = pm_min_u(begin, first);
-      end = end > first + count ? end : first + count;
     }
     q->cur = begin;
     q->end = end;
