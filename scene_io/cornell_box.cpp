@@ -105,7 +105,7 @@ Scene builtin_cornell_box() {
   add_wall(scene, kCeiling, kWhiteMaterial);
   add_wall(scene, kBackWall, kWhiteMaterial);
   add_wall(scene, kGreenWall, kGreenMaterial);
-  add_quad(scene, kRedWall[3], kRedWall[2], kRedWall[1], kRedWall[0], kRedMaterial);
+  add_wall(scene, kRedWall, kRedMaterial);
   add_block(scene, kShortBlockTop, kWhiteMaterial);
   add_block(scene, kTallBlockTop, kWhiteMaterial);
 

@@ -244,9 +244,8 @@ PM_DEVICE int photon_map_query_next(PhotonMapQuery* q, PM_GLOBAL const float4* n
     /* Leaf children containing x are scanned. The two children's intervals are adjacent (left
        ends where right starts), so whatever has to be scanned is one interval [begin, end). */
     uint begin = 0xFFFFFFFFu, end = 0u, check = 0u;
-    uint inner_ref[2], inner_count[2];
-    inner_ref[0] = inner_ref[1] = PM_PHOTON_MAP_NO_NODE;
-    inner_count[0] = inner_count[1] = 0u;
+    uint left_ref = PM_PHOTON_MAP_NO_NODE, right_ref = PM_PHOTON_MAP_NO_NODE;
+    uint left_count = 0u, right_count = 0u;
     for (uint side = 0; side < 2u; ++side) {
       float4 lo = PM_LOAD(&nodes[4 * node + 2 * side]);
       float4 hi = PM_LOAD(&nodes[4 * node + 2 * side + 1]);
@@ -258,24 +257,29 @@ PM_DEVICE int photon_map_query_next(PhotonMapQuery* q, PM_GLOBAL const float4* n
         begin = pm_min_u(begin, first);
         end = end > first + count ? end : first + count;
         if (count > 1u) check = 1u; /* a single hit's box was just tested exactly */
+      } else if (side == 0u) {
+        left_ref = ref;
+        left_count = count;
       } else {
-        inner_ref[side] = ref;
-        inner_count[side] = count;
+        right_ref = ref;
+        right_count = count;
       }
     }
     /* Inner children: descend into one directly; when both contain x, defer the one with fewer
-       hits (cheaper to scan should the stack be full). */
-    uint defer = inner_count[0] < inner_count[1] ? 0u : 1u;
-    q->node = inner_ref[1u - defer] != PM_PHOTON_MAP_NO_NODE ? inner_ref[1u - defer] : inner_ref[defer];
-    if (inner_ref[0] != PM_PHOTON_MAP_NO_NODE && inner_ref[1] != PM_PHOTON_MAP_NO_NODE) {
-      uint ref = inner_ref[defer];
+       hits (cheaper to scan should the stack be full). An absent child has count 0, so with one
+       inner child that one is always "near". */
+    uint defer_left = left_count < right_count;
+    uint far = defer_left ? left_ref : right_ref;
+    q->node = defer_left ? right_ref : left_ref;
+    if (q->node != PM_PHOTON_MAP_NO_NODE && far != PM_PHOTON_MAP_NO_NODE) {
       if (q->sp < q->stack_limit) {
-        q->stack[q->sp++] = ref;
+        q->stack[q->sp++] = far;
       } else {
         /* Overflow: Karras's inner node index is the right end of a left child's range and the
-           left end of a right child's range. Only one child goes here, so nothing to merge. */
-        uint count = inner_count[defer];
-        begin = defer == 0u ? ref + 1u - count : ref;
+           left end of a right child's range. Both children are inner, so no leaf interval is
+           pending at this node. */
+        uint count = defer_left ? left_count : right_count;
+        begin = defer_left ? far + 1u - count : far;
         end = begin + count;
         check = 1u;
         q->overflows++;

@@ -130,7 +130,9 @@ std::vector<uint> brute_force(const Hits& h, Vec3 x)
 {
   std::vector<uint> r;
   for (uint i = 0; i < h.lo.size(); ++i)
-    if (photon_map_box_contains(h.lo[i], h.hi[i], x)) r.push_back(i);
+    if (h.lo[i].x <= x.x && h.lo[i].y <= x.y && h.lo[i].z <= x.z && x.x <= h.hi[i].x && x.y <= h.hi[i].y &&
+        x.z <= h.hi[i].z)
+      r.push_back(i);
   return r;
 }
 
@@ -181,17 +183,24 @@ uint expect_queries_exact(const HostPhotonMap& m, const Hits& h, const std::vect
 
 TEST(PhotonMapBounds, TilePassesEqualMinMax)
 {
-  for (uint n : {1u, 255u, 256u, 257u, 100000u}) {
+  for (uint n : {1u, 255u, 256u, 257u, 513u, 70000u}) {
     Hits h = make_hits(n, 11 + n, 0, 0.1f);
-    float4 lo, hi;
-    reduce_bounds(h.pos, h.pos, &lo, &hi);
-    Vec3 elo = vec3_splat(INFINITY), ehi = vec3_splat(-INFINITY);
-    for (const float4& p : h.pos) {
-      elo = vec3_min(elo, vec3_from_float4(p));
-      ehi = vec3_max(ehi, vec3_from_float4(p));
+    // Put the extremes at tile edges and ends, where an off-by-one in a tile's range shows.
+    for (uint at : {0u, 255u, 256u, 511u, 512u, n - 1}) {
+      if (at >= n) continue;
+      std::vector<float4> pos = h.pos;
+      pos[at] = PM_MAKE_FLOAT4(50.0f, -50.0f, 0.5f, 0.0f);
+      pos[n - 1 - at] = PM_MAKE_FLOAT4(pos[n - 1 - at].x, pos[n - 1 - at].y, -60.0f, 0.0f);
+      float4 lo, hi;
+      reduce_bounds(pos, pos, &lo, &hi);
+      Vec3 elo = vec3_splat(INFINITY), ehi = vec3_splat(-INFINITY);
+      for (const float4& p : pos) {
+        elo = vec3_min(elo, vec3_from_float4(p));
+        ehi = vec3_max(ehi, vec3_from_float4(p));
+      }
+      EXPECT_TRUE(lo.x == elo.x && lo.y == elo.y && lo.z == elo.z) << n << " at " << at;
+      EXPECT_TRUE(hi.x == ehi.x && hi.y == ehi.y && hi.z == ehi.z) << n << " at " << at;
     }
-    EXPECT_TRUE(lo.x == elo.x && lo.y == elo.y && lo.z == elo.z) << n;
-    EXPECT_TRUE(hi.x == ehi.x && hi.y == ehi.y && hi.z == ehi.z) << n;
   }
 }
 
