@@ -83,22 +83,23 @@ struct AttributeCounts {
 // vertices defined so far.
 void check_index(const std::string& where, const std::string& element, const std::string& kind,
                  const std::string& text, size_t total, size_t so_far) {
+  // "face index 99", "face texture coordinate index 5": vertex indices are the default kind.
+  const std::string what = kind == "vertex" ? element + " index" : element + " " + kind + " index";
   long index = 0;
   if (!parse_index(text, &index)) {
-    throw_input_error(where, element + " " + kind + " index '" + text + "' is not an integer");
+    throw_input_error(where, what + " '" + text + "' is not an integer");
   }
   if (index == 0) {
-    throw_input_error(where, element + " " + kind + " index 0 is invalid (OBJ indices start at 1)");
+    throw_input_error(where, what + " 0 is invalid (OBJ indices start at 1)");
   }
   const std::string plural = kind == "vertex" ? "vertices" : kind + "s";
   if (index > 0 && static_cast<size_t>(index) > total) {
-    throw_input_error(where, element + " " + kind + " index " + std::to_string(index) +
-                                 " out of range (" + std::to_string(total) + " " + plural + ")");
+    throw_input_error(where, what + " " + std::to_string(index) + " out of range (" + std::to_string(total) +
+                                 " " + plural + ")");
   }
   if (index < 0 && static_cast<size_t>(-index) > so_far) {
-    throw_input_error(where, element + " " + kind + " index " + std::to_string(index) +
-                                 " out of range (" + std::to_string(so_far) + " " + plural +
-                                 " before this line)");
+    throw_input_error(where, what + " " + std::to_string(index) + " out of range (" + std::to_string(so_far) +
+                                 " " + plural + " before this line)");
   }
 }
 

@@ -11,6 +11,7 @@
 
 #include "render/exr_io.h"
 #include "support/image_stats.h"
+#include "support/paths.h"
 
 namespace pm {
 namespace {
@@ -41,7 +42,7 @@ class Cli : public ::testing::Test {
 
   ProcessResult pmrender(const std::string& args) {
     ProcessResult r;
-    std::string cmd = std::string(PM_PMRENDER_BINARY) + " " + args + " </dev/null >" + (dir_ / "stdout").string() +
+    std::string cmd = test::pmrender_binary() + " " + args + " </dev/null >" + (dir_ / "stdout").string() +
                       " 2>" + (dir_ / "stderr").string();
     int status = std::system(cmd.c_str());
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
@@ -50,7 +51,7 @@ class Cli : public ::testing::Test {
     return r;
   }
 
-  std::string data(const std::string& name) { return std::string(PM_TEST_DATA_DIR) + "/cli/" + name; }
+  std::string data(const std::string& name) { return test::test_data_dir() + "/cli/" + name; }
   bool any_exr_written() {
     for (auto& entry : fs::recursive_directory_iterator(dir_))
       if (entry.path().extension() == ".exr" || entry.path().string().find(".tmp-") != std::string::npos) return true;

@@ -1,0 +1,332 @@
+// Tests that bad JSON scene files fail with a one-line pm::InputError naming the file and the
+// field path or line: syntax, types, non-finite numbers, unknown and missing keys, format and
+// version, camera/light/material range checks, empty scenes and unresolvable names.
+// OBJ/MTL content errors: scene_obj_errors_test.cpp.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "render/errors.h"
+#include "scene_io/scene_file.h"
+
+namespace pm {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A valid scene; each test breaks one thing.
+json valid_scene() {
+  return json::parse(R"({
+    "format": "pmrender-scene", "version": 1,
+    "meshes": [ { "file": "tri.obj" } ],
+    "materials": { "white": { "diffuse": [0.7, 0.7, 0.7] } },
+    "lights": [ { "name": "key", "position": [0, 2, 0], "power": [1, 1, 1] } ],
+    "camera": { "position": [0, 0, -5], "look_at": [0, 0, 0], "up": [0, 1, 0],
+                "vertical_fov": 40, "resolution": [64, 64] }
+  })");
+}
+
+class SceneJsonErrors : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::path(::testing::TempDir()) / (std::string("pm_scene_json_errors_") + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string write(const std::string& name, const std::string& text) {
+    const fs::path path = dir_ / name;
+    std::ofstream(path, std::ios::binary) << text;
+    return path.string();
+  }
+
+  // The InputError message from loading path ("" and a test failure if it loads).
+  std::string error_of(const std::string& path) {
+    try {
+      load_scene_file(path);
+    } catch (const InputError& e) {
+      return e.what();
+    }
+    ADD_FAILURE() << "loading " << path << " did not throw InputError";
+    return "";
+  }
+  std::string error_of_text(const std::string& text) { return error_of(write("scene.json", text)); }
+  std::string error_of_scene(const json& scene) { return error_of_text(scene.dump(2)); }
+
+  // The message starts with the file path, contains `expected`, and is one line.
+  void expect_message(const std::string& message, const std::string& file, const std::string& expected) {
+    EXPECT_EQ(message.rfind((dir_ / file).string() + ": ", 0), 0u) << message;
+    EXPECT_NE(message.find(expected), std::string::npos) << "message: " << message << "\nexpected part: " << expected;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  }
+  void expect_scene_message(const std::string& message, const std::string& expected) {
+    expect_message(message, "scene.json", "scene.json: " + expected);
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(SceneJsonErrors, ValidBaseSceneLoads) {
+  // Guards the other tests: each must fail because of what it changes, not the base.
+  EXPECT_NO_THROW(load_scene_file(write("scene.json", valid_scene().dump(2))));
+}
+
+TEST_F(SceneJsonErrors, MissingFileNamesIt) {
+  expect_message(error_of((dir_ / "nope.json").string()), "nope.json", "nope.json: cannot open");
+}
+
+TEST_F(SceneJsonErrors, SyntaxErrorGivesTheLine) {
+  const std::string text =
+      "{\n"
+      "  \"format\": \"pmrender-scene\",\n"
+      "  \"version\": 1,\n"
+      "  \"meshes\": [ { \"file\": \"tri.obj\" } ]\n"
+      "  \"camera\": {}\n"  // line 5: missing comma before this key
+      "}\n";
+  expect_scene_message(error_of_text(text), "line 5: JSON parse error: ");
+}
+
+TEST_F(SceneJsonErrors, SyntaxErrorInsideAStringGivesItsLine) {
+  // A raw line break inside a string is not JSON; the error is on the string's line (3).
+  expect_scene_message(error_of_text("{\n  \"format\": \"pmrender-scene\",\n  \"name\": \"a\nb\"\n}\n"),
+                       "line 3: JSON parse error: ");
+}
+
+TEST_F(SceneJsonErrors, NullWhereANumberIsExpected) {
+  json scene = valid_scene();
+  scene["camera"]["position"][1] = nullptr;
+  expect_scene_message(error_of_scene(scene), "camera.position[1]: expected a finite number, got null");
+}
+
+TEST_F(SceneJsonErrors, NumberBeyondDoubleRangeGivesLineAndField) {
+  std::string text = valid_scene().dump(2);
+  // dump(2) puts camera.position's elements on their own lines; make the middle one 1e999.
+  const size_t camera = text.find("\"camera\"");
+  const size_t position = text.find("\"position\"", camera);
+  const size_t second = text.find("0,", text.find("0,", position) + 2);
+  text.replace(second, 1, "1e999");
+  const size_t line = 1 + std::count(text.begin(), text.begin() + static_cast<long>(second), '\n');
+  expect_scene_message(error_of_text(text), "line " + std::to_string(line) +
+                                                ": camera.position[1]: expected a finite number, got 1e999");
+}
+
+TEST_F(SceneJsonErrors, WrongTypeIsNamed) {
+  json scene = valid_scene();
+  scene["camera"]["vertical_fov"] = "wide";
+  expect_scene_message(error_of_scene(scene), "camera.vertical_fov: expected a finite number, got a string");
+  scene = valid_scene();
+  scene["lights"][0]["position"] = {1, 2};
+  expect_scene_message(error_of_scene(scene), "lights[0].position: expected an array of 3 elements, got 2");
+  scene = valid_scene();
+  scene["meshes"] = json::object();
+  expect_scene_message(error_of_scene(scene), "meshes: expected an array, got an object");
+}
+
+TEST_F(SceneJsonErrors, TopLevelMustBeAnObject) {
+  expect_message(error_of_text("[1, 2]"), "scene.json", "scene.json: expected a JSON object at the top level");
+}
+
+TEST_F(SceneJsonErrors, UnknownKeyListsTheKnownOnes) {
+  json scene = valid_scene();
+  scene["lights"][0]["colour"] = {1, 1, 1};
+  expect_scene_message(error_of_scene(scene), "lights[0].colour: unknown key (expected one of: name, position, power)");
+}
+
+TEST_F(SceneJsonErrors, UnknownKeysAreErrorsEverywhere) {
+  json scene = valid_scene();
+  scene["background"] = "black";
+  expect_scene_message(error_of_scene(scene), "background: unknown key (expected one of: format, version,");
+  scene = valid_scene();
+  scene["materials"]["white"]["specular"] = {0, 0, 0};
+  expect_scene_message(error_of_scene(scene), "materials.white.specular: unknown key");
+  scene = valid_scene();
+  scene["meshes"][0]["scale"] = 2;
+  expect_scene_message(error_of_scene(scene), "meshes[0].scale: unknown key");
+  scene = valid_scene();
+  scene["camera"]["fov"] = 40;
+  expect_scene_message(error_of_scene(scene), "camera.fov: unknown key");
+}
+
+TEST_F(SceneJsonErrors, AnimationKeyIsNotPartOfVersion1) {
+  json scene = valid_scene();
+  scene["animation"] = json::object();
+  expect_scene_message(error_of_scene(scene), "animation: not part of format version 1");
+}
+
+TEST_F(SceneJsonErrors, DuplicateKeyIsRejected) {
+  std::string text = valid_scene().dump();
+  text.insert(text.find("\"look_at\""), "\"look_at\": [1, 1, 1], ");
+  expect_scene_message(error_of_text(text), "camera.look_at: duplicate key");
+}
+
+TEST_F(SceneJsonErrors, MissingRequiredKeys) {
+  for (const char* key : {"format", "version", "meshes", "camera"}) {
+    SCOPED_TRACE(key);
+    json scene = valid_scene();
+    scene.erase(key);
+    expect_scene_message(error_of_scene(scene), std::string(key) + ": missing required key");
+  }
+  json scene = valid_scene();
+  scene["camera"].erase("look_at");
+  expect_scene_message(error_of_scene(scene), "camera.look_at: missing required key");
+  scene = valid_scene();
+  scene["lights"][0].erase("power");
+  expect_scene_message(error_of_scene(scene), "lights[0].power: missing required key");
+  scene = valid_scene();
+  scene["meshes"][0].erase("file");
+  expect_scene_message(error_of_scene(scene), "meshes[0].file: missing required key");
+}
+
+TEST_F(SceneJsonErrors, WrongFormatString) {
+  json scene = valid_scene();
+  scene["format"] = "mitsuba";
+  expect_scene_message(error_of_scene(scene), "format: expected \"pmrender-scene\", got \"mitsuba\"");
+}
+
+TEST_F(SceneJsonErrors, UnsupportedVersion) {
+  json scene = valid_scene();
+  scene["version"] = 2;
+  scene["animation"] = json::object();  // version is checked first: no "unknown key" noise
+  expect_scene_message(error_of_scene(scene), "version: unsupported version 2 (this build reads version 1)");
+  scene["version"] = 1.5;
+  expect_scene_message(error_of_scene(scene), "version: expected an integer");
+}
+
+TEST_F(SceneJsonErrors, MissingMeshFile) {
+  json scene = valid_scene();
+  scene["meshes"][0]["file"] = "missing.obj";
+  expect_scene_message(error_of_scene(scene), "meshes[0].file: cannot open 'missing.obj'");
+}
+
+TEST_F(SceneJsonErrors, MeshFileThatIsADirectory) {
+  fs::create_directories(dir_ / "folder.obj");
+  json scene = valid_scene();
+  scene["meshes"][0]["file"] = "folder.obj";
+  expect_scene_message(error_of_scene(scene), "meshes[0].file: cannot open 'folder.obj' (it is a directory)");
+}
+
+TEST_F(SceneJsonErrors, UnknownOverrideMaterial) {
+  json scene = valid_scene();
+  scene["meshes"][0]["material"] = "black";
+  expect_scene_message(error_of_scene(scene), "meshes[0].material: unknown material 'black'");
+}
+
+TEST_F(SceneJsonErrors, NegativeLightPower) {
+  json scene = valid_scene();
+  scene["lights"][0]["power"] = {1, -0.5, 1};
+  expect_scene_message(error_of_scene(scene), "lights[0].power[1]: must be >= 0 W, got -0.5");
+}
+
+TEST_F(SceneJsonErrors, AtLeastOneLightIsRequired) {
+  json scene = valid_scene();
+  scene["lights"] = json::array();
+  expect_scene_message(error_of_scene(scene), "lights: at least one light is required");
+  scene.erase("lights");
+  expect_scene_message(error_of_scene(scene), "lights: at least one light is required");
+}
+
+TEST_F(SceneJsonErrors, AllLightsDark) {
+  json scene = valid_scene();
+  scene["lights"][0]["power"] = {0, 0, 0};
+  expect_scene_message(error_of_scene(scene), "lights: every light has zero power");
+}
+
+TEST_F(SceneJsonErrors, ResolutionMustBePositiveIntegersUpTo16384) {
+  const json bad[] = {json{0, 64}, json{64, -1}, json{64.5, 64}, json{16385, 64}, json{"64", 64}};
+  for (const json& resolution : bad) {
+    SCOPED_TRACE(resolution.dump());
+    json scene = valid_scene();
+    scene["camera"]["resolution"] = resolution;
+    const std::string message = error_of_scene(scene);
+    expect_scene_message(message, "camera.resolution[");
+    EXPECT_NE(message.find("expected an integer in [1, 16384]"), std::string::npos) << message;
+  }
+  json scene = valid_scene();
+  scene["camera"]["resolution"] = {64, 64, 1};
+  expect_scene_message(error_of_scene(scene), "camera.resolution: expected an array of 2 elements, got 3");
+}
+
+TEST_F(SceneJsonErrors, FieldOfViewMustBeInsideZeroTo180) {
+  for (double fov : {0.0, -10.0, 180.0, 200.0}) {
+    SCOPED_TRACE(fov);
+    json scene = valid_scene();
+    scene["camera"]["vertical_fov"] = fov;
+    expect_scene_message(error_of_scene(scene), "camera.vertical_fov: must be in (0, 180) degrees");
+  }
+}
+
+TEST_F(SceneJsonErrors, LookAtEqualToPosition) {
+  json scene = valid_scene();
+  scene["camera"]["look_at"] = scene["camera"]["position"];
+  expect_scene_message(error_of_scene(scene), "camera.look_at: equals camera.position");
+}
+
+TEST_F(SceneJsonErrors, UpParallelToViewDirection) {
+  json scene = valid_scene();
+  scene["camera"]["up"] = {0, 0, -3};  // view direction is +z
+  expect_scene_message(error_of_scene(scene), "camera.up: is parallel to the view direction");
+  scene["camera"]["up"] = {0, 0, 0};
+  expect_scene_message(error_of_scene(scene), "camera.up: must not be the zero vector");
+  scene["camera"].erase("up");
+  scene["camera"]["look_at"] = {0, 5, -5};  // straight up from the position, default up +y
+  expect_scene_message(error_of_scene(scene), "camera: the default up [0, 1, 0] is parallel");
+}
+
+TEST_F(SceneJsonErrors, MetersPerUnitMustBeFinitePositive) {
+  json scene = valid_scene();
+  scene["meters_per_unit"] = 0;
+  expect_scene_message(error_of_scene(scene), "meters_per_unit: must be > 0, got 0");
+  scene["meters_per_unit"] = -0.001;
+  expect_scene_message(error_of_scene(scene), "meters_per_unit: must be > 0");
+  scene["meters_per_unit"] = nullptr;
+  expect_scene_message(error_of_scene(scene), "meters_per_unit: expected a finite number, got null");
+}
+
+TEST_F(SceneJsonErrors, EmptySceneHasNoTriangles) {
+  json scene = valid_scene();
+  scene["meshes"] = json::array();
+  expect_scene_message(error_of_scene(scene), "meshes: the scene has no triangles");
+}
+
+TEST_F(SceneJsonErrors, MeshOfOnlyDegenerateTrianglesLeavesAnEmptyScene) {
+  write("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n");
+  json scene = valid_scene();
+  scene["meshes"][0]["file"] = "flat.obj";
+  expect_scene_message(error_of_scene(scene), "meshes: the scene has no triangles (1 meshes, 2 degenerate");
+}
+
+TEST_F(SceneJsonErrors, JsonMaterialReflectingMoreThanItReceives) {
+  json scene = valid_scene();
+  scene["materials"]["hot"] = {{"diffuse", {0.5, 0.5, 0.5}}, {"glossy", {0.3, 0.3, 0.3}}, {"mirror", {0.1, 0.3, 0.1}}};
+  expect_scene_message(error_of_scene(scene), "materials.hot: diffuse + glossy + mirror = 1.1");
+  EXPECT_NE(error_of_scene(scene).find("green channel"), std::string::npos);
+}
+
+TEST_F(SceneJsonErrors, JsonMaterialValuesOutOfRange) {
+  json scene = valid_scene();
+  scene["materials"]["white"]["diffuse"] = {0.5, 1.5, 0.5};
+  expect_scene_message(error_of_scene(scene), "materials.white.diffuse[1]: must be in [0, 1], got 1.5");
+  scene = valid_scene();
+  scene["materials"]["white"]["exponent"] = -1;
+  expect_scene_message(error_of_scene(scene), "materials.white.exponent: must be in [0, 1e6], got -1");
+  scene = valid_scene();
+  scene["materials"]["white"] = {0.7, 0.7, 0.7};
+  expect_scene_message(error_of_scene(scene), "materials.white: expected an object, got an array");
+}
+
+TEST_F(SceneJsonErrors, UsemtlNameFoundNowhere) {
+  write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl nope\nf 1 2 3\n");
+  expect_message(error_of_scene(valid_scene()), "tri.obj",
+                 "tri.obj: line 4: usemtl 'nope': no such material in the scene's materials or the OBJ's MTL files");
+}
+
+}  // namespace
+}  // namespace pm
