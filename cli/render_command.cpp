@@ -30,11 +30,35 @@ struct RenderOptions {
   uint32_t seed = 1;
   int frame = 0;
   bool quiet = false;
+  PhotonSettings photons;
+  std::string estimator = "pd";
+  std::string kernel = "constant";
+  std::string leaf = "auto";
 };
 
-int run_render(const RenderOptions& o) {
+// Photon options shared by every command that renders.
+void apply_photon_options(RenderOptions& o) {
+  o.photons.estimator = o.estimator == "knn" ? PM_ESTIMATOR_KNN : o.estimator == "radius" ? PM_ESTIMATOR_RADIUS : PM_ESTIMATOR_PD;
+  o.photons.kernel_shape = o.kernel == "epanechnikov" ? PM_KERNEL_EPANECHNIKOV : PM_KERNEL_CONSTANT;
+  if (o.leaf == "auto") {
+    o.photons.leaf_threshold = 0;
+  } else {
+    try {
+      size_t used = 0;
+      int t = std::stoi(o.leaf, &used);
+      if (used != o.leaf.size() || t < 1) throw std::invalid_argument("");
+      o.photons.leaf_threshold = t;
+    } catch (const std::exception&) {
+      throw InputError("--leaf: expected 'auto' or a positive integer, got '" + o.leaf + "'");
+    }
+  }
+}
+
+int run_render(RenderOptions& o) {
+  apply_photon_options(o);
   Scene scene = o.scene_path.empty() ? builtin_cornell_box() : load_scene_file(o.scene_path);
   RenderSettings settings;
+  settings.photons = o.photons;
   settings.mirror_depth = o.mirror_depth;
   settings.seed = o.seed;
   if (!o.resolution.empty()) parse_resolution(o.resolution, &settings.width, &settings.height);
@@ -98,6 +122,20 @@ Run add_render_command(CLI::App& app) {
   cmd->add_option("--seed", options->seed, "Random seed");
   cmd->add_option("--frame", options->frame, "Frame number")->check(CLI::NonNegativeNumber);
   cmd->add_flag("-q,--quiet", options->quiet, "Print nothing on success");
+  PhotonSettings& ph = options->photons;
+  cmd->add_option("--photons", ph.photons, "Photons emitted per frame (0: direct light only)")->capture_default_str();
+  cmd->add_option("--batch", ph.batch, "Photons per pass; memory is bounded by this, not by --photons")
+      ->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--bounces", ph.bounces, "Diffuse bounces of indirect light")->capture_default_str()->check(CLI::Range(0, 16));
+  cmd->add_option("--estimator", options->estimator, "pd (photon differentials), knn or radius")
+      ->capture_default_str()->check(CLI::IsMember({"pd", "knn", "radius"}));
+  cmd->add_option("--kernel", options->kernel, "Density estimation kernel: constant or epanechnikov")
+      ->capture_default_str()->check(CLI::IsMember({"constant", "epanechnikov"}));
+  cmd->add_option("--smoothing", ph.smoothing, "Footprint smoothing factor s (section 4.3)")->capture_default_str();
+  cmd->add_option("--rmax", ph.rmax, "Largest footprint semiaxis, metres (default: 10% of the scene diagonal)");
+  cmd->add_option("--radius", ph.radius, "Gather radius of --estimator radius, metres (default: 1% of the diagonal)");
+  cmd->add_option("--k", ph.knn_k, "Neighbours of --estimator knn")->capture_default_str()->check(CLI::Range(1, 256));
+  cmd->add_option("--leaf", options->leaf, "Photon map leaf threshold T: auto or a number")->capture_default_str();
   return [options] { return run_render(*options); };
 }
 

@@ -3,6 +3,7 @@
 #include "render/renderer.h"
 
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <sstream>
 #include <vector>
@@ -41,7 +42,7 @@ std::vector<float> rgb_from_float4(const std::vector<float4>& pixels) {
 
 std::string RenderSettings::describe() const {
   std::ostringstream s;
-  s << "mirror_depth=" << mirror_depth << " seed=" << seed;
+  s << "mirror_depth=" << mirror_depth << " seed=" << seed << " " << photons.describe();
   return s.str();
 }
 
@@ -71,9 +72,17 @@ std::vector<Material> to_device_materials(const Scene& scene) {
   return materials;
 }
 
-std::vector<PointLight> to_device_lights(const Scene& scene) {
+std::vector<PointLight> to_device_lights(const Scene& scene, const std::vector<uint32_t>& photons_per_light) {
   std::vector<PointLight> lights;
-  for (const LightDesc& l : scene.lights) lights.push_back(PointLight{to_float4(l.position), to_float4(l.power)});
+  uint32_t first = 0;
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    PointLight light{to_float4(scene.lights[i].position), to_float4(scene.lights[i].power)};
+    uint32_t count = i < photons_per_light.size() ? photons_per_light[i] : 0;
+    std::memcpy(&light.position.w, &first, 4);
+    std::memcpy(&light.power.w, &count, 4);
+    first += count;
+    lights.push_back(light);
+  }
   return lights;
 }
 
@@ -83,6 +92,7 @@ Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& set
   height_ = settings.height > 0 ? settings.height : scene.camera.height;
   if (settings.mirror_depth < 0 || settings.mirror_depth > 16)
     throw InputError("--mirror-depth: expected 0 to 16, got " + std::to_string(settings.mirror_depth));
+  if (settings.photons.photons > 0) photon_pass_ = std::make_unique<PhotonPass>(device, scene, settings.photons);
   upload_scene();
   allocate_frame_buffers();
 }
@@ -93,7 +103,9 @@ void Renderer::upload_scene() {
   triangles_ = upload_vector(device_, bvh.triangles, "scene triangles");
 
   materials_ = upload_vector(device_, to_device_materials(scene_), "materials");
-  lights_ = upload_vector(device_, to_device_lights(scene_), "point lights");
+  lights_ = upload_vector(device_, to_device_lights(scene_, photon_pass_ ? photon_pass_->photons_per_light()
+                                                                          : std::vector<uint32_t>{}),
+                         "point lights");
 
   device_.bind(BufferSlot::scene_nodes, scene_nodes_);
   device_.bind(BufferSlot::triangles, triangles_);
@@ -109,12 +121,16 @@ void Renderer::allocate_frame_buffers() {
   shade_outgoing_ = device_.allocate(records * sizeof(float4), "shading point directions");
   shade_weight_ = device_.allocate(records * sizeof(float4), "shading point weights");
   film_direct_ = device_.allocate(pixels * sizeof(float4), "direct light layer");
+  film_indirect_ = device_.allocate(pixels * sizeof(float4), "indirect light layer");
+  film_caustic_ = device_.allocate(pixels * sizeof(float4), "caustic layer");
   film_combined_ = device_.allocate(pixels * sizeof(float4), "combined layer");
   device_.bind(BufferSlot::shade_position, shade_position_);
   device_.bind(BufferSlot::shade_normal, shade_normal_);
   device_.bind(BufferSlot::shade_outgoing, shade_outgoing_);
   device_.bind(BufferSlot::shade_weight, shade_weight_);
   device_.bind(BufferSlot::film_direct, film_direct_);
+  device_.bind(BufferSlot::film_indirect, film_indirect_);
+  device_.bind(BufferSlot::film_caustic, film_caustic_);
   device_.bind(BufferSlot::film_combined, film_combined_);
 }
 
@@ -135,12 +151,18 @@ FrameImage Renderer::render_frame(int frame, FrameStats* stats) {
   const auto start = std::chrono::steady_clock::now();
   const LaunchParams params = frame_params(frame);
   const uint32_t pixels = params.width * params.height;
+  PhotonStats photon_stats;
   device_.launch(KernelId::camera_pass, pixels, params);
+  device_.fill_zero(film_indirect_, film_indirect_.bytes());
+  device_.fill_zero(film_caustic_, film_caustic_.bytes());
+  if (photon_pass_) photon_pass_->run(params, &photon_stats);
   device_.launch(KernelId::film_resolve, pixels, params);
 
-  std::vector<float4> combined(pixels), direct(pixels);
+  std::vector<float4> combined(pixels), direct(pixels), indirect(pixels), caustic(pixels);
   device_.download(film_combined_, combined.data(), pixels * sizeof(float4));
   device_.download(film_direct_, direct.data(), pixels * sizeof(float4));
+  device_.download(film_indirect_, indirect.data(), pixels * sizeof(float4));
+  device_.download(film_caustic_, caustic.data(), pixels * sizeof(float4));
   const auto end = std::chrono::steady_clock::now();
 
   int repaired = 0;
@@ -151,7 +173,10 @@ FrameImage Renderer::render_frame(int frame, FrameStats* stats) {
   image.height = height_;
   image.layers.push_back(ImageLayer{"", rgb_from_float4(combined)});
   image.layers.push_back(ImageLayer{"direct", rgb_from_float4(direct)});
+  image.layers.push_back(ImageLayer{"indirect", rgb_from_float4(indirect)});
+  image.layers.push_back(ImageLayer{"caustic", rgb_from_float4(caustic)});
   if (stats) {
+    stats->photons = photon_stats;
     stats->render_ms = std::chrono::duration<double, std::milli>(end - start).count();
     stats->repaired_pixels = repaired;
   }

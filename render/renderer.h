@@ -4,11 +4,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "render/device.h"
 #include "render/image.h"
+#include "render/photon_pass.h"
 #include "render/scene.h"
 
 namespace pm {
@@ -18,6 +20,7 @@ struct RenderSettings {
   uint32_t seed = 1;
   int width = 0;   // 0: the scene camera's resolution
   int height = 0;
+  PhotonSettings photons;
 
   std::string describe() const;  // one line for EXR headers and logs
 };
@@ -25,6 +28,7 @@ struct RenderSettings {
 struct FrameStats {
   double render_ms = 0;       // wall time from first launch to the frame's data back on the host
   int repaired_pixels = 0;    // non-finite pixels the film stage replaced by black
+  PhotonStats photons;
 };
 
 class Renderer {
@@ -49,13 +53,16 @@ class Renderer {
 
   DeviceBuffer scene_nodes_, triangles_, materials_, lights_;
   DeviceBuffer shade_position_, shade_normal_, shade_outgoing_, shade_weight_;
-  DeviceBuffer film_direct_, film_combined_;
+  DeviceBuffer film_direct_, film_indirect_, film_caustic_, film_combined_;
+  std::unique_ptr<PhotonPass> photon_pass_;
 };
 
 // The camera basis the kernels expect (kernels/common/types.h CameraParams).
 CameraParams make_camera_params(const CameraDesc& camera, int width, int height);
 // The scene's materials and lights in the device structs' layout.
 std::vector<Material> to_device_materials(const Scene& scene);
-std::vector<PointLight> to_device_lights(const Scene& scene);
+// photons_per_light: each light's photon count per batch, stored in power.w (types.h); the first
+// photon index of each light within a batch goes to position.w.
+std::vector<PointLight> to_device_lights(const Scene& scene, const std::vector<uint32_t>& photons_per_light = {});
 
 }  // namespace pm

@@ -22,10 +22,13 @@ Float3 to_metres(const Millimetres& p) {
 // The red wall is at x ~ 550 and the green wall at x = 0: seen from the camera (looking down +z
 // with +y up, right-handed) +x is on the left, as in the reference photographs.
 const Millimetres kFloor[4] = {{552.8f, 0, 0}, {0, 0, 0}, {0, 0, 559.2f}, {549.6f, 0, 559.2f}};
-const Millimetres kCeiling[4] = {{556, 548.8f, 0}, {556, 548.8f, 559.2f}, {0, 548.8f, 559.2f}, {0, 548.8f, 0}};
-const Millimetres kBackWall[4] = {{549.6f, 0, 559.2f}, {0, 0, 559.2f}, {0, 548.8f, 559.2f}, {556, 548.8f, 559.2f}};
+const Millimetres kCeiling[4] = {
+    {556, 548.8f, 0}, {556, 548.8f, 559.2f}, {0, 548.8f, 559.2f}, {0, 548.8f, 0}};
+const Millimetres kBackWall[4] = {
+    {549.6f, 0, 559.2f}, {0, 0, 559.2f}, {0, 548.8f, 559.2f}, {556, 548.8f, 559.2f}};
 const Millimetres kGreenWall[4] = {{0, 0, 559.2f}, {0, 0, 0}, {0, 548.8f, 0}, {0, 548.8f, 559.2f}};
-const Millimetres kRedWall[4] = {{552.8f, 0, 0}, {549.6f, 0, 559.2f}, {556, 548.8f, 559.2f}, {556, 548.8f, 0}};
+const Millimetres kRedWall[4] = {
+    {552.8f, 0, 0}, {549.6f, 0, 559.2f}, {556, 548.8f, 559.2f}, {556, 548.8f, 0}};
 
 // Block tops; the sides run straight down from each top edge to the floor (y = 0). The corners
 // are in the order whose normal (p1 - p0) x (p2 - p0) points up (+y).

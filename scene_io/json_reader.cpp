@@ -59,8 +59,7 @@ class StrictDocumentBuilder : public nlohmann::json_sax<json> {
     return true;
   }
 
-  bool parse_error(std::size_t position, const std::string&,
-                   const nlohmann::detail::exception& ex) override {
+  bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& ex) override {
     failed = true;
     error_position = position;
     error_id = ex.id;
@@ -150,12 +149,18 @@ size_t line_of_position(const std::string& text, size_t chars_read) {
 
 const char* kind_of(const json& value) {
   switch (value.type()) {
-    case json::value_t::null: return "null";
-    case json::value_t::boolean: return value.get<bool>() ? "true" : "false";
-    case json::value_t::string: return "a string";
-    case json::value_t::array: return "an array";
-    case json::value_t::object: return "an object";
-    default: return "a value";
+    case json::value_t::null:
+      return "null";
+    case json::value_t::boolean:
+      return value.get<bool>() ? "true" : "false";
+    case json::value_t::string:
+      return "a string";
+    case json::value_t::array:
+      return "an array";
+    case json::value_t::object:
+      return "an object";
+    default:
+      return "a value";
   }
 }
 
@@ -219,9 +224,7 @@ void JsonField::expect_object_with_keys(const std::vector<std::string>& allowed_
   }
 }
 
-bool JsonField::has(const std::string& key) const {
-  return value_->is_object() && value_->contains(key);
-}
+bool JsonField::has(const std::string& key) const { return value_->is_object() && value_->contains(key); }
 
 JsonField JsonField::member(const std::string& key) const {
   if (!value_->is_object()) fail("expected an object, got " + describe_json_value(*value_));
@@ -233,8 +236,7 @@ JsonField JsonField::member(const std::string& key) const {
 size_t JsonField::expect_array(size_t size) const {
   if (!value_->is_array()) fail("expected an array, got " + describe_json_value(*value_));
   if (size != kAnySize && value_->size() != size) {
-    fail("expected an array of " + std::to_string(size) + " elements, got " +
-         std::to_string(value_->size()));
+    fail("expected an array of " + std::to_string(size) + " elements, got " + std::to_string(value_->size()));
   }
   return value_->size();
 }

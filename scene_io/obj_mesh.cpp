@@ -20,24 +20,24 @@ namespace {
 // tinyobjloader only keeps a usemtl name if some mtllib defined it; faces under any other name
 // get material id -1, indistinguishable from faces with no usemtl. We need the name (it may refer
 // to a JSON material), so the text handed to tinyobjloader starts with an extra line
-// "mtllib <this sentinel>", for which our reader registers every usemtl name of the file. The
-// material id of a face is then its index in ObjTextFacts::usemtl_names.
+// "mtllib <this sentinel>", for which our reader registers every usemtl slot token of the file
+// (check_obj_text rewrote the usemtl lines to those tokens). The material id of a face is then
+// its index in ObjTextFacts::usemtl_names.
 const char kUsemtlNamesSentinel[] = "<pmrender:usemtl-names>";
 
 class SceneMtlReader : public tinyobj::MaterialReader {
  public:
   SceneMtlReader(std::string obj_dir, const std::vector<ObjUsemtl>* usemtl_names, bool read_files,
                  std::map<std::string, MtlMaterial>* found)
-      : obj_dir_(std::move(obj_dir)), usemtl_names_(usemtl_names), read_files_(read_files),
-        found_(found) {}
+      : obj_dir_(std::move(obj_dir)), usemtl_names_(usemtl_names), read_files_(read_files), found_(found) {}
 
   bool operator()(const std::string& mat_id, std::vector<tinyobj::material_t>* materials,
                   std::map<std::string, int>* mat_map, std::string*, std::string*) override {
     if (mat_id == kUsemtlNamesSentinel) {
-      for (const ObjUsemtl& usemtl : *usemtl_names_) {
+      for (size_t slot = 0; slot < usemtl_names_->size(); ++slot) {
         tinyobj::material_t placeholder = tinyobj::material_t();
-        placeholder.name = usemtl.name;
-        mat_map->insert({usemtl.name, static_cast<int>(materials->size())});
+        placeholder.name = usemtl_slot_token(slot);
+        mat_map->insert({placeholder.name, static_cast<int>(materials->size())});
         materials->push_back(placeholder);
       }
       return true;
@@ -77,11 +77,13 @@ class SceneMtlReader : public tinyobj::MaterialReader {
 // gave it, one below the file's because of the sentinel line; report the file's line instead.
 std::string tinyobj_error_in_file_terms(const std::string& obj_path, const std::string& err) {
   std::string first = err.substr(0, err.find('\n'));
+  // Its messages end like "... line 5.)" or "(line 5.)"; that part is replaced by our prefix.
+  static const std::regex line_pattern("[ (]*line:? ?([0-9]+)[.)]*");
   std::smatch match;
-  static const std::regex line_pattern("line:? ?([0-9]+)");
   if (std::regex_search(first, match, line_pattern)) {
-    long line = std::stol(match[1].str()) - 1;
-    return file_line(obj_path, static_cast<size_t>(line > 0 ? line : 1)) + ": " + first;
+    const long line = std::stol(match[1].str()) - 1;
+    const std::string text = first.substr(0, static_cast<size_t>(match.position(0))) + match.suffix().str();
+    return file_line(obj_path, static_cast<size_t>(line > 0 ? line : 1)) + ": " + text;
   }
   return obj_path + ": " + (first.empty() ? std::string("tinyobjloader failed") : first);
 }
@@ -97,9 +99,9 @@ bool is_degenerate_triangle(const Float3& a, const Float3& b, const Float3& c) {
   const double cross[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
                            e1[0] * e2[1] - e1[1] * e2[0]};
   const double twice_area = std::sqrt(length_squared(cross[0], cross[1], cross[2]));
-  const double longest_squared = std::max({length_squared(e1[0], e1[1], e1[2]),
-                                           length_squared(e2[0], e2[1], e2[2]),
-                                           length_squared(e3[0], e3[1], e3[2])});
+  const double longest_squared =
+      std::max({length_squared(e1[0], e1[1], e1[2]), length_squared(e2[0], e2[1], e2[2]),
+                length_squared(e3[0], e3[1], e3[2])});
   // twice_area / longest is the height over the longest edge; compared relative to that edge
   // because float vertices carry ~6e-8 relative rounding, so anything flatter has no usable normal.
   return !(twice_area > 1e-7 * longest_squared);
@@ -117,8 +119,9 @@ ObjMesh load_obj_mesh(const std::string& path, bool read_mtl_files) {
 
   ObjMesh mesh;
   mesh.usemtl_names = facts.usemtl_names;
+  mesh.warnings = facts.warnings;
   SceneMtlReader reader(obj_dir, &facts.usemtl_names, read_mtl_files, &mesh.mtl_materials);
-  std::istringstream stream(std::string("mtllib ") + kUsemtlNamesSentinel + "\n" + text);
+  std::istringstream stream(std::string("mtllib ") + kUsemtlNamesSentinel + "\n" + facts.text_for_tinyobj);
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> placeholders;
@@ -130,7 +133,8 @@ ObjMesh load_obj_mesh(const std::string& path, bool read_mtl_files) {
   const size_t vertex_count = attrib.vertices.size() / 3;
   mesh.positions.resize(vertex_count);
   for (size_t i = 0; i < vertex_count; ++i) {
-    mesh.positions[i] = Float3{attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]};
+    mesh.positions[i] =
+        Float3{attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]};
   }
 
   for (const tinyobj::shape_t& shape : shapes) {
@@ -147,8 +151,8 @@ ObjMesh load_obj_mesh(const std::string& path, bool read_mtl_files) {
       for (int k = 0; k < 3; ++k) {
         const int index = m.indices[corner + k].vertex_index;
         if (index < 0 || static_cast<size_t>(index) >= vertex_count) {
-          throw_input_error(path, "face vertex index " + std::to_string(index + 1) +
-                                      " out of range (" + std::to_string(vertex_count) + " vertices)");
+          throw_input_error(path, "face vertex index " + std::to_string(index + 1) + " out of range (" +
+                                      std::to_string(vertex_count) + " vertices)");
         }
         v[k] = static_cast<uint32_t>(index);
       }

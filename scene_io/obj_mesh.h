@@ -15,12 +15,13 @@
 namespace pm {
 
 struct ObjMesh {
-  std::vector<Float3> positions;           // as written in the file (scene units)
-  std::vector<uint32_t> indices;           // three per triangle, into positions
-  std::vector<int32_t> triangle_usemtl;    // index into usemtl_names; -1 before any usemtl
-  std::vector<ObjUsemtl> usemtl_names;     // distinct usemtl names with their first line
+  std::vector<Float3> positions;                     // as written in the file (scene units)
+  std::vector<uint32_t> indices;                     // three per triangle, into positions
+  std::vector<int32_t> triangle_usemtl;              // index into usemtl_names; -1 before any usemtl
+  std::vector<ObjUsemtl> usemtl_names;               // distinct usemtl names with their first line
   std::map<std::string, MtlMaterial> mtl_materials;  // by name; first definition wins
   size_t degenerate_triangles_dropped = 0;
+  std::vector<std::string> warnings;  // one line each, naming the file
 
   size_t triangle_count() const { return indices.size() / 3; }
 };

@@ -10,7 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <unordered_set>
+#include <unordered_map>
 
 #include "scene_io/load_error.h"
 
@@ -78,34 +78,49 @@ struct AttributeCounts {
   size_t vertices = 0, texcoords = 0, normals = 0;
 };
 
-// Checks one index of one kind: positive indices may refer to any vertex in the file (like
-// tinyobjloader, which resolves them after reading everything), negative ones count back from the
-// vertices defined so far.
-void check_index(const std::string& where, const std::string& element, const std::string& kind,
-                 const std::string& text, size_t total, size_t so_far) {
+enum class IndexProblem { kNone, kInvalid, kOutOfRange };
+
+// Checks one index of one kind and describes any problem in *message: positive indices may refer
+// to any vertex in the file (like tinyobjloader, which resolves them after reading everything),
+// negative ones count back from the vertices defined so far.
+IndexProblem check_index(const std::string& element, const std::string& kind, const std::string& text,
+                         size_t total, size_t so_far, std::string* message) {
   // "face index 99", "face texture coordinate index 5": vertex indices are the default kind.
   const std::string what = kind == "vertex" ? element + " index" : element + " " + kind + " index";
+  const std::string plural = kind == "vertex" ? "vertices" : kind + "s";
   long index = 0;
   if (!parse_index(text, &index)) {
-    throw_input_error(where, what + " '" + text + "' is not an integer");
+    *message = what + " '" + text + "' is not an integer";
+    return IndexProblem::kInvalid;
   }
   if (index == 0) {
-    throw_input_error(where, what + " 0 is invalid (OBJ indices start at 1)");
+    *message = what + " 0 is invalid (OBJ indices start at 1)";
+    return IndexProblem::kInvalid;
   }
-  const std::string plural = kind == "vertex" ? "vertices" : kind + "s";
   if (index > 0 && static_cast<size_t>(index) > total) {
-    throw_input_error(where, what + " " + std::to_string(index) + " out of range (" + std::to_string(total) +
-                                 " " + plural + ")");
+    *message =
+        what + " " + std::to_string(index) + " out of range (" + std::to_string(total) + " " + plural + ")";
+    return IndexProblem::kOutOfRange;
   }
   if (index < 0 && static_cast<size_t>(-index) > so_far) {
-    throw_input_error(where, what + " " + std::to_string(index) + " out of range (" + std::to_string(so_far) +
-                                 " " + plural + " before this line)");
+    *message = what + " " + std::to_string(index) + " out of range (" + std::to_string(so_far) + " " +
+               plural + " before this line)";
+    return IndexProblem::kOutOfRange;
   }
+  return IndexProblem::kNone;
 }
+
+// Out-of-range texture coordinate and normal indices, tolerated because the renderer reads
+// neither (tinyobjloader only stores them): some converted scenes have one vt too few.
+struct UnusedAttributeIssues {
+  size_t count = 0;
+  std::string first;  // "<file>: line N: <problem>"
+};
 
 // One corner "v", "v/vt", "v//vn" or "v/vt/vn".
 void check_corner(const std::string& where, const std::string& element, const std::string& corner,
-                  const AttributeCounts& total, const AttributeCounts& so_far) {
+                  const AttributeCounts& total, const AttributeCounts& so_far,
+                  UnusedAttributeIssues* unused) {
   std::vector<std::string> parts;
   size_t begin = 0;
   for (;;) {
@@ -118,19 +133,28 @@ void check_corner(const std::string& where, const std::string& element, const st
                      (parts.size() < 2 || !parts[1].empty() || parts.size() == 3) &&
                      (parts.size() < 3 || !parts[2].empty());
   if (!well_formed) {
-    throw_input_error(where, element + " corner '" + corner + "' is not of the form v, v/vt, v//vn or v/vt/vn");
+    throw_input_error(where,
+                      element + " corner '" + corner + "' is not of the form v, v/vt, v//vn or v/vt/vn");
   }
-  check_index(where, element, "vertex", parts[0], total.vertices, so_far.vertices);
-  if (parts.size() >= 2 && !parts[1].empty()) {
-    check_index(where, element, "texture coordinate", parts[1], total.texcoords, so_far.texcoords);
+  std::string message;
+  if (check_index(element, "vertex", parts[0], total.vertices, so_far.vertices, &message) !=
+      IndexProblem::kNone) {
+    throw_input_error(where, message);
   }
-  if (parts.size() == 3) check_index(where, element, "normal", parts[2], total.normals, so_far.normals);
+  auto check_unused = [&](const char* kind, const std::string& text, size_t kind_total, size_t kind_so_far) {
+    const IndexProblem problem = check_index(element, kind, text, kind_total, kind_so_far, &message);
+    if (problem == IndexProblem::kInvalid) throw_input_error(where, message);  // tinyobjloader fails on these
+    if (problem == IndexProblem::kOutOfRange && unused->count++ == 0) unused->first = where + ": " + message;
+  };
+  if (parts.size() >= 2 && !parts[1].empty())
+    check_unused("texture coordinate", parts[1], total.texcoords, so_far.texcoords);
+  if (parts.size() == 3) check_unused("normal", parts[2], total.normals, so_far.normals);
 }
 
 void check_vertex(const std::string& where, const std::vector<std::string>& coordinates) {
   if (coordinates.size() < 3) {
-    throw_input_error(where, "vertex has " + std::to_string(coordinates.size()) +
-                                 " coordinates (need x y z)");
+    throw_input_error(where,
+                      "vertex has " + std::to_string(coordinates.size()) + " coordinates (need x y z)");
   }
   for (size_t i = 0; i < 3; ++i) {
     double value = 0;
@@ -144,6 +168,8 @@ void check_vertex(const std::string& where, const std::vector<std::string>& coor
 }
 
 }  // namespace
+
+std::string usemtl_slot_token(size_t slot) { return "pmrender-usemtl-" + std::to_string(slot); }
 
 std::vector<std::string> split_obj_lines(const std::string& text) {
   std::vector<std::string> lines;
@@ -188,8 +214,8 @@ std::string resolve_mtl_file(const std::string& obj_dir, const std::string& name
   return probe ? path.string() : "";
 }
 
-ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_dir,
-                            const std::string& text, bool check_mtllib) {
+ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_dir, const std::string& text,
+                            bool check_mtllib) {
   const std::vector<std::string> lines = split_obj_lines(text);
 
   // Pass 1: totals, because positive indices may point at vertices defined further down.
@@ -199,24 +225,34 @@ ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_
     if (start == std::string::npos) continue;
     size_t rest = 0;
     switch (classify(line, start, &rest)) {
-      case ObjStatement::kVertex: ++total.vertices; break;
-      case ObjStatement::kTexcoord: ++total.texcoords; break;
-      case ObjStatement::kNormal: ++total.normals; break;
-      default: break;
+      case ObjStatement::kVertex:
+        ++total.vertices;
+        break;
+      case ObjStatement::kTexcoord:
+        ++total.texcoords;
+        break;
+      case ObjStatement::kNormal:
+        ++total.normals;
+        break;
+      default:
+        break;
     }
   }
 
   // Pass 2: validate each statement with its line number.
   ObjTextFacts facts;
   facts.vertex_count = total.vertices;
-  std::unordered_set<std::string> seen_materials;
+  std::unordered_map<std::string, size_t> usemtl_slot;  // name -> index in usemtl_names
+  facts.text_for_tinyobj.reserve(text.size() + 64);
   AttributeCounts so_far;
+  UnusedAttributeIssues unused;
   for (size_t number = 1; number <= lines.size(); ++number) {
     const std::string& line = lines[number - 1];
     size_t start = line.find_first_not_of(" \t");
-    if (start == std::string::npos) continue;
     size_t rest = 0;
-    const ObjStatement statement = classify(line, start, &rest);
+    const ObjStatement statement =
+        start == std::string::npos ? ObjStatement::kOther : classify(line, start, &rest);
+    if (statement != ObjStatement::kUsemtl) facts.text_for_tinyobj += line + "\n";
     if (statement == ObjStatement::kOther) continue;
     const std::string where = file_line(obj_path, number);
     switch (statement) {
@@ -224,8 +260,12 @@ ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_
         check_vertex(where, split_blanks(line, rest));
         ++so_far.vertices;
         break;
-      case ObjStatement::kTexcoord: ++so_far.texcoords; break;
-      case ObjStatement::kNormal: ++so_far.normals; break;
+      case ObjStatement::kTexcoord:
+        ++so_far.texcoords;
+        break;
+      case ObjStatement::kNormal:
+        ++so_far.normals;
+        break;
       case ObjStatement::kFace:
       case ObjStatement::kLine:
       case ObjStatement::kPoint: {
@@ -234,23 +274,33 @@ ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_
                                                                        : "point element";
         const std::vector<std::string> corners = split_blanks(line, rest);
         if (statement == ObjStatement::kFace && corners.size() < 3) {
-          throw_input_error(where, "face has " + std::to_string(corners.size()) +
-                                       " corners (need at least 3)");
+          throw_input_error(where,
+                            "face has " + std::to_string(corners.size()) + " corners (need at least 3)");
         }
-        for (const std::string& corner : corners) check_corner(where, element, corner, total, so_far);
+        for (const std::string& corner : corners)
+          check_corner(where, element, corner, total, so_far, &unused);
         break;
       }
       case ObjStatement::kUsemtl: {
-        std::vector<std::string> words = split_blanks(line, rest);
-        if (words.empty()) throw_input_error(where, "usemtl without a material name");
-        if (seen_materials.insert(words[0]).second) facts.usemtl_names.push_back({words[0], number});
-        break;
+        // The whole rest of the line, as tinyobjloader reads "newmtl" (not "usemtl": it stops at
+        // the first blank), so "usemtl Material #0" finds "newmtl Material #0".
+        const size_t name_begin = line.find_first_not_of(" \t", rest);
+        if (name_begin == std::string::npos) throw_input_error(where, "usemtl without a material name");
+        const std::string name = line.substr(name_begin, line.find_last_not_of(" \t") + 1 - name_begin);
+        auto slot = usemtl_slot.find(name);
+        if (slot == usemtl_slot.end()) {
+          slot = usemtl_slot.emplace(name, facts.usemtl_names.size()).first;
+          facts.usemtl_names.push_back({name, number});
+        }
+        facts.text_for_tinyobj += "usemtl " + usemtl_slot_token(slot->second) + "\n";
+        continue;
       }
       case ObjStatement::kMtllib: {
         if (!check_mtllib) break;
         const std::vector<std::string> names = split_mtllib_names(line.substr(rest + 1));
         bool any_opens = false;
-        for (const std::string& name : names) any_opens = any_opens || !resolve_mtl_file(obj_dir, name).empty();
+        for (const std::string& name : names)
+          any_opens = any_opens || !resolve_mtl_file(obj_dir, name).empty();
         if (names.empty()) throw_input_error(where, "mtllib without a file name");
         if (!any_opens) {
           std::string tried;
@@ -259,8 +309,14 @@ ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_
         }
         break;
       }
-      case ObjStatement::kOther: break;
+      case ObjStatement::kOther:
+        break;
     }
+  }
+  if (unused.count > 0) {
+    facts.warnings.push_back(single_line(
+        unused.first + (unused.count > 1 ? " (and " + std::to_string(unused.count - 1) + " more)" : "") +
+        "; ignored, since texture coordinates and normals are not used"));
   }
   return facts;
 }

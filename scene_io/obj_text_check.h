@@ -17,8 +17,17 @@ struct ObjUsemtl {
 
 struct ObjTextFacts {
   std::vector<ObjUsemtl> usemtl_names;  // distinct names, in order of first use
+  // The text to hand tinyobjloader: the same lines, "\n"-terminated, with every usemtl statement
+  // rewritten to "usemtl <usemtl_slot_token(i)>" (i indexing usemtl_names). Names may contain
+  // blanks, which tinyobjloader's usemtl parsing would cut off; tokens cannot.
+  std::string text_for_tinyobj;
   size_t vertex_count = 0;
+  // Tolerated problems, one line each: out-of-range texture coordinate or normal indices.
+  std::vector<std::string> warnings;
 };
+
+// The blank-free stand-in for usemtl_names[slot] in ObjTextFacts::text_for_tinyobj.
+std::string usemtl_slot_token(size_t slot);
 
 // Splits text into lines the way tinyobjloader does ("\n", "\r\n" and a lone "\r" all end a line),
 // so line numbers agree with its own messages.
@@ -26,11 +35,12 @@ std::vector<std::string> split_obj_lines(const std::string& text);
 
 // Throws InputError "<obj_path>: line N: <problem>" for:
 //   vertices without 3 decimal, finite (float-range) coordinates;
-//   face/line/point elements with a malformed, zero or out-of-range v/vt/vn index, faces with
-//   fewer than 3 corners; usemtl without a name; and, when check_mtllib is set, an mtllib line
+//   face/line/point elements with a malformed or zero index, an out-of-range vertex index, or
+//   (faces) fewer than 3 corners; usemtl without a name; and, when check_mtllib is set, an mtllib line
 //   none of whose files can be opened (relative to obj_dir).
-ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_dir,
-                            const std::string& text, bool check_mtllib);
+// Out-of-range texture coordinate and normal indices only add a warning: nothing reads them.
+ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_dir, const std::string& text,
+                            bool check_mtllib);
 
 // Resolves an mtllib file name the way the mesh loader opens it: relative to the OBJ's folder
 // unless absolute. Returns "" when it is not a readable regular file.

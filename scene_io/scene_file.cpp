@@ -41,7 +41,8 @@ Float3 read_reflectance(const JsonField& field) {
   const Float3 value = field.float3();
   for (size_t i = 0; i < 3; ++i) {
     const float v = component(value, static_cast<int>(i));
-    if (v < 0 || v > 1) field.element(i).fail("must be in [0, 1], got " + describe_json_value(field.element(i).value()));
+    if (v < 0 || v > 1)
+      field.element(i).fail("must be in [0, 1], got " + describe_json_value(field.element(i).value()));
   }
   return value;
 }
@@ -56,13 +57,15 @@ MaterialDesc read_json_material(const JsonField& field, const std::string& name)
   if (field.has("exponent")) {
     const JsonField exponent = field.member("exponent");
     const double value = exponent.finite_number();
-    if (value < 0 || value > 1e6) exponent.fail("must be in [0, 1e6], got " + describe_json_value(exponent.value()));
+    if (value < 0 || value > 1e6)
+      exponent.fail("must be in [0, 1e6], got " + describe_json_value(exponent.value()));
     desc.glossy_exponent = static_cast<float>(value);
   }
   // Hand-written materials that reflect more than they receive are mistakes; say so instead of
   // quietly rescaling (MTL files, written by exporters, are rescaled instead: mtl_material.h).
   for (int c = 0; c < 3; ++c) {
-    const double sum = double(component(desc.diffuse, c)) + component(desc.glossy, c) + component(desc.mirror, c);
+    const double sum =
+        double(component(desc.diffuse, c)) + component(desc.glossy, c) + component(desc.mirror, c);
     if (sum > 1.0) {
       field.fail("diffuse + glossy + mirror = " + std::to_string(sum) + " exceeds 1 in the " +
                  kChannelNames[c] + " channel");
@@ -78,7 +81,8 @@ std::map<std::string, MaterialDesc> read_json_materials(const JsonField& root) {
   if (!field.value().is_object()) field.fail("expected an object, got " + describe_json_value(field.value()));
   for (const auto& item : field.value().items()) {
     if (item.key().empty()) field.fail("material names must not be empty");
-    materials[item.key()] = read_json_material(JsonField(field.file(), item.value(), field.path() + "." + item.key()), item.key());
+    materials[item.key()] = read_json_material(
+        JsonField(field.file(), item.value(), field.path() + "." + item.key()), item.key());
   }
   return materials;
 }
@@ -142,8 +146,9 @@ UsemtlTarget resolve_usemtl(const ObjMesh& mesh, const ObjUsemtl& usemtl, const 
     target.mtl = &mtl_it->second;
     return target;
   }
-  throw_input_error(file_line(obj_path, usemtl.first_line),
-                    "usemtl '" + usemtl.name + "': no such material in the scene's materials or the OBJ's MTL files");
+  throw_input_error(
+      file_line(obj_path, usemtl.first_line),
+      "usemtl '" + usemtl.name + "': no such material in the scene's materials or the OBJ's MTL files");
 }
 
 void append_mesh(const JsonField& field, LoadContext& ctx, MaterialTable& table, Scene& scene) {
@@ -164,7 +169,8 @@ void append_mesh(const JsonField& field, LoadContext& ctx, MaterialTable& table,
 
   std::vector<UsemtlTarget> targets;
   if (override_name.empty()) {
-    for (const ObjUsemtl& usemtl : mesh.usemtl_names) targets.push_back(resolve_usemtl(mesh, usemtl, obj_path, ctx));
+    for (const ObjUsemtl& usemtl : mesh.usemtl_names)
+      targets.push_back(resolve_usemtl(mesh, usemtl, obj_path, ctx));
   }
 
   // Materials enter the table on first use, so unused ones do not reach the renderer.
@@ -197,15 +203,19 @@ void append_mesh(const JsonField& field, LoadContext& ctx, MaterialTable& table,
   };
 
   const size_t base = scene.positions.size();
-  if (base + mesh.positions.size() > UINT32_MAX) field.fail("too many vertices in the scene for 32-bit indices");
+  if (base + mesh.positions.size() > UINT32_MAX)
+    field.fail("too many vertices in the scene for 32-bit indices");
   const JsonField file_field = field.member("file");
-  for (const Float3& p : mesh.positions) scene.positions.push_back(to_metres(p, ctx.meters_per_unit, file_field));
+  for (const Float3& p : mesh.positions)
+    scene.positions.push_back(to_metres(p, ctx.meters_per_unit, file_field));
   for (uint32_t index : mesh.indices) scene.indices.push_back(static_cast<uint32_t>(base + index));
   for (int32_t usemtl : mesh.triangle_usemtl) scene.triangle_material.push_back(material_for(usemtl));
 
+  ctx.report->warnings.insert(ctx.report->warnings.end(), mesh.warnings.begin(), mesh.warnings.end());
   if (mesh.degenerate_triangles_dropped > 0) {
     ctx.report->degenerate_triangles_dropped += mesh.degenerate_triangles_dropped;
-    ctx.report->warnings.push_back(single_line(obj_path + ": " + std::to_string(mesh.degenerate_triangles_dropped) +
+    ctx.report->warnings.push_back(single_line(obj_path + ": " +
+                                               std::to_string(mesh.degenerate_triangles_dropped) +
                                                " degenerate triangles dropped"));
   }
 }
@@ -231,7 +241,8 @@ std::vector<LightDesc> read_lights(const JsonField& root, double meters_per_unit
     light.power = power.float3();
     for (size_t c = 0; c < 3; ++c) {
       const float watts = component(light.power, static_cast<int>(c));
-      if (watts < 0) power.element(c).fail("must be >= 0 W, got " + describe_json_value(power.element(c).value()));
+      if (watts < 0)
+        power.element(c).fail("must be >= 0 W, got " + describe_json_value(power.element(c).value()));
       total_power += watts;
     }
     result.push_back(light);
@@ -271,7 +282,8 @@ CameraDesc read_camera(const JsonField& root, double meters_per_unit) {
   if (field.has("vertical_fov")) {
     const JsonField fov = field.member("vertical_fov");
     const double degrees = fov.finite_number();
-    if (!(degrees > 0 && degrees < 180)) fov.fail("must be in (0, 180) degrees, got " + describe_json_value(fov.value()));
+    if (!(degrees > 0 && degrees < 180))
+      fov.fail("must be in (0, 180) degrees, got " + describe_json_value(fov.value()));
     camera.vertical_fov_degrees = static_cast<float>(degrees);
   }
   if (field.has("resolution")) {
@@ -294,13 +306,15 @@ Scene load_scene_file(const std::string& path, SceneLoadReport* report) {
 
   const nlohmann::json document = parse_json_file_strict(path);
   const JsonField root(path, document, "");
-  if (!document.is_object()) root.fail("expected a JSON object at the top level, got " + describe_json_value(document));
+  if (!document.is_object())
+    root.fail("expected a JSON object at the top level, got " + describe_json_value(document));
 
   // Identify the format before anything else, so a newer file gets "unsupported version" rather
   // than complaints about keys this build does not know.
   const JsonField format = root.member("format");
   if (format.non_empty_string() != kFormatName) {
-    format.fail(std::string("expected \"") + kFormatName + "\", got \"" + format.value().get<std::string>() + "\"");
+    format.fail(std::string("expected \"") + kFormatName + "\", got \"" + format.value().get<std::string>() +
+                "\"");
   }
   const JsonField version = root.member("version");
   const long long version_number = version.integer_in(0, 1000000);
@@ -309,7 +323,8 @@ Scene load_scene_file(const std::string& path, SceneLoadReport* report) {
                  std::to_string(kSceneFormatVersion) + ")");
   }
   if (root.has("animation")) root.member("animation").fail("not part of format version 1");
-  root.expect_object_with_keys({"format", "version", "name", "meters_per_unit", "meshes", "materials", "lights", "camera"});
+  root.expect_object_with_keys(
+      {"format", "version", "name", "meters_per_unit", "meshes", "materials", "lights", "camera"});
 
   Scene scene;
   scene.source = path;

@@ -6,6 +6,14 @@
 
 #define PM_KERNEL_LIST(K)                                                                     \
   K(camera_pass)       /* S5: eye rays, mirror recursion, direct light, shading points */    \
+  K(photon_trace)      /* S1+S2: emit, trace, record hits with differentials */              \
+  K(photon_footprint)  /* S3: footprint ellipsoids, AABBs, gather data, per-hit area */      \
+  K(photon_reduce)     /* S3: per-tile hit bounds, footprint area and hit count */           \
+  K(photon_morton)     /* S4: 30-bit Morton keys (empty slots sort last) */                  \
+  K(photon_map_nodes)  /* S4: Karras radix tree inner nodes */                               \
+  K(photon_map_bottom_up) /* S4: boxes, counts, leaf fusion under T */                       \
+  K(photon_map_reorder)   /* S4: gather data into sorted order */                             \
+  K(gather)            /* S6: indirect and caustic radiance at every shading point */        \
   K(film_resolve)      /* S7: combined = direct + indirect + caustic, NaN guard */           \
   K(sort_histogram)    /* portable radix sort: per-tile digit counts */                      \
   K(sort_scan_chunks)  /* portable radix sort: exclusive scan within chunks of counts */     \

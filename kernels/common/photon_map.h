@@ -30,7 +30,9 @@
    never reached. The root is always an inner node, so when n <= T the root's two children are
    the leaves. n == 1 has no node at all; the query scans hit 0 directly.
    The sorted positions index sorted_lo/sorted_hi (written by step 5) and, through the sorted
-   index array, the original hit records. */
+   index array, the original hit records. Section 6.3 marks a leaf's end with a flag on its last
+   hit; here (first, count) sits in the parent's slot instead, since the counts are needed for
+   fusion anyway and the hit arrays stay untouched. n == 0: the host skips the stage. */
 #ifndef PM_PHOTON_MAP_H
 #define PM_PHOTON_MAP_H
 
@@ -38,9 +40,11 @@
 #include "types.h"
 #include "vec3.h"
 
-/* Orders a child's box / count writes before its parent's visit counter on the device. */
+/* PM_MEMORY_FENCE comes from the backend's compat.h (CUDA __threadfence(), OpenCL
+   mem_fence(CLK_GLOBAL_MEM_FENCE), nothing on the single-threaded host). It orders step 5's
+   child-slot writes before the visit counter, and the counter before the sibling's slot read. */
 #ifndef PM_MEMORY_FENCE
-#define PM_MEMORY_FENCE()
+#error "PM_MEMORY_FENCE must be defined by the backend's compat.h"
 #endif
 
 #define PM_PHOTON_MAP_BOUNDS_TILE 256
@@ -138,7 +142,8 @@ PM_DEVICE void photon_map_build_node(uint i, uint n, PM_GLOBAL const uint* codes
    item to arrive at a node (atomic visit counter) goes on, with the union of both slots. A slot
    whose count <= threshold is written as a leaf interval, which undoes the splits below T. Every
    slot of every node is written exactly once whatever the arrival order, so the result does not
-   depend on scheduling. Needs n >= 2 and the visit counters zeroed (step 4 does that). */
+   depend on scheduling. Needs the visit counters zeroed (step 4 does that); for n == 1 only the
+   sorted box is written. */
 PM_DEVICE void photon_map_bottom_up(uint k, uint n, uint leaf_threshold, PM_GLOBAL const uint* sorted_index,
                                     PM_GLOBAL const float4* hit_lo, PM_GLOBAL const float4* hit_hi,
                                     PM_GLOBAL const uint* node_parent, PM_GLOBAL const uint* leaf_parent,
@@ -156,7 +161,7 @@ PM_DEVICE void photon_map_bottom_up(uint k, uint n, uint leaf_threshold, PM_GLOB
   uint child = k;     /* current subtree: its node index (inner) or k (leaf) */
   uint first = k;     /* its first sorted position */
   uint count = 1u;    /* its hit count */
-  uint link = leaf_parent[k];
+  uint link = PM_LOAD(&leaf_parent[k]);
   while (link != PM_PHOTON_MAP_NO_PARENT) {
     uint p = link >> 1;
     uint side = link & 1u;
@@ -178,7 +183,7 @@ PM_DEVICE void photon_map_bottom_up(uint k, uint n, uint leaf_threshold, PM_GLOB
     if (side == 1u) first -= sib_count; /* the left sibling's interval ends just before ours */
     count += sib_count;
     child = p;
-    link = node_parent[p];
+    link = PM_LOAD(&node_parent[p]);
   }
 }
 
@@ -198,7 +203,7 @@ typedef struct PhotonMapQuery {
 } PhotonMapQuery;
 
 /* Inclusive test, so points on a face count; the stored boxes are exact unions (min/max), so a
-   parent box never misses a point its hits contain. NaN x is in no box. */
+   parent box never misses a point its hits contain. NaN x is in no box (without fast-math). */
 PM_DEVICE int photon_map_box_contains(float4 lo, float4 hi, Vec3 x)
 {
   return lo.x <= x.x && x.x <= hi.x && lo.y <= x.y && x.y <= hi.y && lo.z <= x.z && x.z <= hi.z;

@@ -7,6 +7,10 @@
 #include "kernel_list.h"
 #include "camera_pass.h"
 #include "film.h"
+#include "gather.h"
+#include "photon_footprint.h"
+#include "photon_map_stage.h"
+#include "photon_trace.h"
 #include "radix_sort.h"
 #include "layout_probe.h"
 

@@ -14,7 +14,10 @@ typedef struct Material {
   float4 mirror;
 } Material;
 
-/* Isotropic point light: position.xyz in metres, power.rgb in watts (radiant flux). */
+/* Isotropic point light: position.xyz in metres, power.rgb in watts (radiant flux).
+   For photon emission the host stores, as uint bits, the light's first photon index within a
+   batch in position.w and its photon count per batch in power.w, and scales nothing: the flux
+   per photon is power / (count * batches) (photon_trace.h). */
 typedef struct PointLight {
   float4 position;
   float4 power;
@@ -29,9 +32,19 @@ typedef struct CameraParams {
   float4 up;
 } CameraParams;
 
+/* Density estimators (--estimator) and kernel shapes (--kernel) of the gather. */
+#define PM_ESTIMATOR_PD 0     /* photon-differential footprints (the paper) */
+#define PM_ESTIMATOR_RADIUS 1 /* fixed-radius gathering */
+#define PM_ESTIMATOR_KNN 2    /* k nearest neighbours within rmax */
+#define PM_KERNEL_CONSTANT 0
+#define PM_KERNEL_EPANECHNIKOV 1
+
 /* Every scalar a kernel launch needs, passed by value to every kernel. */
 typedef struct LaunchParams {
   CameraParams camera;
+  float4 hit_bounds_lo; /* photon map: bounds of the hit positions for Morton codes */
+  float4 hit_bounds_hi;
+
   uint width;
   uint height;
   uint triangle_count;
@@ -46,6 +59,26 @@ typedef struct LaunchParams {
   uint sort_count;      /* portable radix sort: number of keys */
   uint sort_shift;      /* portable radix sort: bit offset of the current digit */
   uint sort_tile_count; /* portable radix sort: tiles of PM_SORT_TILE keys */
+
+  uint photon_count;         /* photons emitted in this batch, all lights */
+  uint photon_offset;        /* global index of the batch's first photon (random stream) */
+  uint hit_slots_per_photon; /* hit records reserved per photon */
+  uint max_bounces;          /* diffuse bounces a recorded photon may have undergone */
+
+  float smoothing;      /* s of section 4.3 for diffusely reflected photons */
+  float rmax;           /* footprint semiaxis clamp, metres */
+  float gather_radius;  /* radius estimator, metres */
+  uint knn_k;           /* knn estimator */
+
+  uint estimator;       /* PM_ESTIMATOR_* */
+  uint kernel_shape;    /* PM_KERNEL_* */
+  uint hit_count;       /* valid hits of the batch: the sorted prefix the photon map covers */
+  uint leaf_threshold;  /* T: subtrees of at most T hits become one leaf */
+
+  uint batch_count;     /* photon batches per frame: each photon carries 1/batch_count */
+  uint collect_stats;   /* gather counts photons per shading point (benchmarks) */
+  uint padding0;        /* keeps sizeof a multiple of 16 in every compiler */
+  uint padding1;
 } LaunchParams;
 
 #define PM_SORT_RADIX_BITS 4

@@ -47,6 +47,9 @@ typedef unsigned int uint;
 #define pm_atomic_add_i32(p, v) atomicAdd((int*)(p), (int)(v))
 
 /* Read-only data goes through the non-coherent cache. */
+/* Orders a work item's global writes before its later atomics (photon map bottom-up pass). */
+#define PM_MEMORY_FENCE() __threadfence()
+
 #define PM_LOAD(p) __ldg(p)
 
 #endif

@@ -48,6 +48,9 @@ typedef int int32_t;
 #define pm_atomic_add_u32(p, v) atomic_add((volatile __global uint*)(p), (uint)(v))
 #define pm_atomic_add_i32(p, v) atomic_add((volatile __global int*)(p), (int)(v))
 
+/* Orders a work item's global writes before its later atomics (photon map bottom-up pass). */
+#define PM_MEMORY_FENCE() mem_fence(CLK_GLOBAL_MEM_FENCE)
+
 #define PM_LOAD(p) (*(p))
 
 #endif

@@ -25,6 +25,7 @@ TEST(OpenclRender, CornellBoxMatchesHostExecutionOfTheSameKernels) {
   RenderSettings settings;
   settings.width = 64;
   settings.height = 64;
+  settings.photons.photons = 0;
   Renderer renderer(*device, scene, settings);
   FrameImage image = renderer.render_frame(0);
   const ImageLayer* direct = image.find("direct");
@@ -46,6 +47,7 @@ TEST(OpenclRender, CornellBoxWallsHaveTheirColours) {
   RenderSettings settings;
   settings.width = 64;
   settings.height = 64;
+  settings.photons.photons = 0;
   Renderer renderer(*device, scene, settings);
   FrameImage image = renderer.render_frame(0);
   const ImageLayer* combined = image.find("");

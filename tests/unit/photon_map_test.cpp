@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
-#include <set>
 
 #include "photon_map_host_driver.h"
 
@@ -201,6 +200,37 @@ TEST(PhotonMapBounds, TilePassesEqualMinMax)
       EXPECT_TRUE(lo.x == elo.x && lo.y == elo.y && lo.z == elo.z) << n << " at " << at;
       EXPECT_TRUE(hi.x == ehi.x && hi.y == ehi.y && hi.z == ehi.z) << n << " at " << at;
     }
+  }
+}
+
+// Step 4 alone: every hit and every inner node but the root has one parent, every inner node
+// exactly one left and one right child (a broken split shows here, before the bottom-up pass
+// would follow the bad links out of bounds).
+TEST(PhotonMapTree, BuildLinksEveryChildOnce)
+{
+  for (uint n : {2u, 3u, 1000u, 50000u}) {
+    Hits h = make_hits(n, 200 + n, n == 1000 ? 4 : 0, 0.05f);
+    std::vector<uint> codes(n), index(n);
+    float4 b_lo, b_hi;
+    reduce_bounds(h.pos, h.pos, &b_lo, &b_hi);
+    for (uint i = 0; i < n; ++i) photon_map_morton(i, h.pos.data(), &b_lo, &b_hi, codes.data(), index.data());
+    sort_pairs(&codes, &index);
+    std::vector<uint> node_parent(n - 1, kPoison), leaf_parent(n, kPoison), visits(n - 1, 7u);
+    run_items(n - 1, Order::kRandom, n, [&](uint i) {
+      photon_map_build_node(i, n, codes.data(), node_parent.data(), leaf_parent.data(), visits.data());
+    });
+    std::vector<int> children(2 * (n - 1), 0);
+    ASSERT_EQ(node_parent[0], PM_PHOTON_MAP_NO_PARENT);
+    for (uint i = 1; i < n - 1; ++i) {
+      ASSERT_LT(node_parent[i] >> 1, n - 1) << "inner node " << i << " has no parent";
+      children[node_parent[i]]++;
+    }
+    for (uint k = 0; k < n; ++k) {
+      ASSERT_LT(leaf_parent[k] >> 1, n - 1) << "leaf " << k << " has no parent";
+      children[leaf_parent[k]]++;
+    }
+    for (uint c = 0; c < 2 * (n - 1); ++c) ASSERT_EQ(children[c], 1) << "node " << c / 2 << " side " << c % 2;
+    for (uint v : visits) ASSERT_EQ(v, 0u);
   }
 }
 

@@ -53,14 +53,16 @@ class CornellBoxTest : public ::testing::Test {
  protected:
   CornellBoxTest() : scene_(builtin_cornell_box()) {
     auto plane = [](Vec a, Vec b, Vec c) { return WallPlane{a, cross(b - a, c - a)}; };
-    walls_ = {plane(from_mm(552.8, 0, 0), from_mm(0, 0, 0), from_mm(0, 0, 559.2)),                // floor
+    walls_ = {plane(from_mm(552.8, 0, 0), from_mm(0, 0, 0), from_mm(0, 0, 559.2)),              // floor
               plane(from_mm(556, 548.8, 0), from_mm(556, 548.8, 559.2), from_mm(0, 548.8, 0)),  // ceiling
               plane(from_mm(549.6, 0, 559.2), from_mm(0, 0, 559.2), from_mm(0, 548.8, 559.2)),  // back
               plane(from_mm(0, 0, 559.2), from_mm(0, 0, 0), from_mm(0, 548.8, 0)),              // green
               plane(from_mm(552.8, 0, 0), from_mm(549.6, 0, 559.2), from_mm(556, 548.8, 0))};   // red
-    blocks_ = {{{from_mm(130, 165, 65), from_mm(82, 165, 225), from_mm(240, 165, 272), from_mm(290, 165, 114)}, 0.165},
-               {{from_mm(423, 330, 247), from_mm(265, 330, 296), from_mm(314, 330, 456), from_mm(472, 330, 406)},
-                0.330}};
+    blocks_ = {
+        {{from_mm(130, 165, 65), from_mm(82, 165, 225), from_mm(240, 165, 272), from_mm(290, 165, 114)},
+         0.165},
+        {{from_mm(423, 330, 247), from_mm(265, 330, 296), from_mm(314, 330, 456), from_mm(472, 330, 406)},
+         0.330}};
   }
 
   // Empty space: inside the room (the open front z < 0 counts as outside) and in no block.
@@ -75,13 +77,17 @@ class CornellBoxTest : public ::testing::Test {
     return p.z > 0;
   }
 
-  Vec corner(size_t triangle, int k) const { return to_vec(scene_.positions[scene_.indices[3 * triangle + k]]); }
+  Vec corner(size_t triangle, int k) const {
+    return to_vec(scene_.positions[scene_.indices[3 * triangle + k]]);
+  }
   Vec centroid(size_t t) const { return (corner(t, 0) + corner(t, 1) + corner(t, 2)) * (1.0 / 3.0); }
   Vec unit_normal(size_t t) const {
     Vec n = cross(corner(t, 1) - corner(t, 0), corner(t, 2) - corner(t, 0));
     return n * (1.0 / std::sqrt(dot(n, n)));
   }
-  const std::string& material_name(size_t t) const { return scene_.materials[scene_.triangle_material[t]].name; }
+  const std::string& material_name(size_t t) const {
+    return scene_.materials[scene_.triangle_material[t]].name;
+  }
 
   Scene scene_;
   std::vector<WallPlane> walls_;
@@ -129,7 +135,8 @@ TEST_F(CornellBoxTest, EveryNormalFacesFreeSpace) {
 
 TEST_F(CornellBoxTest, GeometryIsInMetres) {
   double max_coordinate = 0;
-  for (const Float3& p : scene_.positions) max_coordinate = std::max({max_coordinate, double(p.x), double(p.y), double(p.z)});
+  for (const Float3& p : scene_.positions)
+    max_coordinate = std::max({max_coordinate, double(p.x), double(p.y), double(p.z)});
   EXPECT_NEAR(max_coordinate, 0.5592, 1e-6);  // back wall z = 559.2 mm
 }
 

@@ -4,10 +4,9 @@
 // OBJ/MTL content errors: scene_obj_errors_test.cpp.
 #include <gtest/gtest.h>
 
-#include <nlohmann/json.hpp>
-
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "render/errors.h"
@@ -64,7 +63,8 @@ class SceneJsonErrors : public ::testing::Test {
   // The message starts with the file path, contains `expected`, and is one line.
   void expect_message(const std::string& message, const std::string& file, const std::string& expected) {
     EXPECT_EQ(message.rfind((dir_ / file).string() + ": ", 0), 0u) << message;
-    EXPECT_NE(message.find(expected), std::string::npos) << "message: " << message << "\nexpected part: " << expected;
+    EXPECT_NE(message.find(expected), std::string::npos)
+        << "message: " << message << "\nexpected part: " << expected;
     EXPECT_EQ(message.find('\n'), std::string::npos) << message;
   }
   void expect_scene_message(const std::string& message, const std::string& expected) {
@@ -131,13 +131,15 @@ TEST_F(SceneJsonErrors, WrongTypeIsNamed) {
 }
 
 TEST_F(SceneJsonErrors, TopLevelMustBeAnObject) {
-  expect_message(error_of_text("[1, 2]"), "scene.json", "scene.json: expected a JSON object at the top level");
+  expect_message(error_of_text("[1, 2]"), "scene.json",
+                 "scene.json: expected a JSON object at the top level");
 }
 
 TEST_F(SceneJsonErrors, UnknownKeyListsTheKnownOnes) {
   json scene = valid_scene();
   scene["lights"][0]["colour"] = {1, 1, 1};
-  expect_scene_message(error_of_scene(scene), "lights[0].colour: unknown key (expected one of: name, position, power)");
+  expect_scene_message(error_of_scene(scene),
+                       "lights[0].colour: unknown key (expected one of: name, position, power)");
 }
 
 TEST_F(SceneJsonErrors, UnknownKeysAreErrorsEverywhere) {
@@ -305,7 +307,8 @@ TEST_F(SceneJsonErrors, MeshOfOnlyDegenerateTrianglesLeavesAnEmptyScene) {
 
 TEST_F(SceneJsonErrors, JsonMaterialReflectingMoreThanItReceives) {
   json scene = valid_scene();
-  scene["materials"]["hot"] = {{"diffuse", {0.5, 0.5, 0.5}}, {"glossy", {0.3, 0.3, 0.3}}, {"mirror", {0.1, 0.3, 0.1}}};
+  scene["materials"]["hot"] = {
+      {"diffuse", {0.5, 0.5, 0.5}}, {"glossy", {0.3, 0.3, 0.3}}, {"mirror", {0.1, 0.3, 0.1}}};
   expect_scene_message(error_of_scene(scene), "materials.hot: diffuse + glossy + mirror = 1.1");
   EXPECT_NE(error_of_scene(scene).find("green channel"), std::string::npos);
 }
@@ -324,8 +327,9 @@ TEST_F(SceneJsonErrors, JsonMaterialValuesOutOfRange) {
 
 TEST_F(SceneJsonErrors, UsemtlNameFoundNowhere) {
   write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl nope\nf 1 2 3\n");
-  expect_message(error_of_scene(valid_scene()), "tri.obj",
-                 "tri.obj: line 4: usemtl 'nope': no such material in the scene's materials or the OBJ's MTL files");
+  expect_message(
+      error_of_scene(valid_scene()), "tri.obj",
+      "tri.obj: line 4: usemtl 'nope': no such material in the scene's materials or the OBJ's MTL files");
 }
 
 }  // namespace

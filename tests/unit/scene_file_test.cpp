@@ -1,6 +1,8 @@
 // Tests that valid JSON scenes load into the right pm::Scene: counts, unit conversion, material
 // resolution (MTL mapping incl. illum 3 -> mirror, JSON before MTL, mesh overrides, default
 // material), degenerate triangles, defaults and triangulation. Error cases: scene_*_errors_test.
+#include "scene_io/scene_file.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +11,6 @@
 #include <string>
 
 #include "render/errors.h"
-#include "scene_io/scene_file.h"
 
 namespace pm {
 namespace {
@@ -79,15 +80,16 @@ TEST_F(SceneFileRoomTest, CountsNameAndSource) {
 TEST_F(SceneFileRoomTest, DegenerateTrianglesAreDroppedAndCounted) {
   EXPECT_EQ(report_.degenerate_triangles_dropped, 2u);
   bool warned = false;
-  for (const std::string& w : report_.warnings) warned = warned || w.find("room.obj: 2 degenerate") != std::string::npos;
+  for (const std::string& w : report_.warnings)
+    warned = warned || w.find("room.obj: 2 degenerate") != std::string::npos;
   EXPECT_TRUE(warned);
 }
 
 TEST_F(SceneFileRoomTest, PositionsAreConvertedToMetres) {
   float max_coordinate = 0;
   for (const Float3& p : scene_.positions) max_coordinate = std::max({max_coordinate, p.x, p.y, p.z});
-  EXPECT_FLOAT_EQ(max_coordinate, 1.0f);  // 1000 mm
-  expect_float3(scene_.positions[1], 1, 0, 0);  // room.obj vertex 2 = (1000, 0, 0) mm
+  EXPECT_FLOAT_EQ(max_coordinate, 1.0f);                     // 1000 mm
+  expect_float3(scene_.positions[1], 1, 0, 0);               // room.obj vertex 2 = (1000, 0, 0) mm
   expect_float3(scene_.positions[9 + 3], 0.3f, 0.2f, 0.3f);  // block.obj vertex 4
   expect_float3(scene_.lights[0].position, 0.5f, 0.9f, 0.5f);
   expect_float3(scene_.lights[1].position, 0.1f, 0.1f, 0.1f);
@@ -97,7 +99,7 @@ TEST_F(SceneFileRoomTest, PositionsAreConvertedToMetres) {
 
 TEST_F(SceneFileRoomTest, LightsAndCameraKeepTheirValues) {
   EXPECT_EQ(scene_.lights[0].name, "key");
-  EXPECT_EQ(scene_.lights[1].name, "light1");  // default name: "light" + index
+  EXPECT_EQ(scene_.lights[1].name, "light1");         // default name: "light" + index
   expect_float3(scene_.lights[0].power, 10, 10, 10);  // watts, not scaled
   expect_float3(scene_.lights[1].power, 1, 2, 3);
   expect_float3(scene_.camera.up, 0, 1, 0);
@@ -236,15 +238,34 @@ TEST_F(SceneFileInlineTest, JsonMaterialNamedDefaultReplacesTheBuiltInGrey) {
 }
 
 TEST_F(SceneFileInlineTest, UsemtlNamesResolveToJsonMaterialsWithoutAnyMtl) {
-  write("shapes/tri.obj", "v 0 0 0\nv 2 0 0\nv 0 3 0\nv 2 3 0\nusemtl gold\nf 1 2 3\nusemtl\tsilver\nf 2 4 3\n");
+  write("shapes/tri.obj",
+        "v 0 0 0\nv 2 0 0\nv 0 3 0\nv 2 3 0\nusemtl gold\nf 1 2 3\nusemtl\tsilver\nf 2 4 3\n");
   std::string text = kMinimalScene;
-  text.insert(text.rfind('}'), R"(, "materials": { "gold": { "glossy": [0.9, 0.8, 0.1], "diffuse": [0, 0, 0] },
+  text.insert(text.rfind('}'),
+              R"(, "materials": { "gold": { "glossy": [0.9, 0.8, 0.1], "diffuse": [0, 0, 0] },
                                                    "silver": { "mirror": [0.9, 0.9, 0.9], "diffuse": [0, 0, 0] } })");
   const Scene scene = load_scene_file(write("scene.json", text));
   ASSERT_EQ(scene.triangle_count(), 2u);
   EXPECT_EQ(scene.materials[scene.triangle_material[0]].name, "gold");
   EXPECT_EQ(scene.materials[scene.triangle_material[1]].name, "silver");
   expect_float3(scene.materials[scene.triangle_material[1]].mirror, 0.9f, 0.9f, 0.9f);
+}
+
+TEST_F(SceneFileInlineTest, MaterialNamesMayContainBlanks) {
+  // tinyobjloader reads "newmtl" names to the end of the line but "usemtl" names only to the first
+  // blank; the loader matches whole names, so these two stay distinct.
+  write("shapes/tri.obj",
+        "mtllib words.mtl\nv 0 0 0\nv 2 0 0\nv 0 3 0\nv 2 3 0\n"
+        "usemtl Material #0\nf 1 2 3\nusemtl Material #1  \nf 2 4 3\n");
+  write("shapes/words.mtl", "newmtl Material #0\nKd 0.1 0.2 0.3\n\nnewmtl Material #1\nKd 0.4 0.5 0.6\n");
+  const Scene scene = load_scene_file(write("scene.json", kMinimalScene));
+  ASSERT_EQ(scene.triangle_count(), 2u);
+  const MaterialDesc& first = scene.materials[scene.triangle_material[0]];
+  const MaterialDesc& second = scene.materials[scene.triangle_material[1]];
+  EXPECT_EQ(first.name, "Material #0");
+  expect_float3(first.diffuse, 0.1f, 0.2f, 0.3f);
+  EXPECT_EQ(second.name, "Material #1");
+  expect_float3(second.diffuse, 0.4f, 0.5f, 0.6f);
 }
 
 TEST_F(SceneFileInlineTest, PolygonsAreTriangulatedKeepingTheirWinding) {

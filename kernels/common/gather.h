@@ -1,0 +1,78 @@
+/* Stage S6 (sections 3.2 and 6.3, eq. 1): at every shading point of the camera pass, sum over
+   the photon hits whose footprint ellipsoid contains the point: kernel value times BRDF for the
+   photon's incident direction times flux / footprint area. Indirect and caustic photons go to
+   their own layers. Photon batches add into the film (each photon carries 1/batches of the flux),
+   so the same work item accumulates its pixel across batches without atomics. */
+#ifndef PM_GATHER_H
+#define PM_GATHER_H
+
+#include "brdf.h"
+#include "footprint.h"
+#include "kernel_globals.h"
+#include "photon_map.h"
+#include "photon_trace.h"
+
+PM_DEVICE float gather_kernel_weight(uint shape, float r2)
+{
+  return shape == PM_KERNEL_EPANECHNIKOV ? kernel_epanechnikov(r2) : kernel_constant(r2);
+}
+
+/* Radiance towards wo at x from the photon map, split into indirect and caustic parts. */
+PM_DEVICE void gather_at(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 x, Vec3 n, Vec3 wo,
+                         Vec3* indirect, Vec3* caustic, uint* accepted)
+{
+  PhotonMapQuery q;
+  photon_map_query_begin(&q, x, p->hit_count, PM_TRAVERSAL_STACK);
+  int k;
+  while ((k = photon_map_query_next(&q, kg->map_nodes, kg->map_lo, kg->map_hi)) >= 0) {
+    float4 c = PM_LOAD(&kg->map_center[k]);
+    Vec3 d = vec3_sub(x, vec3_from_float4(c));
+    float lu = vec3_dot(vec3_from_float4(PM_LOAD(&kg->map_row_u[k])), d);
+    float lv = vec3_dot(vec3_from_float4(PM_LOAD(&kg->map_row_v[k])), d);
+    float ln = vec3_dot(vec3_from_float4(PM_LOAD(&kg->map_row_n[k])), d);
+    float r2 = lu * lu + lv * lv + ln * ln;
+    if (r2 > 1.0f) continue;
+    Vec3 wi = vec3_from_float4(PM_LOAD(&kg->map_incident[k]));
+    if (vec3_dot(wi, n) <= 0.0f) continue; /* arrived on the other side of this surface */
+    Vec3 f = brdf_eval(m, n, wi, wo);
+    Vec3 contribution = vec3_scale(vec3_mul(f, vec3_from_float4(PM_LOAD(&kg->map_power[k]))),
+                                   gather_kernel_weight(p->kernel_shape, r2));
+    if (PM_AS_UINT(c.w) & PM_HIT_CAUSTIC) *caustic = vec3_add(*caustic, contribution);
+    else *indirect = vec3_add(*indirect, contribution);
+    ++*accepted;
+  }
+}
+
+PM_DEVICE void kernel_gather(const KernelGlobals* kg, const LaunchParams* p, uint pixel)
+{
+  uint pixels = p->width * p->height;
+  Vec3 indirect = vec3_splat(0.0f), caustic = vec3_splat(0.0f);
+  uint accepted = 0, points = 0;
+  for (uint depth = 0; depth <= p->mirror_depth; ++depth) {
+    uint record = depth * pixels + pixel;
+    float4 pos = kg->shade_position[record];
+    int material_index = PM_AS_INT(pos.w);
+    if (material_index < 0) break;
+    Material m = material_load(kg->materials, material_index);
+    if (channel_mean(material_diffuse(&m)) + channel_mean(material_glossy(&m)) <= 0.0f) continue;
+    Vec3 weight = vec3_from_float4(kg->shade_weight[record]);
+    Vec3 point_indirect = vec3_splat(0.0f), point_caustic = vec3_splat(0.0f);
+    gather_at(kg, p, &m, vec3_from_float4(pos), vec3_from_float4(kg->shade_normal[record]),
+              vec3_from_float4(kg->shade_outgoing[record]), &point_indirect, &point_caustic, &accepted);
+    indirect = vec3_add(indirect, vec3_mul(weight, point_indirect));
+    caustic = vec3_add(caustic, vec3_mul(weight, point_caustic));
+    ++points;
+  }
+  float4 old_indirect = kg->film_indirect[pixel];
+  float4 old_caustic = kg->film_caustic[pixel];
+  kg->film_indirect[pixel] = PM_MAKE_FLOAT4(old_indirect.x + indirect.x, old_indirect.y + indirect.y,
+                                            old_indirect.z + indirect.z, 0.0f);
+  kg->film_caustic[pixel] = PM_MAKE_FLOAT4(old_caustic.x + caustic.x, old_caustic.y + caustic.y,
+                                           old_caustic.z + caustic.z, 0.0f);
+  if (p->collect_stats) {
+    pm_atomic_add_u32(&kg->gather_stats[0], accepted);
+    pm_atomic_add_u32(&kg->gather_stats[1], points);
+  }
+}
+
+#endif

@@ -1,0 +1,148 @@
+/* Stages S1 emission and S2 tracing (paper sections 4.1-4.3): one work item per photon emits it
+   from its point light with pre-scaled differentials (eq. 8), traces it through the scene,
+   updates its differentials (Igehy transfer and mirror reflection, Russian roulette rescale,
+   diffuse re-emission with the virtual offset of eq. 10-13) and records a hit at every diffuse or
+   glossy surface that is not lit directly. Records go to slots [photon * slots_per_photon + k],
+   so the result does not depend on scheduling; unused slots are marked empty. */
+#ifndef PM_PHOTON_TRACE_H
+#define PM_PHOTON_TRACE_H
+
+#include "brdf.h"
+#include "kernel_globals.h"
+#include "photon_differentials.h"
+#include "rng.h"
+#include "scene_traverse.h"
+
+/* Flags in hit_normal.w (uint bits). */
+#define PM_HIT_VALID 1u
+#define PM_HIT_CAUSTIC 2u /* path from the light was specular only */
+
+/* Mirror bounces a photon may take beyond its diffuse bounces (caps mirror-to-mirror loops). */
+#define PM_PHOTON_MAX_SPECULAR 8
+
+PM_DEVICE float channel_mean(Vec3 c) { return (c.x + c.y + c.z) * (1.0f / 3.0f); }
+
+/* Photons are shared out by power: light l owns batch indices [first, first + count). */
+PM_DEVICE int photon_light_of(const KernelGlobals* kg, const LaunchParams* p, uint photon)
+{
+  for (uint l = 0; l < p->light_count; ++l) {
+    PointLight light = kg->lights[l];
+    uint first = PM_AS_UINT(light.position.w), count = PM_AS_UINT(light.power.w);
+    if (photon >= first && photon < first + count) return (int)l;
+  }
+  return -1;
+}
+
+/* Glossy reflection: a direction from the modified Phong lobe about the mirror direction r
+   (cos alpha = u1^(1/(n+1)), the lobe's importance sampling), with eq.-8 differentials in the
+   lobe's frame and the same area-preserving virtual offset as diffuse re-emission (eq. 13).
+   Returns 0 when the sample falls below the surface. */
+PM_DEVICE int photon_glossy_reemit(PhotonRay* ray, Vec3 n, float exponent, float u1, float u2)
+{
+  Vec3 nf = vec3_dot(ray->direction, n) > 0.0f ? vec3_neg(n) : n;
+  Vec3 r = vec3_reflect(ray->direction, nf);
+  Vec3 t, b;
+  vec3_onb(r, &t, &b);
+  float cos_a = pm_powf(pm_fmaxf(u1, 1e-12f), 1.0f / (exponent + 1.0f));
+  float sin_a = pm_sqrtf(pm_fmaxf(0.0f, 1.0f - cos_a * cos_a));
+  Vec3 dl, dul, dvl;
+  photon_sphere_direction(cos_a, sin_a, PM_PD_TWO_PI * u2, &dl, &dul, &dvl);
+  Vec3 d = vec3_add(vec3_add(vec3_scale(t, dl.x), vec3_scale(b, dl.y)), vec3_scale(r, dl.z));
+  if (vec3_dot(d, nf) <= 0.0f) return 0;
+  Vec3 du = vec3_add(vec3_add(vec3_scale(t, dul.x), vec3_scale(b, dul.y)), vec3_scale(r, dul.z));
+  Vec3 dv = vec3_add(vec3_add(vec3_scale(t, dvl.x), vec3_scale(b, dvl.y)), vec3_scale(r, dvl.z));
+  float v = pm_sqrtf(vec3_length(vec3_cross(ray->dp_u, ray->dp_v)) / pm_fmaxf(vec3_length(vec3_cross(du, dv)), 1e-20f));
+  if (!pm_isfinite(v)) v = 0.0f;
+  ray->direction = d;
+  ray->dd_u = du;
+  ray->dd_v = dv;
+  ray->dp_u = vec3_scale(du, v);
+  ray->dp_v = vec3_scale(dv, v);
+  return 1;
+}
+
+PM_DEVICE void photon_store_hit(const KernelGlobals* kg, uint slot, const PhotonRay* ray, Vec3 n, Vec3 flux, float delta,
+                                uint flags)
+{
+  if (vec3_dot(n, ray->direction) > 0.0f) n = vec3_neg(n); /* the side the photon arrived on */
+  kg->hit_position[slot] = vec3_to_float4(ray->origin, 0.0f);
+  kg->hit_normal[slot] = vec3_to_float4(n, PM_UINT_AS_FLOAT(flags));
+  kg->hit_incident[slot] = vec3_to_float4(vec3_neg(ray->direction), delta);
+  kg->hit_flux[slot] = vec3_to_float4(flux, 0.0f);
+  kg->hit_dp_u[slot] = vec3_to_float4(ray->dp_u, 0.0f);
+  kg->hit_dp_v[slot] = vec3_to_float4(ray->dp_v, 0.0f);
+}
+
+PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* p, uint photon)
+{
+  uint first_slot = photon * p->hit_slots_per_photon;
+  uint stored = 0;
+  int light_index = photon_light_of(kg, p, photon);
+  if (light_index >= 0) {
+    PointLight light = kg->lights[light_index];
+    uint emitted = PM_AS_UINT(light.power.w);
+    float delta = photon_spacing(emitted); /* eq. 9 with n = this light's photons in the batch */
+    Vec3 flux = vec3_scale(vec3_from_float4(light.power), 1.0f / ((float)emitted * (float)p->batch_count));
+    uint stream_index = p->photon_offset + photon;
+
+    Uniform4 u = rng_uniform4(p->seed, p->frame, stream_index, 0u, PM_STREAM_PHOTON);
+    PhotonRay ray;
+    photon_emit_point(vec3_from_float4(light.position), u.u0, u.u1, &ray);
+    uint diffuse_bounces = 0, specular_bounces = 0;
+    Vec3 start = ray.origin;
+    for (uint event = 1; event <= p->max_bounces + PM_PHOTON_MAX_SPECULAR + 1; ++event) {
+      Ray r = ray_make(start, ray.direction);
+      SceneHit hit = scene_trace(kg->scene_nodes, kg->triangles, &r, 0.0f, 1e30f, 0);
+      if (hit.triangle < 0) break;
+      Vec3 n = scene_triangle_normal(kg->triangles, hit.triangle);
+      /* Differentials travel from the ray origin (the offset start equals it to a few ulps). */
+      ray.origin = start;
+      photon_transfer(&ray, hit.t, n);
+      Material m = material_load(kg->materials, scene_triangle_material(kg->triangles, hit.triangle));
+      float p_diffuse = channel_mean(material_diffuse(&m));
+      float p_glossy = channel_mean(material_glossy(&m));
+      float p_mirror = channel_mean(material_mirror(&m));
+
+      /* Hits lit straight from the light are direct light, which the camera pass ray traces. */
+      if (p_diffuse + p_glossy > 0.0f && (diffuse_bounces > 0 || specular_bounces > 0) &&
+          stored < p->hit_slots_per_photon) {
+        uint flags = PM_HIT_VALID | (diffuse_bounces == 0 ? PM_HIT_CAUSTIC : 0u);
+        photon_store_hit(kg, first_slot + stored, &ray, n, flux, delta, flags);
+        ++stored;
+      }
+
+      /* Russian roulette chooses absorption or one reflection event (section 4.2). */
+      u = rng_uniform4(p->seed, p->frame, stream_index, event, PM_STREAM_PHOTON);
+      Vec3 side = vec3_dot(n, ray.direction) > 0.0f ? vec3_neg(n) : n;
+      if (u.u2 < p_diffuse + p_glossy) {
+        if (diffuse_bounces == p->max_bounces) break; /* its next hit would not be recorded */
+        if (u.u2 < p_diffuse) {
+          flux = vec3_scale(vec3_mul(flux, material_diffuse(&m)), 1.0f / p_diffuse);
+          photon_roulette_rescale(&ray, p_diffuse);
+          photon_diffuse_reemit(&ray, n, u.u0, u.u1);
+        } else {
+          float exponent = m.glossy.w;
+          photon_roulette_rescale(&ray, p_glossy);
+          if (!photon_glossy_reemit(&ray, n, exponent, u.u0, u.u1)) break;
+          /* Lobe sampling weight f cos / pdf of the normalised modified Phong lobe. */
+          float weight = (exponent + 2.0f) / (exponent + 1.0f) * vec3_dot(side, ray.direction);
+          flux = vec3_scale(vec3_mul(flux, material_glossy(&m)), weight / p_glossy);
+        }
+        ++diffuse_bounces;
+      } else if (u.u2 < p_diffuse + p_glossy + p_mirror) {
+        if (specular_bounces == PM_PHOTON_MAX_SPECULAR) break;
+        flux = vec3_scale(vec3_mul(flux, material_mirror(&m)), 1.0f / p_mirror);
+        photon_roulette_rescale(&ray, p_mirror);
+        photon_reflect_specular(&ray, n);
+        ++specular_bounces;
+      } else {
+        break; /* absorbed */
+      }
+      start = offset_ray_origin(ray.origin, side);
+    }
+  }
+  for (uint k = stored; k < p->hit_slots_per_photon; ++k)
+    kg->hit_normal[first_slot + k] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_UINT_AS_FLOAT(0u));
+}
+
+#endif

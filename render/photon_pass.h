@@ -1,0 +1,73 @@
+// The photon half of a frame (stages S1-S4 and S6): per batch of photons, trace them, build the
+// footprint ellipsoids and the photon map, and gather into the film's indirect and caustic
+// layers. Memory is sized by the batch, never by the total photon count (multi-pass photon
+// batches), so any number of photons renders in bounded memory.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/device.h"
+#include "render/scene.h"
+
+namespace pm {
+
+struct PhotonSettings {
+  uint64_t photons = 262144;  // emitted per frame, all lights and batches together; 0: no photons
+  uint32_t batch = 1u << 20;  // photons per pass (bounded memory); more passes = more photons
+  int bounces = 2;            // diffuse bounces of indirect light
+  float smoothing = 8.0f;     // s of section 4.3, diffusely reflected photons
+  float rmax = 0.0f;          // footprint semiaxis clamp (knn: search radius), metres; 0: 10 % of the scene diagonal
+  int estimator = PM_ESTIMATOR_PD;
+  int kernel_shape = PM_KERNEL_CONSTANT;
+  float radius = 0.0f;        // radius estimator, metres; 0: 1 % of the scene's diagonal
+  int knn_k = 64;             // knn estimator
+  int leaf_threshold = 0;     // T; 0: T_auto
+  float leaf_c = 1.0f / 16.0f;  // c of T_auto = c * footprint area / scene area (docs/algorithm.md)
+
+  std::string describe() const;
+};
+
+// What one frame's photon work produced, for logs, EXR headers and benchmarks.
+struct PhotonStats {
+  int batches = 0;
+  uint64_t hits = 0;                  // recorded hits, all batches
+  double footprint_area = 0;          // total footprint area of the last batch, m^2
+  uint32_t leaf_threshold = 0;        // T used for the last batch
+  uint64_t gathered = 0;              // hits accepted by the gather (with collect_stats)
+  uint64_t shading_points = 0;
+};
+
+class PhotonPass {
+ public:
+  PhotonPass(Device& device, const Scene& scene, const PhotonSettings& settings);
+
+  // Photons per batch each light emits (shared out by power), in scene light order.
+  const std::vector<uint32_t>& photons_per_light() const { return per_light_; }
+  uint32_t photons_per_batch() const { return batch_size_; }
+  const PhotonSettings& settings() const { return settings_; }
+
+  // Runs every batch for a frame whose camera pass has filled the shading points; adds into the
+  // film_indirect and film_caustic buffers bound on the device (the caller zeroes them).
+  void run(const LaunchParams& frame, PhotonStats* stats);
+
+ private:
+  void allocate();
+  void run_batch(LaunchParams params, PhotonStats* stats);
+  DeviceBuffer& owned(BufferSlot slot);
+
+  Device& device_;
+  PhotonSettings settings_;
+  double scene_area_ = 0;
+  uint32_t batch_size_ = 0;
+  uint32_t batch_count_ = 0;
+  uint32_t slots_per_photon_ = 0;
+  std::vector<uint32_t> per_light_;
+
+  std::vector<DeviceBuffer> buffers_;
+  SortBuffers sort_;
+  DeviceBuffer stats_;
+};
+
+}  // namespace pm
