@@ -133,7 +133,7 @@ Run add_render_command(CLI::App& app) {
       ->capture_default_str()->check(CLI::IsMember({"constant", "epanechnikov"}));
   cmd->add_option("--smoothing", ph.smoothing, "Footprint smoothing factor s (section 4.3)")->capture_default_str();
   cmd->add_option("--rmax", ph.rmax, "Largest footprint semiaxis, metres (default: 10% of the scene diagonal)");
-  cmd->add_option("--radius", ph.radius, "Gather radius of --estimator radius, metres (default: 1% of the diagonal)");
+  cmd->add_option("--radius", ph.radius, "Gather radius of --estimator radius, metres (default: 5% of the scene diagonal)");
   cmd->add_option("--k", ph.knn_k, "Neighbours of --estimator knn")->capture_default_str()->check(CLI::Range(1, 256));
   cmd->add_option("--leaf", options->leaf, "Photon map leaf threshold T: auto or a number")->capture_default_str();
   return [options] { return run_render(*options); };

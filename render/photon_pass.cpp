@@ -92,7 +92,7 @@ PhotonPass::PhotonPass(Device& device, const Scene& scene, const PhotonSettings&
   scene_area_ = scene_surface_area(scene);
   const double diagonal = scene_diagonal(scene);
   if (settings_.rmax == 0) settings_.rmax = float(0.1 * diagonal);
-  if (settings_.radius == 0) settings_.radius = float(0.01 * diagonal);
+  if (settings_.radius == 0) settings_.radius = float(0.05 * diagonal);
 
   batch_count_ = uint32_t((settings_.photons + settings_.batch - 1) / settings_.batch);
   const uint64_t per_batch = batch_count_ ? (settings_.photons + batch_count_ - 1) / batch_count_ : 0;
@@ -129,6 +129,15 @@ DeviceBuffer& PhotonPass::owned(BufferSlot slot) {
   for (size_t i = 0; i < buffers_.size(); ++i)
     if (kOwnedSlots[i] == slot) return buffers_[i];
   throw DeviceError(std::string("photon pass: no buffer for slot ") + buffer_slot_name(slot));
+}
+
+const DeviceBuffer* PhotonPass::buffer(BufferSlot slot) const {
+  if (slot == BufferSlot::sort_keys) return &sort_.keys;
+  if (slot == BufferSlot::sort_values) return &sort_.values;
+  if (slot == BufferSlot::gather_stats) return &stats_;
+  for (size_t i = 0; i < buffers_.size(); ++i)
+    if (kOwnedSlots[i] == slot) return &buffers_[i];
+  return nullptr;
 }
 
 void PhotonPass::run(const LaunchParams& frame, PhotonStats* stats) {
@@ -191,6 +200,7 @@ void PhotonPass::run_batch(LaunchParams params, PhotonStats* stats) {
     stats->footprint_area = area;
     stats->leaf_threshold = threshold;
   }
+  last_hit_count_ = uint32_t(count);
   if (count == 0) return;  // every photon escaped or was absorbed before a recorded hit
 
   params.hit_bounds_lo = lo;

@@ -21,7 +21,7 @@ struct PhotonSettings {
   float rmax = 0.0f;          // footprint semiaxis clamp (knn: search radius), metres; 0: 10 % of the scene diagonal
   int estimator = PM_ESTIMATOR_PD;
   int kernel_shape = PM_KERNEL_CONSTANT;
-  float radius = 0.0f;        // radius estimator, metres; 0: 1 % of the scene's diagonal
+  float radius = 0.0f;        // radius estimator, metres; 0: 5 % of the scene diagonal
   int knn_k = 64;             // knn estimator
   int leaf_threshold = 0;     // T; 0: T_auto
   float leaf_c = 1.0f / 16.0f;  // c of T_auto = c * footprint area / scene area (docs/algorithm.md)
@@ -52,6 +52,11 @@ class PhotonPass {
   // film_indirect and film_caustic buffers bound on the device (the caller zeroes them).
   void run(const LaunchParams& frame, PhotonStats* stats);
 
+  // The buffer this pass binds to slot, or null (sort keys/values: the sorted pairs).
+  const DeviceBuffer* buffer(BufferSlot slot) const;
+  // Valid hits of the last batch: the sorted prefix the photon map covers.
+  uint32_t last_hit_count() const { return last_hit_count_; }
+
  private:
   void allocate();
   void run_batch(LaunchParams params, PhotonStats* stats);
@@ -63,6 +68,7 @@ class PhotonPass {
   uint32_t batch_size_ = 0;
   uint32_t batch_count_ = 0;
   uint32_t slots_per_photon_ = 0;
+  uint32_t last_hit_count_ = 0;
   std::vector<uint32_t> per_light_;
 
   std::vector<DeviceBuffer> buffers_;

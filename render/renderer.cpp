@@ -134,6 +134,20 @@ void Renderer::allocate_frame_buffers() {
   device_.bind(BufferSlot::film_combined, film_combined_);
 }
 
+const DeviceBuffer* Renderer::buffer(BufferSlot slot) const {
+  switch (slot) {
+    case BufferSlot::shade_position: return &shade_position_;
+    case BufferSlot::shade_normal: return &shade_normal_;
+    case BufferSlot::shade_outgoing: return &shade_outgoing_;
+    case BufferSlot::shade_weight: return &shade_weight_;
+    case BufferSlot::film_direct: return &film_direct_;
+    case BufferSlot::film_indirect: return &film_indirect_;
+    case BufferSlot::film_caustic: return &film_caustic_;
+    case BufferSlot::film_combined: return &film_combined_;
+    default: return photon_pass_ ? photon_pass_->buffer(slot) : nullptr;
+  }
+}
+
 LaunchParams Renderer::frame_params(int frame) const {
   LaunchParams p{};
   p.camera = make_camera_params(scene_.camera, width_, height_);

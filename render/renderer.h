@@ -38,6 +38,10 @@ class Renderer {
   FrameImage render_frame(int frame, FrameStats* stats = nullptr);
 
   int width() const { return width_; }
+  // A device buffer of this frame's pipeline (renderer or photon pass), for tests and tools
+  // that inspect intermediate results; null when the slot is not in use.
+  const DeviceBuffer* buffer(BufferSlot slot) const;
+  const PhotonPass* photon_pass() const { return photon_pass_.get(); }
   int height() const { return height_; }
 
  private:

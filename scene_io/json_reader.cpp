@@ -59,7 +59,7 @@ class StrictDocumentBuilder : public nlohmann::json_sax<json> {
     return true;
   }
 
-  bool parse_error(std::size_t position, const std::string&, const nlohmann::detail::exception& ex) override {
+  bool parse_error(std::size_t position, const std::string&, const json::exception& ex) override {
     failed = true;
     error_position = position;
     error_id = ex.id;

@@ -56,7 +56,7 @@ MaterialDesc material_from_mtl(const MtlMaterial& mtl, std::vector<std::string>*
   std::string scaled_channels;
   for (int c = 0; c < 3; ++c) {
     float sum = channel(desc.diffuse, c) + channel(desc.glossy, c) + channel(desc.mirror, c);
-    if (sum <= 1.0f) continue;
+    if (sum <= 1.0f + 1e-6f) continue;  // float rounding: 0.6 + 0.4 may exceed 1 by an ulp
     float scale = kMtlMaxReflectance / sum;
     channel(desc.diffuse, c) *= scale;
     channel(desc.glossy, c) *= scale;

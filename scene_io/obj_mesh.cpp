@@ -4,6 +4,7 @@
 
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstring>

@@ -241,7 +241,6 @@ ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_
 
   // Pass 2: validate each statement with its line number.
   ObjTextFacts facts;
-  facts.vertex_count = total.vertices;
   std::unordered_map<std::string, size_t> usemtl_slot;  // name -> index in usemtl_names
   facts.text_for_tinyobj.reserve(text.size() + 64);
   AttributeCounts so_far;

@@ -1,8 +1,8 @@
 // Owns the line-by-line validation of OBJ text that runs before tinyobjloader parses it.
 // tinyobjloader 2.0rc10 (Debian 12) accepts some broken input silently — "v nan 0 0" becomes 0,
 // out-of-range positive face indices pass through, and its out-of-range warning carries the last
-// line number rather than the face's — so this pass rejects such lines itself, with the real line,
-// and collects the usemtl/mtllib facts the mesh loader needs.
+// line number rather than the face's — so this pass rejects such lines itself, with the real line.
+// It also collects the usemtl names and prepares the text tinyobjloader is given (see below).
 #pragma once
 
 #include <string>
@@ -21,7 +21,6 @@ struct ObjTextFacts {
   // rewritten to "usemtl <usemtl_slot_token(i)>" (i indexing usemtl_names). Names may contain
   // blanks, which tinyobjloader's usemtl parsing would cut off; tokens cannot.
   std::string text_for_tinyobj;
-  size_t vertex_count = 0;
   // Tolerated problems, one line each: out-of-range texture coordinate or normal indices.
   std::vector<std::string> warnings;
 };

@@ -5,11 +5,15 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "scene_io/json_reader.h"
 #include "scene_io/load_error.h"
@@ -23,6 +27,8 @@ namespace fs = std::filesystem;
 const char kFormatName[] = "pmrender-scene";
 const int kMaxResolution = 16384;
 const char* const kChannelNames[3] = {"red", "green", "blue"};
+// Values are stored as floats, so 0.6 + 0.4 sums to 1.00000003; that must still count as 1.
+constexpr double kReflectanceSumTolerance = 1e-6;
 
 float component(const Float3& v, int i) { return i == 0 ? v.x : (i == 1 ? v.y : v.z); }
 
@@ -66,9 +72,10 @@ MaterialDesc read_json_material(const JsonField& field, const std::string& name)
   for (int c = 0; c < 3; ++c) {
     const double sum =
         double(component(desc.diffuse, c)) + component(desc.glossy, c) + component(desc.mirror, c);
-    if (sum > 1.0) {
-      field.fail("diffuse + glossy + mirror = " + std::to_string(sum) + " exceeds 1 in the " +
-                 kChannelNames[c] + " channel");
+    if (sum > 1.0 + kReflectanceSumTolerance) {
+      std::ostringstream text;
+      text << "diffuse + glossy + mirror = " << sum << " exceeds 1 in the " << kChannelNames[c] << " channel";
+      field.fail(text.str());
     }
   }
   return desc;

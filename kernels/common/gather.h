@@ -9,6 +9,7 @@
 #include "brdf.h"
 #include "footprint.h"
 #include "kernel_globals.h"
+#include "knn_gather.h"
 #include "photon_map.h"
 #include "photon_trace.h"
 
@@ -57,8 +58,10 @@ PM_DEVICE void kernel_gather(const KernelGlobals* kg, const LaunchParams* p, uin
     if (channel_mean(material_diffuse(&m)) + channel_mean(material_glossy(&m)) <= 0.0f) continue;
     Vec3 weight = vec3_from_float4(kg->shade_weight[record]);
     Vec3 point_indirect = vec3_splat(0.0f), point_caustic = vec3_splat(0.0f);
-    gather_at(kg, p, &m, vec3_from_float4(pos), vec3_from_float4(kg->shade_normal[record]),
-              vec3_from_float4(kg->shade_outgoing[record]), &point_indirect, &point_caustic, &accepted);
+    Vec3 x = vec3_from_float4(pos), n = vec3_from_float4(kg->shade_normal[record]);
+    Vec3 wo = vec3_from_float4(kg->shade_outgoing[record]);
+    if (p->estimator == PM_ESTIMATOR_KNN) knn_gather_at(kg, p, &m, x, n, wo, &point_indirect, &point_caustic, &accepted);
+    else gather_at(kg, p, &m, x, n, wo, &point_indirect, &point_caustic, &accepted);
     indirect = vec3_add(indirect, vec3_mul(weight, point_indirect));
     caustic = vec3_add(caustic, vec3_mul(weight, point_caustic));
     ++points;

@@ -42,8 +42,16 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     kg->footprint_center[slot] = n4; /* w carries the (empty) flags */
     return;
   }
-  Footprint f = hit_footprint(kg, p, slot);
   Vec3 center = vec3_from_float4(kg->hit_position[slot]);
+  if (p->estimator == PM_ESTIMATOR_KNN) {
+    /* Point boxes grown by the search radius; the k-NN gather divides by its own area. */
+    kg->footprint_lo[slot] = vec3_to_float4(vec3_sub(center, vec3_splat(p->rmax)), 0.0f);
+    kg->footprint_hi[slot] = vec3_to_float4(vec3_add(center, vec3_splat(p->rmax)), 0.0f);
+    kg->footprint_center[slot] = vec3_to_float4(center, n4.w);
+    kg->footprint_power[slot] = kg->hit_flux[slot];
+    return;
+  }
+  Footprint f = hit_footprint(kg, p, slot);
   Vec3 lo, hi;
   footprint_bounds(f, center, &lo, &hi);
   float area = footprint_area(f);

@@ -13,10 +13,6 @@
 #include "rng.h"
 #include "scene_traverse.h"
 
-/* Flags in hit_normal.w (uint bits). */
-#define PM_HIT_VALID 1u
-#define PM_HIT_CAUSTIC 2u /* path from the light was specular only */
-
 /* Mirror bounces a photon may take beyond its diffuse bounces (caps mirror-to-mirror loops). */
 #define PM_PHOTON_MAX_SPECULAR 8
 

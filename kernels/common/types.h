@@ -32,6 +32,10 @@ typedef struct CameraParams {
   float4 up;
 } CameraParams;
 
+/* Photon hit flags, stored as uint bits in the w of hit_normal and footprint/map_center. */
+#define PM_HIT_VALID 1u
+#define PM_HIT_CAUSTIC 2u /* path from the light was specular only */
+
 /* Density estimators (--estimator) and kernel shapes (--kernel) of the gather. */
 #define PM_ESTIMATOR_PD 0     /* photon-differential footprints (the paper) */
 #define PM_ESTIMATOR_RADIUS 1 /* fixed-radius gathering */

@@ -27,18 +27,27 @@ TEST(BackendEquivalence, CornellBoxCudaMatchesOpencl) {
   ASSERT_NE(opencl, nullptr);
 
   Scene scene = builtin_cornell_box();
-  RenderSettings settings;
+  RenderSettings settings;  // default photon mapping: 262144 photons, two bounces
   Renderer cuda_renderer(*cuda, scene, settings);
   Renderer opencl_renderer(*opencl, scene, settings);
   FrameStats cuda_stats, opencl_stats;
   FrameImage a = cuda_renderer.render_frame(0, &cuda_stats);
   FrameImage b = opencl_renderer.render_frame(0, &opencl_stats);
+  test::ImageDifference direct = test::compare_rgb(a.find("direct")->rgb, b.find("direct")->rgb);
   test::ImageDifference d = test::compare_rgb(a.find("")->rgb, b.find("")->rgb);
+  test::ImageDifference indirect = test::compare_rgb(a.find("indirect")->rgb, b.find("indirect")->rgb);
+  // Same photons (counter-based random numbers), same kernels: only compiler rounding differs,
+  // which can send an occasional photon down another path. Image means must agree closely.
+  std::printf("direct: mean relative difference %.3g; indirect: %.3g (means %.6g vs %.6g)\n", direct.mean_relative,
+              indirect.mean_relative, test::mean(a.find("indirect")->rgb), test::mean(b.find("indirect")->rgb));
+  EXPECT_LT(direct.mean_relative, 1e-3);
+  EXPECT_LT(indirect.mean_relative, 0.05);
+  EXPECT_NEAR(test::mean(a.find("indirect")->rgb) / test::mean(b.find("indirect")->rgb), 1.0, 0.01);
   std::printf("CUDA (%s) vs OpenCL (%s): mean relative difference %.3g, max absolute %.3g; %.2f ms vs %.2f ms\n",
               cuda->info().name.c_str(), opencl->info().name.c_str(), d.mean_relative, d.max_absolute,
               cuda_stats.render_ms, opencl_stats.render_ms);
   EXPECT_GT(d.mean_value, 1e-3);
-  EXPECT_LT(d.mean_relative, 1e-3);
+  EXPECT_LT(d.mean_relative, 0.02);
 }
 
 }  // namespace

@@ -27,6 +27,12 @@ inline ImageDifference compare_rgb(const std::vector<float>& a, const std::vecto
   return d;
 }
 
+inline double mean(const std::vector<float>& v) {
+  double sum = 0;
+  for (float x : v) sum += x;
+  return v.empty() ? 0 : sum / double(v.size());
+}
+
 inline bool all_finite(const std::vector<float>& v) {
   for (float x : v)
     if (!std::isfinite(x)) return false;

@@ -3,6 +3,7 @@
 // the point light under the ceiling, its power ratios, and the reference camera.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 

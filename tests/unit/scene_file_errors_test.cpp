@@ -4,6 +4,7 @@
 // OBJ/MTL content errors: scene_obj_errors_test.cpp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -311,6 +312,14 @@ TEST_F(SceneJsonErrors, JsonMaterialReflectingMoreThanItReceives) {
       {"diffuse", {0.5, 0.5, 0.5}}, {"glossy", {0.3, 0.3, 0.3}}, {"mirror", {0.1, 0.3, 0.1}}};
   expect_scene_message(error_of_scene(scene), "materials.hot: diffuse + glossy + mirror = 1.1");
   EXPECT_NE(error_of_scene(scene).find("green channel"), std::string::npos);
+}
+
+TEST_F(SceneJsonErrors, JsonMaterialSummingToExactlyOneIsAccepted) {
+  // As floats 0.6 + 0.4 is slightly above 1; the check must not reject it.
+  json scene = valid_scene();
+  scene["materials"]["white"] = {
+      {"diffuse", {0.6, 0.7, 0.1}}, {"glossy", {0.4, 0.3, 0.2}}, {"mirror", {0, 0, 0.7}}};
+  EXPECT_NO_THROW(load_scene_file(write("scene.json", scene.dump())));
 }
 
 TEST_F(SceneJsonErrors, JsonMaterialValuesOutOfRange) {

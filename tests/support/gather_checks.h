@@ -1,0 +1,116 @@
+// Gather against brute force, for any backend: after a real frame, every pixel's indirect and
+// caustic radiance must equal the sum over ALL hits of the photon map (no BVH), evaluated on the
+// host in double precision from the device's own map data. Catches traversal misses, wrong leaf
+// fusion and kernel/BRDF/normalisation slips in the gather.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "kernels/common/compat_host.h"
+#include "kernels/common/brdf.h"
+#include "render/renderer.h"
+
+namespace pm::test {
+
+template <typename T>
+std::vector<T> read_slot(Device& device, const Renderer& renderer, BufferSlot slot, size_t count) {
+  std::vector<T> data(count);
+  const DeviceBuffer* buffer = renderer.buffer(slot);
+  EXPECT_NE(buffer, nullptr) << buffer_slot_name(slot);
+  if (buffer && count) device.download(*buffer, data.data(), count * sizeof(T));
+  return data;
+}
+
+inline Vec3 v3(const float4& f) { return vec3(f.x, f.y, f.z); }
+inline double dot3(const float4& a, Vec3 b) { return double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z; }
+
+inline void check_gather_equals_brute_force(Device& device, const Scene& scene, PhotonSettings photons, int width,
+                                            int height) {
+  RenderSettings settings;
+  settings.width = width;
+  settings.height = height;
+  settings.mirror_depth = 1;
+  settings.photons = photons;
+  settings.photons.batch = uint32_t(photons.photons);  // one batch: the map holds every hit
+  Renderer renderer(device, scene, settings);
+  renderer.render_frame(0);
+  const PhotonSettings& used = renderer.photon_pass()->settings();
+  const size_t n = renderer.photon_pass()->last_hit_count();
+  ASSERT_GT(n, 100u);
+  auto center = read_slot<float4>(device, renderer, BufferSlot::map_center, n);
+  auto row_u = read_slot<float4>(device, renderer, BufferSlot::map_row_u, n);
+  auto row_v = read_slot<float4>(device, renderer, BufferSlot::map_row_v, n);
+  auto row_n = read_slot<float4>(device, renderer, BufferSlot::map_row_n, n);
+  auto power = read_slot<float4>(device, renderer, BufferSlot::map_power, n);
+  auto incident = read_slot<float4>(device, renderer, BufferSlot::map_incident, n);
+  const size_t pixels = size_t(width) * height, records = 2 * pixels;
+  auto sp = read_slot<float4>(device, renderer, BufferSlot::shade_position, records);
+  auto sn = read_slot<float4>(device, renderer, BufferSlot::shade_normal, records);
+  auto so = read_slot<float4>(device, renderer, BufferSlot::shade_outgoing, records);
+  auto sw = read_slot<float4>(device, renderer, BufferSlot::shade_weight, records);
+  auto indirect = read_slot<float4>(device, renderer, BufferSlot::film_indirect, pixels);
+  auto caustic = read_slot<float4>(device, renderer, BufferSlot::film_caustic, pixels);
+  std::vector<Material> materials = to_device_materials(scene);
+
+  double total = 0, worst = 0;
+  size_t nonzero = 0;
+  for (size_t px = 0; px < pixels; ++px) {
+    double sum[3] = {0, 0, 0};
+    for (size_t depth = 0; depth < 2; ++depth) {
+      size_t r = depth * pixels + px;
+      int mat_index = PM_AS_INT(sp[r].w);
+      if (mat_index < 0) break;
+      const Material& m = materials[mat_index];
+      Vec3 x = v3(sp[r]), nrm = v3(sn[r]), wo = v3(so[r]);
+      std::vector<std::pair<double, size_t>> near;  // knn: (distance^2, index)
+      for (size_t k = 0; k < n; ++k) {
+        Vec3 d = vec3_sub(x, v3(center[k]));
+        if (used.estimator == PM_ESTIMATOR_KNN) {
+          double d2 = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
+          if (d2 < double(used.rmax) * used.rmax) near.push_back({d2, k});
+          continue;
+        }
+        double lu = dot3(row_u[k], d), lv = dot3(row_v[k], d), ln = dot3(row_n[k], d);
+        double r2 = lu * lu + lv * lv + ln * ln;
+        if (r2 > 1.0 || vec3_dot(v3(incident[k]), nrm) <= 0.0f) continue;
+        double w = used.kernel_shape == PM_KERNEL_EPANECHNIKOV ? 2.0 * (1.0 - r2) : 1.0;
+        Vec3 f = brdf_eval(&m, nrm, v3(incident[k]), wo);
+        sum[0] += sw[r].x * w * f.x * power[k].x;
+        sum[1] += sw[r].y * w * f.y * power[k].y;
+        sum[2] += sw[r].z * w * f.z * power[k].z;
+      }
+      if (used.estimator == PM_ESTIMATOR_KNN) {
+        std::sort(near.begin(), near.end());
+        size_t k_used = std::min(near.size(), size_t(used.knn_k));
+        double radius2 = near.size() >= size_t(used.knn_k) ? near[used.knn_k - 1].first : double(used.rmax) * used.rmax;
+        for (size_t i = 0; i < k_used; ++i) {
+          size_t k = near[i].second;
+          if (vec3_dot(v3(incident[k]), nrm) <= 0.0f) continue;
+          double w = used.kernel_shape == PM_KERNEL_EPANECHNIKOV ? 2.0 * (1.0 - near[i].first / radius2) : 1.0;
+          Vec3 f = brdf_eval(&m, nrm, v3(incident[k]), wo);
+          double scale = w / (M_PI * radius2);
+          sum[0] += sw[r].x * scale * f.x * power[k].x;
+          sum[1] += sw[r].y * scale * f.y * power[k].y;
+          sum[2] += sw[r].z * scale * f.z * power[k].z;
+        }
+      }
+    }
+    double got[3] = {double(indirect[px].x) + caustic[px].x, double(indirect[px].y) + caustic[px].y,
+                     double(indirect[px].z) + caustic[px].z};
+    for (int c = 0; c < 3; ++c) {
+      double err = std::fabs(got[c] - sum[c]) / std::max(std::fabs(sum[c]), 1e-6);
+      worst = std::max(worst, err);
+      ASSERT_NEAR(got[c], sum[c], 2e-4 * std::fabs(sum[c]) + 1e-7) << "pixel " << px << " channel " << c;
+      total += sum[c];
+      nonzero += sum[c] > 0;
+    }
+  }
+  EXPECT_GT(nonzero, pixels);  // most pixels receive indirect light
+  std::printf("gather vs brute force over %zu hits: worst relative difference %.3g\n", n, worst);
+}
+
+}  // namespace pm::test
