@@ -140,7 +140,7 @@ const DeviceBuffer* PhotonPass::buffer(BufferSlot slot) const {
   return nullptr;
 }
 
-void PhotonPass::run(const LaunchParams& frame, PhotonStats* stats) {
+void PhotonPass::run(const LaunchParams& frame, PhotonStats* stats, StageTimer* timer) {
   if (batch_size_ == 0) return;
   LaunchParams params = frame;
   params.photon_count = batch_size_;
@@ -156,7 +156,7 @@ void PhotonPass::run(const LaunchParams& frame, PhotonStats* stats) {
   if (params.collect_stats) device_.fill_zero(stats_, stats_.bytes());
   for (uint32_t b = 0; b < batch_count_; ++b) {
     params.photon_offset = b * batch_size_;
-    run_batch(params, stats);
+    run_batch(params, stats, timer);
   }
   if (stats) {
     stats->batches = int(batch_count_);
@@ -169,15 +169,20 @@ void PhotonPass::run(const LaunchParams& frame, PhotonStats* stats) {
   }
 }
 
-void PhotonPass::run_batch(LaunchParams params, PhotonStats* stats) {
+void PhotonPass::run_batch(LaunchParams params, PhotonStats* stats, StageTimer* timer) {
   const uint32_t slots = batch_size_ * slots_per_photon_;
-  device_.launch(KernelId::photon_trace, batch_size_, params);
-  device_.launch(KernelId::photon_footprint, slots, params);
-
+  {
+    StageScope scope(timer, Stage::photon_trace);
+    device_.launch(KernelId::photon_trace, batch_size_, params);
+  }
   // Bounds, count and footprint area: one small read-back per batch.
   const uint32_t tiles = (slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
-  device_.launch(KernelId::photon_reduce, tiles, params);
   std::vector<float4> partials(2 * size_t(tiles));
+  {
+    StageScope scope(timer, Stage::footprints);
+    device_.launch(KernelId::photon_footprint, slots, params);
+    device_.launch(KernelId::photon_reduce, tiles, params);
+  }
   device_.download(owned(BufferSlot::footprint_partials), partials.data(), partials.size() * sizeof(float4));
   float4 lo{1e30f, 1e30f, 1e30f, 0}, hi{-1e30f, -1e30f, -1e30f, 0};
   double area = 0;
@@ -209,13 +214,23 @@ void PhotonPass::run_batch(LaunchParams params, PhotonStats* stats) {
   params.leaf_threshold = threshold;
   device_.bind(BufferSlot::sort_keys, sort_.keys);
   device_.bind(BufferSlot::sort_values, sort_.values);
-  device_.launch(KernelId::photon_morton, slots, params);
-  device_.sort_pairs(sort_, slots, PM_MORTON_SORT_BITS);
+  {
+    StageScope scope(timer, Stage::map_morton);
+    device_.launch(KernelId::photon_morton, slots, params);
+  }
+  {
+    StageScope scope(timer, Stage::map_sort);
+    device_.sort_pairs(sort_, slots, PM_MORTON_SORT_BITS);
+  }
   device_.bind(BufferSlot::sort_keys, sort_.keys);  // the sort may hand back the other buffers
   device_.bind(BufferSlot::sort_values, sort_.values);
-  if (count >= 2) device_.launch(KernelId::photon_map_nodes, uint32_t(count - 1), params);
-  device_.launch(KernelId::photon_map_bottom_up, uint32_t(count), params);
-  device_.launch(KernelId::photon_map_reorder, uint32_t(count), params);
+  {
+    StageScope scope(timer, Stage::map_tree);
+    if (count >= 2) device_.launch(KernelId::photon_map_nodes, uint32_t(count - 1), params);
+    device_.launch(KernelId::photon_map_bottom_up, uint32_t(count), params);
+    device_.launch(KernelId::photon_map_reorder, uint32_t(count), params);
+  }
+  StageScope scope(timer, Stage::gather);
   device_.launch(KernelId::gather, params.width * params.height, params);
 }
 

@@ -10,6 +10,7 @@
 
 #include "render/device.h"
 #include "render/scene.h"
+#include "render/stage_timer.h"
 
 namespace pm {
 
@@ -50,7 +51,7 @@ class PhotonPass {
 
   // Runs every batch for a frame whose camera pass has filled the shading points; adds into the
   // film_indirect and film_caustic buffers bound on the device (the caller zeroes them).
-  void run(const LaunchParams& frame, PhotonStats* stats);
+  void run(const LaunchParams& frame, PhotonStats* stats, StageTimer* timer = nullptr);
 
   // The buffer this pass binds to slot, or null (sort keys/values: the sorted pairs).
   const DeviceBuffer* buffer(BufferSlot slot) const;
@@ -59,7 +60,7 @@ class PhotonPass {
 
  private:
   void allocate();
-  void run_batch(LaunchParams params, PhotonStats* stats);
+  void run_batch(LaunchParams params, PhotonStats* stats, StageTimer* timer);
   DeviceBuffer& owned(BufferSlot slot);
 
   Device& device_;

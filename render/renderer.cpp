@@ -158,6 +158,7 @@ LaunchParams Renderer::frame_params(int frame) const {
   p.mirror_depth = uint32_t(settings_.mirror_depth);
   p.seed = settings_.seed;
   p.frame = uint32_t(frame);
+  p.collect_stats = collect_stats_ ? 1u : 0u;
   return p;
 }
 
@@ -166,17 +167,23 @@ FrameImage Renderer::render_frame(int frame, FrameStats* stats) {
   const LaunchParams params = frame_params(frame);
   const uint32_t pixels = params.width * params.height;
   PhotonStats photon_stats;
-  device_.launch(KernelId::camera_pass, pixels, params);
+  {
+    StageScope scope(timer_, Stage::camera);
+    device_.launch(KernelId::camera_pass, pixels, params);
+  }
   device_.fill_zero(film_indirect_, film_indirect_.bytes());
   device_.fill_zero(film_caustic_, film_caustic_.bytes());
-  if (photon_pass_) photon_pass_->run(params, &photon_stats);
-  device_.launch(KernelId::film_resolve, pixels, params);
+  if (photon_pass_) photon_pass_->run(params, &photon_stats, timer_);
 
   std::vector<float4> combined(pixels), direct(pixels), indirect(pixels), caustic(pixels);
-  device_.download(film_combined_, combined.data(), pixels * sizeof(float4));
-  device_.download(film_direct_, direct.data(), pixels * sizeof(float4));
-  device_.download(film_indirect_, indirect.data(), pixels * sizeof(float4));
-  device_.download(film_caustic_, caustic.data(), pixels * sizeof(float4));
+  {
+    StageScope scope(timer_, Stage::film);
+    device_.launch(KernelId::film_resolve, pixels, params);
+    device_.download(film_combined_, combined.data(), pixels * sizeof(float4));
+    device_.download(film_direct_, direct.data(), pixels * sizeof(float4));
+    device_.download(film_indirect_, indirect.data(), pixels * sizeof(float4));
+    device_.download(film_caustic_, caustic.data(), pixels * sizeof(float4));
+  }
   const auto end = std::chrono::steady_clock::now();
 
   int repaired = 0;

@@ -37,6 +37,11 @@ class Renderer {
 
   FrameImage render_frame(int frame, FrameStats* stats = nullptr);
 
+  // Benchmarks attach a timer to get per-stage device times; null (the default) records nothing.
+  void set_stage_timer(StageTimer* timer) { timer_ = timer; }
+  // Gather counts photons per shading point (the paper's k_PD) into FrameStats.
+  void set_collect_stats(bool on) { collect_stats_ = on; }
+
   int width() const { return width_; }
   // A device buffer of this frame's pipeline (renderer or photon pass), for tests and tools
   // that inspect intermediate results; null when the slot is not in use.
@@ -59,6 +64,8 @@ class Renderer {
   DeviceBuffer shade_position_, shade_normal_, shade_outgoing_, shade_weight_;
   DeviceBuffer film_direct_, film_indirect_, film_caustic_, film_combined_;
   std::unique_ptr<PhotonPass> photon_pass_;
+  StageTimer* timer_ = nullptr;
+  bool collect_stats_ = false;
 };
 
 // The camera basis the kernels expect (kernels/common/types.h CameraParams).

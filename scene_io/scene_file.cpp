@@ -117,7 +117,6 @@ class MaterialTable {
 // --- meshes ----------------------------------------------------------------------------------
 
 struct LoadContext {
-  std::string json_path;
   fs::path json_dir;
   double meters_per_unit = 1.0;
   std::map<std::string, MaterialDesc> json_materials;
@@ -307,9 +306,9 @@ CameraDesc read_camera(const JsonField& root, double meters_per_unit) {
 Scene load_scene_file(const std::string& path, SceneLoadReport* report) {
   SceneLoadReport local_report;
   LoadContext ctx;
-  ctx.json_path = path;
   ctx.json_dir = fs::path(path).parent_path();
   ctx.report = report ? report : &local_report;
+  *ctx.report = SceneLoadReport{};  // the report describes this load only
 
   const nlohmann::json document = parse_json_file_strict(path);
   const JsonField root(path, document, "");

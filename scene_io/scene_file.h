@@ -24,7 +24,8 @@ struct SceneLoadReport {
 
 // Loads the scene at path. Positions (meshes, lights, camera) are converted to metres with the
 // file's meters_per_unit. Scene.name is the "name" key or else the file stem; Scene.source = path.
-// Scene.materials holds the materials the triangles use, in order of first use.
+// Scene.materials holds the materials the triangles use, in order of first use. When report is
+// given it is reset and then filled with what this load tolerated.
 Scene load_scene_file(const std::string& path, SceneLoadReport* report = nullptr);
 
 }  // namespace pm
