@@ -12,6 +12,10 @@
 
 namespace pm {
 
+DeviceBuffer::DeviceBuffer(Device* owner, void* handle, size_t bytes) : owner_(owner), handle_(handle), bytes_(bytes) {
+  if (owner_) owner_->note_allocated(bytes_);
+}
+
 DeviceBuffer& DeviceBuffer::operator=(DeviceBuffer&& other) noexcept {
   if (this != &other) {
     reset();
@@ -23,7 +27,10 @@ DeviceBuffer& DeviceBuffer::operator=(DeviceBuffer&& other) noexcept {
 }
 
 void DeviceBuffer::reset() {
-  if (owner_ && handle_) owner_->release(handle_);
+  if (owner_ && handle_) {
+    owner_->release(handle_);
+    owner_->note_freed(bytes_);
+  }
   owner_ = nullptr;
   handle_ = nullptr;
   bytes_ = 0;

@@ -30,7 +30,7 @@ class Device;
 class DeviceBuffer {
  public:
   DeviceBuffer() = default;
-  DeviceBuffer(Device* owner, void* handle, size_t bytes) : owner_(owner), handle_(handle), bytes_(bytes) {}
+  DeviceBuffer(Device* owner, void* handle, size_t bytes);
   DeviceBuffer(DeviceBuffer&& other) noexcept { *this = std::move(other); }
   DeviceBuffer& operator=(DeviceBuffer&& other) noexcept;
   DeviceBuffer(const DeviceBuffer&) = delete;
@@ -85,11 +85,22 @@ class Device {
   // Called by DeviceBuffer.
   virtual void release(void* handle) noexcept = 0;
 
+  // Device memory held through DeviceBuffers now, and the most held at once since the last reset.
+  uint64_t allocated_bytes() const { return allocated_; }
+  uint64_t peak_allocated_bytes() const { return peak_; }
+  void reset_peak() { peak_ = allocated_; }
+  void note_allocated(size_t bytes) {
+    allocated_ += bytes;
+    if (allocated_ > peak_) peak_ = allocated_;
+  }
+  void note_freed(size_t bytes) { allocated_ -= bytes; }
+
  protected:
   const std::array<void*, kBufferSlotCount>& slots() const { return slots_; }
 
  private:
   std::array<void*, kBufferSlotCount> slots_{};
+  uint64_t allocated_ = 0, peak_ = 0;
 };
 
 // Every device of every compiled-in backend that can be opened on this machine.

@@ -1,0 +1,63 @@
+// Parser of --frames specifications: comma-separated items, each N, A-B or A-B:STEP.
+#include "animations/frame_spec.h"
+
+#include <cctype>
+#include <set>
+
+#include "render/errors.h"
+
+namespace pm {
+
+namespace {
+
+[[noreturn]] void bad(const std::string& item, const std::string& why) {
+  throw InputError("--frames: '" + item + "': " + why);
+}
+
+int parse_number(const std::string& item, const std::string& text) {
+  if (text.empty() || text.size() > 9) bad(item, "expected a frame number");
+  for (char c : text)
+    if (!std::isdigit(static_cast<unsigned char>(c))) bad(item, "expected a frame number, got '" + text + "'");
+  return std::stoi(text);
+}
+
+}  // namespace
+
+std::vector<int> parse_frame_spec(const std::string& spec, int first, int last) {
+  if (spec.empty()) throw InputError("--frames: empty frame specification");
+  std::vector<int> frames;
+  std::set<int> seen;
+  size_t start = 0;
+  while (start <= spec.size()) {
+    size_t comma = spec.find(',', start);
+    std::string item = spec.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    start = comma == std::string::npos ? spec.size() + 1 : comma + 1;
+    if (item.empty()) bad(spec, "empty item between commas");
+
+    int step = 1;
+    std::string range = item;
+    size_t colon = item.find(':');
+    if (colon != std::string::npos) {
+      step = parse_number(item, item.substr(colon + 1));
+      if (step < 1) bad(item, "step must be at least 1");
+      range = item.substr(0, colon);
+    }
+    int a, b;
+    size_t dash = range.find('-');
+    if (dash == std::string::npos) {
+      if (colon != std::string::npos) bad(item, "a step needs a range A-B");
+      a = b = parse_number(item, range);
+    } else {
+      a = parse_number(item, range.substr(0, dash));
+      b = parse_number(item, range.substr(dash + 1));
+      if (b < a) bad(item, "range end is before its start");
+    }
+    if (a < first || b > last)
+      bad(item, "outside the scene's frames " + std::to_string(first) + "-" + std::to_string(last));
+    for (int f = a; f <= b; f += step)
+      if (seen.insert(f).second) frames.push_back(f);
+  }
+  return frames;
+}
+
+}  // namespace pm
