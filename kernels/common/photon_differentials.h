@@ -153,17 +153,17 @@ PM_DEVICE float photon_footprint_area(Vec3 dp_u, Vec3 dp_v, float delta)
    Representation: the ray keeps starting at p (robust tracing, no re-hit of the virtual segment)
    and carries dp = v dd' (eq. 11), which is exactly the state of the virtual ray when it passes p;
    a later transfer by t then gives (v + t) dd' projected, as from p'. Returns v. */
-PM_DEVICE float photon_diffuse_reemit(PhotonRay* ray, Vec3 n, float u1, float u2)
+/* Re-emission about the local frame (t, b, axis): direction (cos_theta, sin_theta, phi) in the
+   eq. 2 form, eq.-8 directional differentials rotated to world, and the area-preserving virtual
+   offset of eq. 13 applied as dp = v dd' (see photon_diffuse_reemit). Returns v. */
+PM_DEVICE float photon_reemit_in_frame(PhotonRay* ray, Vec3 t, Vec3 b, Vec3 axis, float cos_theta, float sin_theta,
+                                       float phi)
 {
-  Vec3 nf = vec3_dot(ray->direction, n) > 0.0f ? vec3_neg(n) : n;
-  Vec3 t, b;
-  vec3_onb(nf, &t, &b);
-
   Vec3 dl, dul, dvl;
-  photon_sphere_direction(pm_sqrtf(1.0f - u1), pm_sqrtf(u1), PM_PD_TWO_PI * u2, &dl, &dul, &dvl);
-  Vec3 d = vec3_add(vec3_add(vec3_scale(t, dl.x), vec3_scale(b, dl.y)), vec3_scale(nf, dl.z));
-  Vec3 du = vec3_add(vec3_add(vec3_scale(t, dul.x), vec3_scale(b, dul.y)), vec3_scale(nf, dul.z));
-  Vec3 dv = vec3_add(vec3_add(vec3_scale(t, dvl.x), vec3_scale(b, dvl.y)), vec3_scale(nf, dvl.z));
+  photon_sphere_direction(cos_theta, sin_theta, phi, &dl, &dul, &dvl);
+  Vec3 d = vec3_add(vec3_add(vec3_scale(t, dl.x), vec3_scale(b, dl.y)), vec3_scale(axis, dl.z));
+  Vec3 du = vec3_add(vec3_add(vec3_scale(t, dul.x), vec3_scale(b, dul.y)), vec3_scale(axis, dul.z));
+  Vec3 dv = vec3_add(vec3_add(vec3_scale(t, dvl.x), vec3_scale(b, dvl.y)), vec3_scale(axis, dvl.z));
 
   float area_in = vec3_length(vec3_cross(ray->dp_u, ray->dp_v));
   float area_dir = vec3_length(vec3_cross(du, dv)); /* 1 up to rounding (eq. 8) */
@@ -176,6 +176,14 @@ PM_DEVICE float photon_diffuse_reemit(PhotonRay* ray, Vec3 n, float u1, float u2
   ray->dp_u = vec3_scale(du, v);
   ray->dp_v = vec3_scale(dv, v);
   return v;
+}
+
+PM_DEVICE float photon_diffuse_reemit(PhotonRay* ray, Vec3 n, float u1, float u2)
+{
+  Vec3 nf = vec3_dot(ray->direction, n) > 0.0f ? vec3_neg(n) : n;
+  Vec3 t, b;
+  vec3_onb(nf, &t, &b);
+  return photon_reemit_in_frame(ray, t, b, nf, pm_sqrtf(1.0f - u1), pm_sqrtf(u1), PM_PD_TWO_PI * u2);
 }
 
 #endif

@@ -8,13 +8,7 @@ namespace pm {
 namespace {
 
 PhotonSettings photons(int estimator, int kernel, int leaf) {
-  PhotonSettings p;
-  p.photons = 100000;
-  p.estimator = estimator;
-  p.kernel_shape = kernel;
-  p.leaf_threshold = leaf;
-  p.knn_k = 32;
-  return p;
+  return test::photon_settings(100000, estimator, kernel, leaf, 32);
 }
 
 class CudaGather : public ::testing::Test {

@@ -15,13 +15,7 @@ class OpenclGather : public ::testing::Test {
     ASSERT_NE(device_, nullptr);
   }
   PhotonSettings photons(int estimator, int kernel, int leaf) {
-    PhotonSettings p;
-    p.photons = 20000;
-    p.estimator = estimator;
-    p.kernel_shape = kernel;
-    p.leaf_threshold = leaf;
-    p.knn_k = 16;
-    return p;
+    return test::photon_settings(20000, estimator, kernel, leaf, 16);
   }
   std::unique_ptr<Device> device_;
 };

@@ -18,16 +18,23 @@ std::vector<float> rgb_of(const std::vector<float4>& pixels) {
   return rgb;
 }
 
-TEST(OpenclRender, CornellBoxMatchesHostExecutionOfTheSameKernels) {
+// The built-in Cornell box at 64x64, direct light only, on the first OpenCL device.
+FrameImage render_direct_cornell_64() {
   std::unique_ptr<Device> device = test::open_first_device("opencl");
-  ASSERT_NE(device, nullptr);
-  Scene scene = builtin_cornell_box();
+  EXPECT_NE(device, nullptr);
+  if (!device) return {};
   RenderSettings settings;
   settings.width = 64;
   settings.height = 64;
   settings.photons.photons = 0;
+  const Scene scene = builtin_cornell_box();
   Renderer renderer(*device, scene, settings);
-  FrameImage image = renderer.render_frame(0);
+  return renderer.render_frame(0);
+}
+
+TEST(OpenclRender, CornellBoxMatchesHostExecutionOfTheSameKernels) {
+  Scene scene = builtin_cornell_box();
+  FrameImage image = render_direct_cornell_64();
   const ImageLayer* direct = image.find("direct");
   ASSERT_NE(direct, nullptr);
   ASSERT_TRUE(test::all_finite(direct->rgb));
@@ -41,15 +48,7 @@ TEST(OpenclRender, CornellBoxMatchesHostExecutionOfTheSameKernels) {
 }
 
 TEST(OpenclRender, CornellBoxWallsHaveTheirColours) {
-  std::unique_ptr<Device> device = test::open_first_device("opencl");
-  ASSERT_NE(device, nullptr);
-  Scene scene = builtin_cornell_box();
-  RenderSettings settings;
-  settings.width = 64;
-  settings.height = 64;
-  settings.photons.photons = 0;
-  Renderer renderer(*device, scene, settings);
-  FrameImage image = renderer.render_frame(0);
+  FrameImage image = render_direct_cornell_64();
   const ImageLayer* combined = image.find("");
   ASSERT_NE(combined, nullptr);
   auto pixel = [&](int x, int y, int c) { return combined->rgb[3 * (y * 64 + x) + c]; };

@@ -28,6 +28,16 @@ std::vector<T> read_slot(Device& device, const Renderer& renderer, BufferSlot sl
 inline Vec3 v3(const float4& f) { return vec3(f.x, f.y, f.z); }
 inline double dot3(const float4& a, Vec3 b) { return double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z; }
 
+inline PhotonSettings photon_settings(uint64_t photons, int estimator, int kernel, int leaf, int k) {
+  PhotonSettings p;
+  p.photons = photons;
+  p.estimator = estimator;
+  p.kernel_shape = kernel;
+  p.leaf_threshold = leaf;
+  p.knn_k = k;
+  return p;
+}
+
 inline void check_gather_equals_brute_force(Device& device, const Scene& scene, PhotonSettings photons, int width,
                                             int height) {
   RenderSettings settings;
