@@ -54,8 +54,11 @@ std::vector<int> parse_frame_spec(const std::string& spec, int first, int last) 
     }
     if (a < first || b > last)
       bad(item, "outside the scene's frames " + std::to_string(first) + "-" + std::to_string(last));
-    for (int f = a; f <= b; f += step)
-      if (seen.insert(f).second) frames.push_back(f);
+    for (long long f = a; f <= b; f += step) {
+      if (seen.insert(int(f)).second) frames.push_back(int(f));
+      if (frames.size() > kMaxFrameSpecFrames)
+        bad(item, "selects more than " + std::to_string(kMaxFrameSpecFrames) + " frames");
+    }
   }
   return frames;
 }

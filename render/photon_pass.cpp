@@ -41,9 +41,9 @@ double scene_diagonal(const Scene& scene) {
 }
 
 // Largest-remainder share of `total` photons by the lights' summed RGB power.
-std::vector<uint32_t> share_by_power(const Scene& scene, uint32_t total) {
+std::vector<uint32_t> share_by_power(const std::vector<LightDesc>& lights, uint32_t total) {
   std::vector<double> power;
-  for (const LightDesc& l : scene.lights) power.push_back(double(l.power.x) + l.power.y + l.power.z);
+  for (const LightDesc& l : lights) power.push_back(double(l.power.x) + l.power.y + l.power.z);
   double sum = std::accumulate(power.begin(), power.end(), 0.0);
   std::vector<uint32_t> share(power.size(), 0);
   if (sum <= 0) return share;
@@ -79,6 +79,7 @@ std::string PhotonSettings::describe() const {
   s << "photons=" << photons << " batch=" << batch << " bounces=" << bounces << " estimator=" << estimators[estimator]
     << " kernel=" << (kernel_shape == PM_KERNEL_EPANECHNIKOV ? "epanechnikov" : "constant") << " smoothing=" << smoothing
     << " rmax=" << rmax << " radius=" << radius << " leaf=" << (leaf_threshold > 0 ? std::to_string(leaf_threshold) : "auto");
+  if (sequence == PM_PHOTON_SEQUENCE_HALTON) s << " sequence=halton";
   return s.str();
 }
 
@@ -89,11 +90,15 @@ PhotonPass::PhotonPass(Device& device, const Scene& scene, const PhotonSettings&
   if (!(settings_.smoothing > 0) || !std::isfinite(settings_.smoothing)) throw InputError("--smoothing: must be positive");
   if (settings_.rmax < 0 || !std::isfinite(settings_.rmax)) throw InputError("--rmax: must be positive");
   if (settings_.radius < 0 || !std::isfinite(settings_.radius)) throw InputError("--radius: must be positive");
+  if (settings_.sequence != PM_PHOTON_SEQUENCE_RANDOM && settings_.sequence != PM_PHOTON_SEQUENCE_HALTON)
+    throw InputError("--photon-sequence: expected random or halton");
   scene_area_ = scene_surface_area(scene);
   const double diagonal = scene_diagonal(scene);
   if (settings_.rmax == 0) settings_.rmax = float(0.1 * diagonal);
   if (settings_.radius == 0) settings_.radius = float(0.05 * diagonal);
 
+  if (settings_.photons > 0xffffffffull)  // photon i draws from random stream i, a 32-bit number
+    throw InputError("--photons: at most 4294967295 (2^32 - 1) photons per frame, got " + std::to_string(settings_.photons));
   batch_count_ = uint32_t((settings_.photons + settings_.batch - 1) / settings_.batch);
   const uint64_t per_batch = batch_count_ ? (settings_.photons + batch_count_ - 1) / batch_count_ : 0;
   slots_per_photon_ = uint32_t(settings_.bounces + 2);
@@ -101,8 +106,13 @@ PhotonPass::PhotonPass(Device& device, const Scene& scene, const PhotonSettings&
     throw InputError("--batch: " + std::to_string(per_batch) + " photons per batch need more than 2^29 hit records; "
                      "use a smaller --batch (more passes)");
   batch_size_ = uint32_t(per_batch);
-  per_light_ = share_by_power(scene, batch_size_);
+  per_light_ = share_by_power(scene.lights, batch_size_);
   if (batch_size_ > 0) allocate();
+}
+
+void PhotonPass::set_lights(const std::vector<LightDesc>& lights) {
+  per_light_ = share_by_power(lights, batch_size_);
+  map_intact_ = false;
 }
 
 void PhotonPass::allocate() {
@@ -140,8 +150,7 @@ const DeviceBuffer* PhotonPass::buffer(BufferSlot slot) const {
   return nullptr;
 }
 
-void PhotonPass::run(const LaunchParams& frame, PhotonStats* stats, StageTimer* timer) {
-  if (batch_size_ == 0) return;
+LaunchParams PhotonPass::pass_params(const LaunchParams& frame) const {
   LaunchParams params = frame;
   params.photon_count = batch_size_;
   params.hit_slots_per_photon = slots_per_photon_;
@@ -153,20 +162,64 @@ void PhotonPass::run(const LaunchParams& frame, PhotonStats* stats, StageTimer* 
   params.estimator = uint32_t(settings_.estimator);
   params.kernel_shape = uint32_t(settings_.kernel_shape);
   params.batch_count = batch_count_;
+  params.photon_sequence = uint32_t(settings_.sequence);
+  return params;
+}
+
+void PhotonPass::bind() {
+  for (size_t i = 0; i < buffers_.size(); ++i) device_.bind(kOwnedSlots[i], buffers_[i]);
+  device_.bind(BufferSlot::gather_stats, stats_);
+  device_.bind(BufferSlot::sort_keys, sort_.keys);
+  device_.bind(BufferSlot::sort_values, sort_.values);
+}
+
+void PhotonPass::run(const LaunchParams& frame, PhotonStats* stats, StageTimer* timer) {
+  map_intact_ = false;
+  if (batch_size_ == 0) return;
+  bind();
+  LaunchParams params = pass_params(frame);
   if (params.collect_stats) device_.fill_zero(stats_, stats_.bytes());
+  PhotonStats local;
   for (uint32_t b = 0; b < batch_count_; ++b) {
     params.photon_offset = b * batch_size_;
-    run_batch(params, stats, timer);
+    run_batch(params, &local, timer);
   }
-  if (stats) {
-    stats->batches = int(batch_count_);
-    if (params.collect_stats) {
-      uint32_t counts[2];
-      device_.download(stats_, counts, sizeof(counts));
-      stats->gathered = counts[0];
-      stats->shading_points = counts[1];
-    }
+  local.batches = int(batch_count_);
+  map_stats_ = local;
+  map_intact_ = batch_count_ == 1;
+  finish_stats(params, stats);
+}
+
+void PhotonPass::gather_again(const LaunchParams& frame, PhotonStats* stats, StageTimer* timer) {
+  if (!map_intact_) throw DeviceError("photon pass: gather_again without an intact photon map");
+  bind();
+  LaunchParams params = pass_params(frame);
+  params.photon_offset = 0;
+  params.hit_bounds_lo = map_params_.hit_bounds_lo;
+  params.hit_bounds_hi = map_params_.hit_bounds_hi;
+  params.hit_count = map_params_.hit_count;
+  params.leaf_threshold = map_params_.leaf_threshold;
+  if (params.collect_stats) device_.fill_zero(stats_, stats_.bytes());
+  map_intact_ = false;  // until this gather has gone through
+  if (params.hit_count > 0) gather(params, timer);
+  map_intact_ = true;
+  finish_stats(params, stats);
+}
+
+void PhotonPass::finish_stats(const LaunchParams& params, PhotonStats* stats) {
+  if (!stats) return;
+  *stats = map_stats_;
+  if (params.collect_stats) {
+    uint32_t counts[2];
+    device_.download(stats_, counts, sizeof(counts));
+    stats->gathered = counts[0];
+    stats->shading_points = counts[1];
   }
+}
+
+void PhotonPass::gather(const LaunchParams& params, StageTimer* timer) {
+  StageScope scope(timer, Stage::gather);
+  device_.launch(KernelId::gather, params.width * params.height, params);
 }
 
 void PhotonPass::run_batch(LaunchParams params, PhotonStats* stats, StageTimer* timer) {
@@ -206,6 +259,7 @@ void PhotonPass::run_batch(LaunchParams params, PhotonStats* stats, StageTimer* 
     stats->leaf_threshold = threshold;
   }
   last_hit_count_ = uint32_t(count);
+  map_params_.hit_count = 0;
   if (count == 0) return;  // every photon escaped or was absorbed before a recorded hit
 
   params.hit_bounds_lo = lo;
@@ -230,8 +284,8 @@ void PhotonPass::run_batch(LaunchParams params, PhotonStats* stats, StageTimer* 
     device_.launch(KernelId::photon_map_bottom_up, uint32_t(count), params);
     device_.launch(KernelId::photon_map_reorder, uint32_t(count), params);
   }
-  StageScope scope(timer, Stage::gather);
-  device_.launch(KernelId::gather, params.width * params.height, params);
+  map_params_ = params;
+  gather(params, timer);
 }
 
 }  // namespace pm

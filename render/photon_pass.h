@@ -26,6 +26,7 @@ struct PhotonSettings {
   int knn_k = 64;             // knn estimator
   int leaf_threshold = 0;     // T; 0: T_auto
   float leaf_c = 1.0f / 16.0f;  // c of T_auto = c * footprint area / scene area (docs/algorithm.md)
+  int sequence = PM_PHOTON_SEQUENCE_RANDOM;  // emission: random, or Halton (the same every frame)
 
   std::string describe() const;
 };
@@ -49,9 +50,22 @@ class PhotonPass {
   uint32_t photons_per_batch() const { return batch_size_; }
   const PhotonSettings& settings() const { return settings_; }
 
+  // Shares the photons of a batch out among these lights by power (an animated scene's lights at
+  // the frame about to be rendered; same count as the scene's). Invalidates the photon map.
+  void set_lights(const std::vector<LightDesc>& lights);
+
   // Runs every batch for a frame whose camera pass has filled the shading points; adds into the
   // film_indirect and film_caustic buffers bound on the device (the caller zeroes them).
+  // frame.photon_frame keys the photons' random numbers.
   void run(const LaunchParams& frame, PhotonStats* stats, StageTimer* timer = nullptr);
+
+  // True when the device still holds the complete photon map of the last run: it had a single
+  // batch (with several, each batch's map overwrites the previous one) and nothing failed since.
+  bool map_intact() const { return map_intact_; }
+  // Gathers again from that map for a new camera (the shading points of frame), without tracing:
+  // the same result as run() with the lights and photon_frame of the last run. Requires
+  // map_intact(). stats gets the last run's photon figures and this gather's counts.
+  void gather_again(const LaunchParams& frame, PhotonStats* stats, StageTimer* timer = nullptr);
 
   // The buffer this pass binds to slot, or null (sort keys/values: the sorted pairs).
   const DeviceBuffer* buffer(BufferSlot slot) const;
@@ -60,7 +74,11 @@ class PhotonPass {
 
  private:
   void allocate();
+  void bind();  // this pass's buffers into the device's slots (another pass may have used them)
+  LaunchParams pass_params(const LaunchParams& frame) const;
   void run_batch(LaunchParams params, PhotonStats* stats, StageTimer* timer);
+  void gather(const LaunchParams& params, StageTimer* timer);
+  void finish_stats(const LaunchParams& params, PhotonStats* stats);
   DeviceBuffer& owned(BufferSlot slot);
 
   Device& device_;
@@ -71,6 +89,9 @@ class PhotonPass {
   uint32_t slots_per_photon_ = 0;
   uint32_t last_hit_count_ = 0;
   std::vector<uint32_t> per_light_;
+  bool map_intact_ = false;
+  LaunchParams map_params_{};  // the map's fields (hit bounds and count, T) of the last batch
+  PhotonStats map_stats_;      // what the run that built the map reported
 
   std::vector<DeviceBuffer> buffers_;
   SortBuffers sort_;

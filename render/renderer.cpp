@@ -8,6 +8,7 @@
 #include <sstream>
 #include <vector>
 
+#include "animations/scene_animation.h"
 #include "render/errors.h"
 #include "render/scene_bvh.h"
 
@@ -43,6 +44,7 @@ std::vector<float> rgb_from_float4(const std::vector<float4>& pixels) {
 std::string RenderSettings::describe() const {
   std::ostringstream s;
   s << "mirror_depth=" << mirror_depth << " seed=" << seed << " " << photons.describe();
+  if (!reuse_photons) s << " photon_reuse=off";
   return s.str();
 }
 
@@ -73,10 +75,15 @@ std::vector<Material> to_device_materials(const Scene& scene) {
 }
 
 std::vector<PointLight> to_device_lights(const Scene& scene, const std::vector<uint32_t>& photons_per_light) {
+  return to_device_lights(scene.lights, photons_per_light);
+}
+
+std::vector<PointLight> to_device_lights(const std::vector<LightDesc>& scene_lights,
+                                         const std::vector<uint32_t>& photons_per_light) {
   std::vector<PointLight> lights;
   uint32_t first = 0;
-  for (size_t i = 0; i < scene.lights.size(); ++i) {
-    PointLight light{to_float4(scene.lights[i].position), to_float4(scene.lights[i].power)};
+  for (size_t i = 0; i < scene_lights.size(); ++i) {
+    PointLight light{to_float4(scene_lights[i].position), to_float4(scene_lights[i].power)};
     uint32_t count = i < photons_per_light.size() ? photons_per_light[i] : 0;
     std::memcpy(&light.position.w, &first, 4);
     std::memcpy(&light.power.w, &count, 4);
@@ -106,11 +113,8 @@ void Renderer::upload_scene() {
   lights_ = upload_vector(device_, to_device_lights(scene_, photon_pass_ ? photon_pass_->photons_per_light()
                                                                           : std::vector<uint32_t>{}),
                          "point lights");
+  device_lights_ = scene_.lights;
 
-  device_.bind(BufferSlot::scene_nodes, scene_nodes_);
-  device_.bind(BufferSlot::triangles, triangles_);
-  device_.bind(BufferSlot::materials, materials_);
-  device_.bind(BufferSlot::lights, lights_);
 }
 
 void Renderer::allocate_frame_buffers() {
@@ -124,6 +128,14 @@ void Renderer::allocate_frame_buffers() {
   film_indirect_ = device_.allocate(pixels * sizeof(float4), "indirect light layer");
   film_caustic_ = device_.allocate(pixels * sizeof(float4), "caustic layer");
   film_combined_ = device_.allocate(pixels * sizeof(float4), "combined layer");
+  bind_buffers();
+}
+
+void Renderer::bind_buffers() {
+  device_.bind(BufferSlot::scene_nodes, scene_nodes_);
+  device_.bind(BufferSlot::triangles, triangles_);
+  device_.bind(BufferSlot::materials, materials_);
+  device_.bind(BufferSlot::lights, lights_);
   device_.bind(BufferSlot::shade_position, shade_position_);
   device_.bind(BufferSlot::shade_normal, shade_normal_);
   device_.bind(BufferSlot::shade_outgoing, shade_outgoing_);
@@ -148,9 +160,35 @@ const DeviceBuffer* Renderer::buffer(BufferSlot slot) const {
   }
 }
 
-LaunchParams Renderer::frame_params(int frame) const {
+void Renderer::set_lights(const std::vector<LightDesc>& lights) {
+  if (same_lights(lights, device_lights_)) return;
+  if (photon_pass_) photon_pass_->set_lights(lights);
+  const std::vector<PointLight> device_lights =
+      to_device_lights(lights, photon_pass_ ? photon_pass_->photons_per_light() : std::vector<uint32_t>{});
+  device_lights_.clear();  // unknown until the upload went through
+  device_.upload(lights_, device_lights.data(), device_lights.size() * sizeof(PointLight));
+  device_lights_ = lights;
+}
+
+int Renderer::photon_frame(int frame) {
+  if (settings_.photons.sequence == PM_PHOTON_SEQUENCE_HALTON) return 0;
+  if (!settings_.reuse_photons || !scene_.animation.enabled) return frame;
+  const std::vector<LightDesc> lights = lights_at_frame(scene_, frame);
+  // Frames rendered in order: the previous frame's answer holds while the lights stay.
+  int start;
+  if (frame == run_frame_ + 1 && frame > scene_.animation.first_frame && same_lights(lights, run_lights_))
+    start = run_start_;
+  else
+    start = light_run_start(scene_, frame);
+  run_frame_ = frame;
+  run_start_ = start;
+  run_lights_ = lights;
+  return start;
+}
+
+LaunchParams Renderer::frame_params(int frame, const CameraDesc& camera) const {
   LaunchParams p{};
-  p.camera = make_camera_params(scene_.camera, width_, height_);
+  p.camera = make_camera_params(camera, width_, height_);
   p.width = uint32_t(width_);
   p.height = uint32_t(height_);
   p.triangle_count = uint32_t(scene_.triangle_count());
@@ -158,13 +196,22 @@ LaunchParams Renderer::frame_params(int frame) const {
   p.mirror_depth = uint32_t(settings_.mirror_depth);
   p.seed = settings_.seed;
   p.frame = uint32_t(frame);
+  p.photon_frame = uint32_t(frame);
   p.collect_stats = collect_stats_ ? 1u : 0u;
   return p;
 }
 
 FrameImage Renderer::render_frame(int frame, FrameStats* stats) {
   const auto start = std::chrono::steady_clock::now();
-  const LaunchParams params = frame_params(frame);
+  if (frame < 0) throw InputError("frame numbers start at 0, got " + std::to_string(frame));
+  const CameraDesc camera = camera_at_frame(scene_, frame);
+  const std::string problem = camera_problem(camera);
+  if (!problem.empty()) throw InputError(scene_.source + ": camera at frame " + std::to_string(frame) + ": " + problem);
+  const std::vector<LightDesc> lights = lights_at_frame(scene_, frame);
+  bind_buffers();
+  set_lights(lights);
+  LaunchParams params = frame_params(frame, camera);
+  params.photon_frame = uint32_t(photon_frame(frame));
   const uint32_t pixels = params.width * params.height;
   PhotonStats photon_stats;
   {
@@ -173,7 +220,19 @@ FrameImage Renderer::render_frame(int frame, FrameStats* stats) {
   }
   device_.fill_zero(film_indirect_, film_indirect_.bytes());
   device_.fill_zero(film_caustic_, film_caustic_.bytes());
-  if (photon_pass_) photon_pass_->run(params, &photon_stats, timer_);
+  bool reused = false;
+  if (photon_pass_) {
+    reused = settings_.reuse_photons && photon_pass_->map_intact() && map_photon_frame_ == int(params.photon_frame) &&
+             same_lights(lights, map_lights_);
+    if (reused) {
+      photon_pass_->gather_again(params, &photon_stats, timer_);
+    } else {
+      map_photon_frame_ = -1;
+      photon_pass_->run(params, &photon_stats, timer_);
+      map_photon_frame_ = int(params.photon_frame);
+      map_lights_ = lights;
+    }
+  }
 
   std::vector<float4> combined(pixels), direct(pixels), indirect(pixels), caustic(pixels);
   {
@@ -200,6 +259,8 @@ FrameImage Renderer::render_frame(int frame, FrameStats* stats) {
     stats->photons = photon_stats;
     stats->render_ms = std::chrono::duration<double, std::milli>(end - start).count();
     stats->repaired_pixels = repaired;
+    stats->photons_reused = reused;
+    stats->photon_frame = int(params.photon_frame);
   }
   return image;
 }

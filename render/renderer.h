@@ -1,6 +1,9 @@
 // Frame orchestration: owns the device-side copy of one scene and runs the stages of a frame
-// (S5 camera, S7 film; photon stages join here) through the backend-neutral Device interface.
-// The scene BVH is built and uploaded once per Renderer, i.e. once per sequence.
+// (S5 camera, photon stages S1-S4 and S6, S7 film) through the backend-neutral Device interface.
+// The scene BVH is built and uploaded once per Renderer, i.e. once per sequence: use one Renderer
+// for all frames of an animation. Each frame evaluates the scene's camera and light tracks;
+// when the lights are those of the photon map still on the device (camera-only motion), the
+// photons are reused and only the gather runs again (docs/animation.md).
 #pragma once
 
 #include <cstdint>
@@ -21,6 +24,10 @@ struct RenderSettings {
   int width = 0;   // 0: the scene camera's resolution
   int height = 0;
   PhotonSettings photons;
+  // Camera-only frames of a sequence reuse the photons of the first frame of their run of
+  // unchanged lights (random numbers keyed by that frame, map reused when still on the device).
+  // false: every frame traces photons keyed by its own frame number, like a still render of it.
+  bool reuse_photons = true;
 
   std::string describe() const;  // one line for EXR headers and logs
 };
@@ -29,13 +36,20 @@ struct FrameStats {
   double render_ms = 0;       // wall time from first launch to the frame's data back on the host
   int repaired_pixels = 0;    // non-finite pixels the film stage replaced by black
   PhotonStats photons;
+  bool photons_reused = false;  // the photon map of an earlier frame was gathered again, no tracing
+  int photon_frame = 0;         // the frame number that keyed this frame's photons
 };
 
 class Renderer {
  public:
   Renderer(Device& device, const Scene& scene, const RenderSettings& settings);
 
+  // Renders the scene as it is at `frame` (its tracks evaluated at frame / frame_rate). The result
+  // depends on the frame number only, never on which frames this Renderer rendered before.
   FrameImage render_frame(int frame, FrameStats* stats = nullptr);
+  // The frame number whose random numbers key the photons of `frame` (RenderSettings::
+  // reuse_photons; 0 for the Halton sequence, which does not depend on the frame).
+  int photon_frame(int frame);
 
   // Benchmarks attach a timer to get per-stage device times; null (the default) records nothing.
   void set_stage_timer(StageTimer* timer) { timer_ = timer; }
@@ -52,7 +66,9 @@ class Renderer {
  private:
   void upload_scene();
   void allocate_frame_buffers();
-  LaunchParams frame_params(int frame) const;
+  void bind_buffers();  // every buffer into the device's slots: Renderers may share a device
+  LaunchParams frame_params(int frame, const CameraDesc& camera) const;
+  void set_lights(const std::vector<LightDesc>& lights);
 
   Device& device_;
   const Scene& scene_;
@@ -66,6 +82,12 @@ class Renderer {
   std::unique_ptr<PhotonPass> photon_pass_;
   StageTimer* timer_ = nullptr;
   bool collect_stats_ = false;
+
+  std::vector<LightDesc> device_lights_;  // the lights in lights_ (and the photon shares)
+  std::vector<LightDesc> map_lights_;     // the lights the photon map on the device was traced for
+  int map_photon_frame_ = -1;             // and its photon frame
+  int run_frame_ = -1, run_start_ = -1;   // light_run_start of the last frame asked (memo)
+  std::vector<LightDesc> run_lights_;
 };
 
 // The camera basis the kernels expect (kernels/common/types.h CameraParams).
@@ -75,5 +97,7 @@ std::vector<Material> to_device_materials(const Scene& scene);
 // photons_per_light: each light's photon count per batch, stored in power.w (types.h); the first
 // photon index of each light within a batch goes to position.w.
 std::vector<PointLight> to_device_lights(const Scene& scene, const std::vector<uint32_t>& photons_per_light = {});
+std::vector<PointLight> to_device_lights(const std::vector<LightDesc>& lights,
+                                         const std::vector<uint32_t>& photons_per_light = {});
 
 }  // namespace pm

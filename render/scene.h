@@ -1,11 +1,14 @@
 // The in-memory scene every loader produces and the renderer consumes: triangles in metres,
 // modified-Phong materials, isotropic point lights and a pinhole camera. Format-independent:
-// scene_io/ fills it from JSON+OBJ (later glTF); nothing here knows about files.
+// scene_io/ fills it from JSON+OBJ or glTF; nothing here knows about files. Cameras and lights
+// may carry keyframe tracks (SceneAnimation); a scene without them is one still frame.
 #pragma once
 
 #include <cstdint>
 #include <string>
 #include <vector>
+
+#include "animations/keyframe_track.h"
 
 namespace pm {
 
@@ -40,6 +43,35 @@ struct CameraDesc {
   int height = 512;
 };
 
+// Keyframe tracks of the camera; an empty track leaves that value at Scene::camera's.
+// Positions in metres, up a direction, vertical_fov in degrees.
+struct CameraAnimation {
+  Vec3Track position, look_at, up;
+  ScalarTrack vertical_fov;
+  bool empty() const { return position.empty() && look_at.empty() && up.empty() && vertical_fov.empty(); }
+};
+
+// Keyframe tracks of one point light; an empty track leaves that value at the LightDesc's.
+// position in metres, power in watts per RGB channel (the light's colour is its RGB power).
+struct LightAnimation {
+  Vec3Track position, power;
+  bool empty() const { return position.empty() && power.empty(); }
+};
+
+// A sequence: frame f shows the scene at time f / frame_rate seconds (animations/
+// scene_animation.h evaluates it). Geometry and materials never move.
+struct SceneAnimation {
+  // false: a still scene, the default. It renders as frame 0, any frame number shows the same
+  // scene, and each frame number draws its own random numbers (as `--frame N` always did).
+  // true: a sequence of frames first_frame..last_frame (the scene file asked for one).
+  bool enabled = false;
+  double frame_rate = 24.0;  // frames per second, > 0
+  int first_frame = 0;
+  int last_frame = 0;
+  CameraAnimation camera;
+  std::vector<LightAnimation> lights;  // empty, or one per Scene::lights entry, in that order
+};
+
 struct Scene {
   std::string name;                       // used in default output names and EXR headers
   std::string source;                     // the file it came from, or "builtin:cornell-box"
@@ -48,7 +80,8 @@ struct Scene {
   std::vector<uint32_t> triangle_material;  // one material index per triangle
   std::vector<MaterialDesc> materials;
   std::vector<LightDesc> lights;
-  CameraDesc camera;
+  CameraDesc camera;            // the camera where no camera track says otherwise
+  SceneAnimation animation;     // disabled by default: one still frame
 
   size_t triangle_count() const { return indices.size() / 3; }
 };

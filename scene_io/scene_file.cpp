@@ -1,8 +1,11 @@
 // Owns loading a pmrender JSON scene (format version 1, docs/scene-format.md) into pm::Scene:
 // the top-level keys, JSON materials, meshes (through obj_mesh), lights, camera, unit conversion
-// to metres and the usemtl name -> material resolution (JSON materials first, then MTL).
+// to metres and the usemtl name -> material resolution (JSON materials first, then MTL); the
+// optional "animation" object goes through animation_json. Files ending in .gltf or .glb go to
+// the glTF loader (gltf_scene.h) instead.
 #include "scene_io/scene_file.h"
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -15,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "scene_io/animation_json.h"
+#include "scene_io/gltf_scene.h"
 #include "scene_io/json_reader.h"
 #include "scene_io/load_error.h"
 #include "scene_io/obj_mesh.h"
@@ -301,9 +306,17 @@ CameraDesc read_camera(const JsonField& root, double meters_per_unit) {
   return camera;
 }
 
+
+bool has_extension(const std::string& path, const std::string& extension) {
+  std::string ext = fs::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == extension;
+}
+
 }  // namespace
 
 Scene load_scene_file(const std::string& path, SceneLoadReport* report) {
+  if (has_extension(path, ".gltf") || has_extension(path, ".glb")) return load_gltf_scene(path, report);
   SceneLoadReport local_report;
   LoadContext ctx;
   ctx.json_dir = fs::path(path).parent_path();
@@ -328,9 +341,8 @@ Scene load_scene_file(const std::string& path, SceneLoadReport* report) {
     version.fail("unsupported version " + std::to_string(version_number) + " (this build reads version " +
                  std::to_string(kSceneFormatVersion) + ")");
   }
-  if (root.has("animation")) root.member("animation").fail("not part of format version 1");
   root.expect_object_with_keys(
-      {"format", "version", "name", "meters_per_unit", "meshes", "materials", "lights", "camera"});
+      {"format", "version", "name", "meters_per_unit", "meshes", "materials", "lights", "camera", "animation"});
 
   Scene scene;
   scene.source = path;
@@ -353,6 +365,7 @@ Scene load_scene_file(const std::string& path, SceneLoadReport* report) {
 
   scene.lights = read_lights(root, ctx.meters_per_unit);
   scene.camera = read_camera(root, ctx.meters_per_unit);
+  if (root.has("animation")) read_animation_json(root.member("animation"), ctx.meters_per_unit, &scene);
   return scene;
 }
 

@@ -41,20 +41,8 @@ PM_DEVICE int photon_glossy_reemit(PhotonRay* ray, Vec3 n, float exponent, float
   vec3_onb(r, &t, &b);
   float cos_a = pm_powf(pm_fmaxf(u1, 1e-12f), 1.0f / (exponent + 1.0f));
   float sin_a = pm_sqrtf(pm_fmaxf(0.0f, 1.0f - cos_a * cos_a));
-  Vec3 dl, dul, dvl;
-  photon_sphere_direction(cos_a, sin_a, PM_PD_TWO_PI * u2, &dl, &dul, &dvl);
-  Vec3 d = vec3_add(vec3_add(vec3_scale(t, dl.x), vec3_scale(b, dl.y)), vec3_scale(r, dl.z));
-  if (vec3_dot(d, nf) <= 0.0f) return 0;
-  Vec3 du = vec3_add(vec3_add(vec3_scale(t, dul.x), vec3_scale(b, dul.y)), vec3_scale(r, dul.z));
-  Vec3 dv = vec3_add(vec3_add(vec3_scale(t, dvl.x), vec3_scale(b, dvl.y)), vec3_scale(r, dvl.z));
-  float v = pm_sqrtf(vec3_length(vec3_cross(ray->dp_u, ray->dp_v)) / pm_fmaxf(vec3_length(vec3_cross(du, dv)), 1e-20f));
-  if (!pm_isfinite(v)) v = 0.0f;
-  ray->direction = d;
-  ray->dd_u = du;
-  ray->dd_v = dv;
-  ray->dp_u = vec3_scale(du, v);
-  ray->dp_v = vec3_scale(dv, v);
-  return 1;
+  photon_reemit_in_frame(ray, t, b, r, cos_a, sin_a, PM_PD_TWO_PI * u2);
+  return vec3_dot(ray->direction, nf) > 0.0f;
 }
 
 PM_DEVICE void photon_store_hit(const KernelGlobals* kg, uint slot, const PhotonRay* ray, Vec3 n, Vec3 flux, float delta,
@@ -79,9 +67,26 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
     uint emitted = PM_AS_UINT(light.power.w);
     float delta = photon_spacing(emitted); /* eq. 9 with n = this light's photons in the batch */
     Vec3 flux = vec3_scale(vec3_from_float4(light.power), 1.0f / ((float)emitted * (float)p->batch_count));
-    uint stream_index = p->photon_offset + photon;
-
-    Uniform4 u = rng_uniform4(p->seed, p->frame, stream_index, 0u, PM_STREAM_PHOTON);
+    /* Random numbers: RANDOM keys them by (seed, photon_frame) and the photon's index in the
+       frame; HALTON by the seed, the light and the photon's number within that light only, so
+       the same lights give the same photons in every frame (types.h). */
+    uint rng_frame = p->photon_frame, rng_index = p->photon_offset + photon, rng_extra = 0u;
+    Uniform4 u;
+    if (p->photon_sequence == PM_PHOTON_SEQUENCE_HALTON) {
+      uint batch = p->photon_count > 0u ? p->photon_offset / p->photon_count : 0u;
+      rng_frame = 0u;
+      rng_index = batch * emitted + (photon - PM_AS_UINT(light.position.w));
+      rng_extra = (uint)light_index + 1u;
+      /* Halton points (bases 2 and 3), shifted modulo 1 by one random offset per seed and light
+         (Cranley-Patterson rotation) so that lights and seeds do not share directions. */
+      Bits4 shift = rng_bits4(p->seed, 0u, 0u, 0u, PM_STREAM_HALTON, rng_extra);
+      u.u0 = rng_to_unit(radical_inverse2_bits(rng_index) + shift.b0);
+      u.u1 = rng_to_unit(radical_inverse3_bits(rng_index) + shift.b1);
+      u.u2 = 0.0f;
+      u.u3 = 0.0f;
+    } else {
+      u = rng_uniform4_bits(rng_bits4(p->seed, rng_frame, rng_index, 0u, PM_STREAM_PHOTON, rng_extra));
+    }
     PhotonRay ray;
     photon_emit_point(vec3_from_float4(light.position), u.u0, u.u1, &ray);
     uint diffuse_bounces = 0, specular_bounces = 0;
@@ -108,7 +113,7 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
       }
 
       /* Russian roulette chooses absorption or one reflection event (section 4.2). */
-      u = rng_uniform4(p->seed, p->frame, stream_index, event, PM_STREAM_PHOTON);
+      u = rng_uniform4_bits(rng_bits4(p->seed, rng_frame, rng_index, event, PM_STREAM_PHOTON, rng_extra));
       Vec3 side = vec3_dot(n, ray.direction) > 0.0f ? vec3_neg(n) : n;
       if (u.u2 < p_diffuse + p_glossy) {
         if (diffuse_bounces == p->max_bounces) break; /* its next hit would not be recorded */

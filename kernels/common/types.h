@@ -81,9 +81,17 @@ typedef struct LaunchParams {
 
   uint batch_count;     /* photon batches per frame: each photon carries 1/batch_count */
   uint collect_stats;   /* gather counts photons per shading point (benchmarks) */
-  uint padding0;        /* keeps sizeof a multiple of 16 in every compiler */
-  uint padding1;
+  uint photon_frame;    /* the frame whose random numbers the photons draw (animations: camera-only
+                           runs share the photons of their first frame; docs/animation.md) */
+  uint photon_sequence; /* PM_PHOTON_SEQUENCE_*: how emission directions are drawn */
 } LaunchParams;
+
+/* Photon emission sequences (--photon-sequence). RANDOM: Philox keyed by (seed, photon_frame).
+   HALTON: directions from the Halton sequence (bases 2, 3) indexed by the photon's number within
+   its light, and every later random decision keyed by (seed, light, that number) only, never the
+   frame: the same lights give the same photons in every frame. */
+#define PM_PHOTON_SEQUENCE_RANDOM 0
+#define PM_PHOTON_SEQUENCE_HALTON 1
 
 #define PM_SORT_RADIX_BITS 4
 #define PM_SORT_RADIX (1 << PM_SORT_RADIX_BITS)

@@ -158,10 +158,10 @@ TEST_F(SceneJsonErrors, UnknownKeysAreErrorsEverywhere) {
   expect_scene_message(error_of_scene(scene), "camera.fov: unknown key");
 }
 
-TEST_F(SceneJsonErrors, AnimationKeyIsNotPartOfVersion1) {
+TEST_F(SceneJsonErrors, AnimationKeyIsCheckedLikeTheRest) {
   json scene = valid_scene();
-  scene["animation"] = json::object();
-  expect_scene_message(error_of_scene(scene), "animation: not part of format version 1");
+  scene["animation"] = {{"speed", 2}};  // "animation" is optional in version 1 (animation_json.h)
+  expect_scene_message(error_of_scene(scene), "animation.speed: unknown key");
 }
 
 TEST_F(SceneJsonErrors, DuplicateKeyIsRejected) {
