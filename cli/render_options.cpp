@@ -9,7 +9,7 @@
 namespace pm::cli {
 
 void add_render_options(CLI::App* cmd, RenderOptions& o) {
-  cmd->add_option("scene", o.scene_path, "Scene file (JSON, see docs/scene-format.md); default: the Cornell box");
+  cmd->add_option("scene", o.scene_path, "Scene file (.json, .gltf or .glb; see docs/scene-format.md); default: the Cornell box");
   cmd->add_option("--backend", o.backend, "auto, cuda or opencl (auto: CUDA when a CUDA device exists)")
       ->check(CLI::IsMember({"auto", "cuda", "opencl"}));
   cmd->add_option("--device", o.device, "Device index within the backend (see 'pmrender devices')");
@@ -32,6 +32,9 @@ void add_render_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("--radius", ph.radius, "Gather radius of --estimator radius, metres (default: 5% of the scene diagonal)");
   cmd->add_option("--k", ph.knn_k, "Neighbours of --estimator knn")->capture_default_str()->check(CLI::Range(1, 256));
   cmd->add_option("--leaf", o.leaf, "Photon map leaf threshold T: auto or a number")->capture_default_str();
+  cmd->add_option("--photon-bvh", o.photon_bvh, "Photon map builder: lbvh (device, per frame) or vvh (voxel volume "
+                                                "heuristic on the host, for comparison)")
+      ->capture_default_str()->check(CLI::IsMember({"lbvh", "vvh"}));
 }
 
 Scene load_scene(const RenderOptions& o) {
@@ -47,6 +50,7 @@ RenderSettings render_settings(const RenderOptions& o) {
   PhotonSettings& ph = settings.photons;
   ph.estimator = o.estimator == "knn" ? PM_ESTIMATOR_KNN : o.estimator == "radius" ? PM_ESTIMATOR_RADIUS : PM_ESTIMATOR_PD;
   ph.kernel_shape = o.kernel == "epanechnikov" ? PM_KERNEL_EPANECHNIKOV : PM_KERNEL_CONSTANT;
+  ph.vvh_map = o.photon_bvh == "vvh";
   if (o.leaf == "auto") {
     ph.leaf_threshold = 0;
   } else {

@@ -10,6 +10,7 @@
 #include "kernels/common/photon_map.h"
 #include "kernels/common/photon_map_stage.h"
 #include "render/errors.h"
+#include "render/vvh_builder.h"
 
 namespace pm {
 
@@ -78,7 +79,7 @@ std::string PhotonSettings::describe() const {
   std::ostringstream s;
   s << "photons=" << photons << " batch=" << batch << " bounces=" << bounces << " estimator=" << estimators[estimator]
     << " kernel=" << (kernel_shape == PM_KERNEL_EPANECHNIKOV ? "epanechnikov" : "constant") << " smoothing=" << smoothing
-    << " rmax=" << rmax << " radius=" << radius << " leaf=" << (leaf_threshold > 0 ? std::to_string(leaf_threshold) : "auto");
+    << " rmax=" << rmax << " radius=" << radius << " photon_bvh=" << (vvh_map ? "vvh" : "lbvh") << " leaf=" << (leaf_threshold > 0 ? std::to_string(leaf_threshold) : "auto");
   if (sequence == PM_PHOTON_SEQUENCE_HALTON) s << " sequence=halton";
   return s.str();
 }
@@ -222,6 +223,39 @@ void PhotonPass::gather(const LaunchParams& params, StageTimer* timer) {
   device_.launch(KernelId::gather, params.width * params.height, params);
 }
 
+// The VVH alternative to the device LBVH: the valid hits' footprint boxes go to the host, the
+// tree comes back in the same node layout with its hit order as the "sorted" index, so the
+// reorder kernel and the gather run unchanged.
+void PhotonPass::build_vvh_map(const LaunchParams& params) {
+  const size_t slots = size_t(batch_size_) * slots_per_photon_;
+  std::vector<float4> lo(slots), hi(slots), center(slots);
+  device_.download(owned(BufferSlot::footprint_lo), lo.data(), slots * sizeof(float4));
+  device_.download(owned(BufferSlot::footprint_hi), hi.data(), slots * sizeof(float4));
+  device_.download(owned(BufferSlot::footprint_center), center.data(), slots * sizeof(float4));
+  std::vector<uint32_t> valid;
+  std::vector<float4> valid_lo, valid_hi;
+  for (uint32_t i = 0; i < slots; ++i) {
+    uint32_t flags;
+    std::memcpy(&flags, &center[i].w, 4);
+    if (!(flags & PM_HIT_VALID)) continue;
+    valid.push_back(i);
+    valid_lo.push_back(lo[i]);
+    valid_hi.push_back(hi[i]);
+  }
+  VvhPhotonMap map = build_vvh_photon_map(valid_lo, valid_hi, params.leaf_threshold);
+  std::vector<uint32_t> sorted_slots(valid.size());
+  std::vector<float4> sorted_lo(valid.size()), sorted_hi(valid.size());
+  for (size_t k = 0; k < valid.size(); ++k) {
+    sorted_slots[k] = valid[map.order[k]];
+    sorted_lo[k] = valid_lo[map.order[k]];
+    sorted_hi[k] = valid_hi[map.order[k]];
+  }
+  device_.upload(sort_.values, sorted_slots.data(), sorted_slots.size() * sizeof(uint32_t));
+  device_.upload(owned(BufferSlot::map_lo), sorted_lo.data(), sorted_lo.size() * sizeof(float4));
+  device_.upload(owned(BufferSlot::map_hi), sorted_hi.data(), sorted_hi.size() * sizeof(float4));
+  device_.upload(owned(BufferSlot::map_nodes), map.nodes.data(), map.nodes.size() * sizeof(float4));
+}
+
 void PhotonPass::run_batch(LaunchParams params, PhotonStats* stats, StageTimer* timer) {
   const uint32_t slots = batch_size_ * slots_per_photon_;
   {
@@ -268,6 +302,16 @@ void PhotonPass::run_batch(LaunchParams params, PhotonStats* stats, StageTimer* 
   params.leaf_threshold = threshold;
   device_.bind(BufferSlot::sort_keys, sort_.keys);
   device_.bind(BufferSlot::sort_values, sort_.values);
+  if (settings_.vvh_map) {
+    {
+      StageScope scope(timer, Stage::map_tree);
+      build_vvh_map(params);
+      device_.launch(KernelId::photon_map_reorder, uint32_t(count), params);
+    }
+    map_params_ = params;
+    gather(params, timer);
+    return;
+  }
   {
     StageScope scope(timer, Stage::map_morton);
     device_.launch(KernelId::photon_morton, slots, params);

@@ -27,6 +27,8 @@ struct PhotonSettings {
   int leaf_threshold = 0;     // T; 0: T_auto
   float leaf_c = 1.0f / 16.0f;  // c of T_auto = c * footprint area / scene area (docs/algorithm.md)
   int sequence = PM_PHOTON_SEQUENCE_RANDOM;  // emission: random, or Halton (the same every frame)
+  bool vvh_map = false;       // build the photon map with the voxel volume heuristic on the host
+                              // (section 5.1, for the paper's Table 1 comparison) instead of the LBVH
 
   std::string describe() const;
 };
@@ -77,6 +79,7 @@ class PhotonPass {
   void bind();  // this pass's buffers into the device's slots (another pass may have used them)
   LaunchParams pass_params(const LaunchParams& frame) const;
   void run_batch(LaunchParams params, PhotonStats* stats, StageTimer* timer);
+  void build_vvh_map(const LaunchParams& params);
   void gather(const LaunchParams& params, StageTimer* timer);
   void finish_stats(const LaunchParams& params, PhotonStats* stats);
   DeviceBuffer& owned(BufferSlot slot);

@@ -29,6 +29,11 @@ TEST_F(OpenclGather, FootprintsEqualBruteForceWithFusedLeaves) {
 TEST_F(OpenclGather, AutoLeafSizeEqualsBruteForce) {
   test::check_gather_equals_brute_force(*device_, builtin_cornell_box(), photons(PM_ESTIMATOR_PD, PM_KERNEL_CONSTANT, 0), 24, 24);
 }
+TEST_F(OpenclGather, VoxelVolumeHeuristicMapEqualsBruteForce) {
+  PhotonSettings p = photons(PM_ESTIMATOR_PD, PM_KERNEL_CONSTANT, 8);
+  p.vvh_map = true;
+  test::check_gather_equals_brute_force(*device_, builtin_cornell_box(), p, 24, 24);
+}
 TEST_F(OpenclGather, RadiusEqualsBruteForce) {
   test::check_gather_equals_brute_force(*device_, builtin_cornell_box(), photons(PM_ESTIMATOR_RADIUS, PM_KERNEL_CONSTANT, 4), 24, 24);
 }
