@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("pmrender ") + PMRENDER_VERSION);
   pm::cli::Run render = pm::cli::add_render_command(app);
   pm::cli::Run devices = pm::cli::add_devices_command(app);
+  pm::cli::Run compare = pm::cli::add_compare_command(app);
+  pm::cli::Run bench = pm::cli::add_bench_command(app);
 
   try {
     app.parse(argc, argv);
@@ -23,6 +25,8 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("render")) return render();
     if (app.got_subcommand("devices")) return devices();
+    if (app.got_subcommand("compare")) return compare();
+    if (app.got_subcommand("bench")) return bench();
   } catch (const pm::InputError& e) {
     std::cerr << "pmrender: " << e.what() << "\n";
     return 2;

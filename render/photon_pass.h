@@ -25,7 +25,7 @@ struct PhotonSettings {
   float radius = 0.0f;        // radius estimator, metres; 0: 5 % of the scene diagonal
   int knn_k = 64;             // knn estimator
   int leaf_threshold = 0;     // T; 0: T_auto
-  float leaf_c = 1.0f / 16.0f;  // c of T_auto = c * footprint area / scene area (docs/algorithm.md)
+  float leaf_c = 0.5f;        // c of T_auto = c * footprint area / scene area, calibrated on the H200 (docs/algorithm.md)
   int sequence = PM_PHOTON_SEQUENCE_RANDOM;  // emission: random, or Halton (the same every frame)
   bool vvh_map = false;       // build the photon map with the voxel volume heuristic on the host
                               // (section 5.1, for the paper's Table 1 comparison) instead of the LBVH

@@ -203,6 +203,14 @@ LaunchParams Renderer::frame_params(int frame, const CameraDesc& camera) const {
 
 FrameImage Renderer::render_frame(int frame, FrameStats* stats) {
   const auto start = std::chrono::steady_clock::now();
+  render(frame, stats);
+  FrameImage image = read_image(stats);
+  if (stats) stats->render_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return image;
+}
+
+void Renderer::render(int frame, FrameStats* stats) {
+  const auto start = std::chrono::steady_clock::now();
   if (frame < 0) throw InputError("frame numbers start at 0, got " + std::to_string(frame));
   const CameraDesc camera = camera_at_frame(scene_, frame);
   const std::string problem = camera_problem(camera);
@@ -234,17 +242,27 @@ FrameImage Renderer::render_frame(int frame, FrameStats* stats) {
     }
   }
 
-  std::vector<float4> combined(pixels), direct(pixels), indirect(pixels), caustic(pixels);
   {
     StageScope scope(timer_, Stage::film);
     device_.launch(KernelId::film_resolve, pixels, params);
-    device_.download(film_combined_, combined.data(), pixels * sizeof(float4));
-    device_.download(film_direct_, direct.data(), pixels * sizeof(float4));
-    device_.download(film_indirect_, indirect.data(), pixels * sizeof(float4));
-    device_.download(film_caustic_, caustic.data(), pixels * sizeof(float4));
   }
+  device_.synchronize();  // the frame is done: host wall time below is the frame's real time
   const auto end = std::chrono::steady_clock::now();
+  if (stats) {
+    stats->photons = photon_stats;
+    stats->render_ms = std::chrono::duration<double, std::milli>(end - start).count();
+    stats->photons_reused = reused;
+    stats->photon_frame = int(params.photon_frame);
+  }
+}
 
+FrameImage Renderer::read_image(FrameStats* stats) {
+  const size_t pixels = size_t(width_) * height_;
+  std::vector<float4> combined(pixels), direct(pixels), indirect(pixels), caustic(pixels);
+  device_.download(film_combined_, combined.data(), pixels * sizeof(float4));
+  device_.download(film_direct_, direct.data(), pixels * sizeof(float4));
+  device_.download(film_indirect_, indirect.data(), pixels * sizeof(float4));
+  device_.download(film_caustic_, caustic.data(), pixels * sizeof(float4));
   int repaired = 0;
   for (const float4& px : combined) repaired += px.w != 0.0f;
 
@@ -255,13 +273,7 @@ FrameImage Renderer::render_frame(int frame, FrameStats* stats) {
   image.layers.push_back(ImageLayer{"direct", rgb_from_float4(direct)});
   image.layers.push_back(ImageLayer{"indirect", rgb_from_float4(indirect)});
   image.layers.push_back(ImageLayer{"caustic", rgb_from_float4(caustic)});
-  if (stats) {
-    stats->photons = photon_stats;
-    stats->render_ms = std::chrono::duration<double, std::milli>(end - start).count();
-    stats->repaired_pixels = repaired;
-    stats->photons_reused = reused;
-    stats->photon_frame = int(params.photon_frame);
-  }
+  if (stats) stats->repaired_pixels = repaired;
   return image;
 }
 

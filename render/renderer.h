@@ -46,7 +46,13 @@ class Renderer {
 
   // Renders the scene as it is at `frame` (its tracks evaluated at frame / frame_rate). The result
   // depends on the frame number only, never on which frames this Renderer rendered before.
+  // render() then read_image().
   FrameImage render_frame(int frame, FrameStats* stats = nullptr);
+  // Runs every stage of a frame on the device and waits for it; the result stays in the film
+  // buffers (benchmarks stop here: no read-back).
+  void render(int frame, FrameStats* stats = nullptr);
+  // The film of the last render(): layers combined, direct, indirect and caustic.
+  FrameImage read_image(FrameStats* stats = nullptr);
   // The frame number whose random numbers key the photons of `frame` (RenderSettings::
   // reuse_photons; 0 for the Halton sequence, which does not depend on the frame).
   int photon_frame(int frame);

@@ -13,12 +13,12 @@ namespace pm {
 enum class Stage : int {
   camera,          // S5: primary rays, mirror recursion, direct light + shadow rays
   photon_trace,    // S1+S2: emission and tracing
-  footprints,      // S3: footprint ellipsoids and the bounds/area/count reduction (with read-back)
+  footprints,      // S3: footprint ellipsoids and the bounds/area/count reduction
   map_morton,      // S4: Morton codes
   map_sort,        // S4: radix sort of (code, index)
   map_tree,        // S4: radix tree, bottom-up boxes, reorder into sorted order
   gather,          // S6
-  film,            // S7: resolve and read-back of the layers
+  film,            // S7: resolve (the read-back to the host is not a device stage)
   count
 };
 constexpr size_t kStageCount = static_cast<size_t>(Stage::count);

@@ -1,0 +1,177 @@
+// `pmrender bench` as a user meets it, run as a separate process on the OpenCL backend: the
+// table names every stage, --json writes parseable results with positive times and no temporary
+// file left behind, the Table 1/3 extras run, and bad options exit 2 with one line naming them.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+#include "render/stage_timer.h"
+#include "support/paths.h"
+
+namespace pm {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct BenchResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+class BenchCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("pm_bench_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  BenchResult pmrender(const std::string& args) {
+    BenchResult r;
+    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+    std::string cmd = test::pmrender_binary() + " " + args + " </dev/null >" + out.string() + " 2>" + err.string();
+    int status = std::system(cmd.c_str());
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = slurp(out);
+    r.err = slurp(err);
+    return r;
+  }
+
+  // Files the bench left in dir_ besides the captured output.
+  std::vector<std::string> written() {
+    std::vector<std::string> names;
+    for (auto& entry : fs::directory_iterator(dir_)) {
+      std::string name = entry.path().filename().string();
+      if (name != "stdout.txt" && name != "stderr.txt") names.push_back(name);
+    }
+    return names;
+  }
+
+  void expect_input_error(const std::string& args, const std::string& expect) {
+    BenchResult r = pmrender("bench --backend opencl --resolution 8x8 --photons 100 " + args);
+    EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.out << r.err;
+    EXPECT_NE(r.err.find(expect), std::string::npos) << args << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << "\n" << r.err;
+    EXPECT_TRUE(written().empty()) << args;
+  }
+
+  fs::path dir_;
+};
+
+TEST_F(BenchCli, CornellBoxPrintsEveryStageAndWritesJson) {
+  const fs::path json = dir_ / "bench.json";
+  BenchResult r = pmrender("bench --backend opencl --resolution 32x32 --photons 5000 --warmup 1 --repeat 2 --json " +
+                           json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  for (size_t s = 0; s < kStageCount; ++s)
+    EXPECT_NE(r.out.find(std::string("\n") + stage_name(Stage(s)) + " "), std::string::npos)
+        << "no row for " << stage_name(Stage(s)) << "\n" << r.out;
+  for (const char* line : {"frame (sum of stages)", "frame (host wall)", "frames per second", "photons per gather (k_PD)",
+                           "peak device memory", "bytes per photon"})
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+
+  ASSERT_TRUE(fs::exists(json));
+  EXPECT_EQ(written(), std::vector<std::string>{"bench.json"});  // no temporary file left
+  const nlohmann::json j = nlohmann::json::parse(slurp(json));
+  EXPECT_EQ(j.at("pmrender_version"), PMRENDER_VERSION);
+  EXPECT_FALSE(j.at("date").get<std::string>().empty());
+  EXPECT_EQ(j.at("scene").at("name"), "cornell-box");
+  EXPECT_EQ(j.at("scene").at("source"), "builtin:cornell-box");
+  EXPECT_EQ(j.at("settings").at("width"), 32);
+  EXPECT_EQ(j.at("settings").at("height"), 32);
+  EXPECT_EQ(j.at("settings").at("photons"), 5000);
+  EXPECT_NE(j.at("settings").at("describe").get<std::string>().find("photons=5000"), std::string::npos);
+  EXPECT_EQ(j.at("device").at("backend"), "opencl");
+  EXPECT_FALSE(j.at("device").at("name").get<std::string>().empty());
+  EXPECT_EQ(j.at("frames").at("warmup"), nlohmann::json::array({0}));
+  EXPECT_EQ(j.at("frames").at("measured"), nlohmann::json::array({1, 2}));
+
+  const nlohmann::json& stages = j.at("stages");
+  ASSERT_EQ(stages.size(), kStageCount);
+  double share = 0;
+  for (size_t s = 0; s < kStageCount; ++s) {
+    const nlohmann::json& row = stages[s];
+    EXPECT_EQ(row.at("stage"), stage_name(Stage(s)));
+    const double median = row.at("median_ms"), lo = row.at("min_ms"), hi = row.at("max_ms");
+    EXPECT_GT(median, 0.0) << row;
+    EXPECT_LE(lo, median) << row;
+    EXPECT_LE(median, hi) << row;
+    share += row.at("share").get<double>();
+  }
+  EXPECT_NEAR(share, 1.0, 1e-9);
+  for (const char* frame : {"sum_of_stages", "host_wall"}) {
+    const nlohmann::json& t = j.at("frame_ms").at(frame);
+    EXPECT_GT(t.at("min").get<double>(), 0.0) << frame;
+    EXPECT_LE(t.at("min").get<double>(), t.at("median").get<double>()) << frame;
+    EXPECT_LE(t.at("median").get<double>(), t.at("max").get<double>()) << frame;
+  }
+  EXPECT_GT(j.at("fps").at("host_wall").get<double>(), 0.0);
+  EXPECT_EQ(j.at("photons").at("emitted_per_frame"), 5000);
+  EXPECT_GT(j.at("photons").at("hits").at("median").get<double>(), 0.0);
+  EXPECT_GT(j.at("gather").at("k_pd").get<double>(), 0.0);
+  EXPECT_GT(j.at("gather").at("shading_points").get<double>(), 0.0);
+  EXPECT_GT(j.at("memory").at("peak_bytes").get<double>(), 0.0);
+  EXPECT_GT(j.at("memory").at("bytes_per_photon").get<double>(), 0.0);
+  EXPECT_EQ(j.at("per_frame").size(), 2u);
+}
+
+TEST_F(BenchCli, LeafSweepAndRadiusHistogram) {
+  const fs::path json = dir_ / "sweep.json";
+  BenchResult r = pmrender("bench --backend opencl --resolution 16x16 --photons 2000 --warmup 0 --repeat 1 "
+                           "--leaf-sweep 1,4 --radius-histogram --json " + json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("FPS_auto / FPS_best"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("0.95 - 1.00"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("> 1.00"), std::string::npos) << r.out;
+
+  const nlohmann::json j = nlohmann::json::parse(slurp(json));
+  const nlohmann::json& points = j.at("leaf_sweep").at("points");
+  ASSERT_EQ(points.size(), 3u);  // 1, 4 and auto
+  EXPECT_EQ(points[0].at("leaf"), 1);
+  EXPECT_EQ(points[1].at("leaf"), 4);
+  EXPECT_EQ(points[2].at("leaf"), "auto");
+  for (const nlohmann::json& p : points) {
+    EXPECT_GT(p.at("fps_stages").get<double>(), 0.0) << p;
+    EXPECT_GT(p.at("fps_wall").get<double>(), 0.0) << p;
+  }
+  const int best = j.at("leaf_sweep").at("best_fixed");
+  EXPECT_TRUE(best == 1 || best == 4);
+
+  const nlohmann::json& h = j.at("radius_histogram");
+  ASSERT_EQ(h.at("bins").size(), 21u);
+  uint64_t binned = 0;
+  for (const nlohmann::json& b : h.at("bins")) binned += b.at("count").get<uint64_t>();
+  EXPECT_GT(binned, 0u);
+  EXPECT_EQ(binned, h.at("valid_hits").get<uint64_t>() - h.at("zero_area").get<uint64_t>());
+  // The default --rmax clamps every semiaxis, so no radius exceeds it.
+  EXPECT_LE(h.at("max_radius").get<double>(), j.at("settings").at("rmax_m").get<double>() * 1.0001);
+}
+
+TEST_F(BenchCli, BadOptionsExitTwoNamingTheOption) {
+  expect_input_error("--frames 5-2", "--frames");
+  expect_input_error("--frames 100001", "--frames");
+  expect_input_error("--repeat 0", "--repeat");
+  expect_input_error("--frames 1-3 --repeat 2", "--repeat");
+  expect_input_error("--warmup -1", "--warmup");
+  expect_input_error("--json " + (dir_ / "missing" / "b.json").string(), "--json");
+  expect_input_error("--leaf-sweep 1,0", "--leaf-sweep");
+  expect_input_error("--radius-histogram --estimator knn", "--radius-histogram");
+}
+
+}  // namespace
+}  // namespace pm
