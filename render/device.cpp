@@ -28,6 +28,7 @@ DeviceBuffer& DeviceBuffer::operator=(DeviceBuffer&& other) noexcept {
 
 void DeviceBuffer::reset() {
   if (owner_ && handle_) {
+    owner_->unbind_handle(handle_);
     owner_->release(handle_);
     owner_->note_freed(bytes_);
   }

@@ -69,6 +69,8 @@ class Device {
   // Kernels read their buffers from the slot table; a slot left unbound is null on the device.
   void bind(BufferSlot slot, const DeviceBuffer& buffer) { slots_[static_cast<size_t>(slot)] = buffer.handle(); }
   void unbind(BufferSlot slot) { slots_[static_cast<size_t>(slot)] = nullptr; }
+  // Clears every slot bound to handle (DeviceBuffer::reset calls it: no launch may pass a freed buffer).
+  void unbind_handle(const void* handle) { for (void*& s : slots_) if (s == handle) s = nullptr; }
   virtual void launch(KernelId kernel, uint32_t work_items, const LaunchParams& params) = 0;
 
   // Sorts count (key, value) pairs by the low key_bits of the key, stably. The pairs start in

@@ -6,6 +6,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -167,6 +168,10 @@ const char* kind_of(const json& value) {
 }  // namespace
 
 nlohmann::json parse_json_file_strict(const std::string& path) {
+  std::error_code ec;
+  // Devices and pipes (/dev/zero, a FIFO) would be read without end.
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw_input_error(path, "not a regular file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw_input_error(path, std::string("cannot open (") + std::strerror(errno) + ")");
   std::ostringstream buffer;

@@ -133,6 +133,8 @@ std::string check_mesh_file(const JsonField& file_field, const LoadContext& ctx)
   const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : ctx.json_dir / name;
   std::error_code ec;
   if (fs::is_directory(path, ec)) file_field.fail("cannot open '" + name + "' (it is a directory)");
+  // Devices and pipes (/dev/zero, a FIFO) would be read without end.
+  if (fs::exists(path, ec) && !fs::is_regular_file(path, ec)) file_field.fail("'" + name + "' is not a regular file");
   std::ifstream probe(path);
   if (!probe) file_field.fail("cannot open '" + name + "' (" + std::strerror(errno) + ")");
   return path.string();

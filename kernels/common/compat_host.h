@@ -45,6 +45,8 @@ PM_DEVICE uint32_t pm_float_as_uint_bits(float f) { uint32_t i; memcpy(&i, &f, 4
 #define pm_expf expf
 #define pm_logf logf
 #define pm_floorf floorf
+/* A product rounded on its own, never fused into a following add (watertight ray_triangle). */
+#define pm_mul_rn(a, b) ((a) * (b))
 #define pm_fmaf fmaf
 #define pm_copysignf copysignf
 #define pm_isfinite(x) isfinite(x)

@@ -47,12 +47,14 @@ PM_DEVICE int ray_triangle(const Ray* r, Vec3 v0, Vec3 v1, Vec3 v2, float t_min,
 {
   Vec3 a = vec3_sub(v0, r->origin), b = vec3_sub(v1, r->origin), c = vec3_sub(v2, r->origin);
   float az = vec3_component(a, r->kz), bz = vec3_component(b, r->kz), cz = vec3_component(c, r->kz);
-  float ax = vec3_component(a, r->kx) - r->shear_x * az, ay = vec3_component(a, r->ky) - r->shear_y * az;
-  float bx = vec3_component(b, r->kx) - r->shear_x * bz, by = vec3_component(b, r->ky) - r->shear_y * bz;
-  float cx = vec3_component(c, r->kx) - r->shear_x * cz, cy = vec3_component(c, r->ky) - r->shear_y * cz;
-  float u = cx * by - cy * bx;
-  float v = ax * cy - ay * cx;
-  float w = bx * ay - by * ax;
+  /* Unfused products: an FMA would round the two halves of an edge function differently on
+     the two triangles sharing the edge, and rays could slip through (or hit point triangles). */
+  float ax = vec3_component(a, r->kx) - pm_mul_rn(r->shear_x, az), ay = vec3_component(a, r->ky) - pm_mul_rn(r->shear_y, az);
+  float bx = vec3_component(b, r->kx) - pm_mul_rn(r->shear_x, bz), by = vec3_component(b, r->ky) - pm_mul_rn(r->shear_y, bz);
+  float cx = vec3_component(c, r->kx) - pm_mul_rn(r->shear_x, cz), cy = vec3_component(c, r->ky) - pm_mul_rn(r->shear_y, cz);
+  float u = pm_mul_rn(cx, by) - pm_mul_rn(cy, bx);
+  float v = pm_mul_rn(ax, cy) - pm_mul_rn(ay, cx);
+  float w = pm_mul_rn(bx, ay) - pm_mul_rn(by, ax);
   if ((u < 0.0f || v < 0.0f || w < 0.0f) && (u > 0.0f || v > 0.0f || w > 0.0f)) return 0;
   float det = u + v + w;
   if (det == 0.0f) return 0;

@@ -34,6 +34,8 @@ typedef unsigned int uint;
 #define pm_expf expf
 #define pm_logf logf
 #define pm_floorf floorf
+/* A product rounded on its own, never fused into a following add (watertight ray_triangle). */
+#define pm_mul_rn(a, b) __fmul_rn((a), (b))
 #define pm_fmaf fmaf
 #define pm_copysignf copysignf
 #define pm_isfinite(x) isfinite(x)

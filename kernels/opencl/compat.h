@@ -36,6 +36,8 @@ typedef int int32_t;
 #define pm_expf exp
 #define pm_logf log
 #define pm_floorf floor
+/* A product rounded on its own, never fused into a following add (watertight ray_triangle). */
+#define pm_mul_rn(a, b) ((a) * (b)) /* kernels.cl turns FP_CONTRACT off */
 #define pm_fmaf fma
 #define pm_copysignf copysign
 #define pm_isfinite(x) isfinite(x)

@@ -80,6 +80,15 @@ TEST_F(SceneJsonErrors, ValidBaseSceneLoads) {
   EXPECT_NO_THROW(load_scene_file(write("scene.json", valid_scene().dump(2))));
 }
 
+// A device or pipe would be read without end: refused up front, naming the file or the field.
+TEST_F(SceneJsonErrors, DeviceFilesAreRefusedNotRead) {
+  EXPECT_NE(error_of("/dev/zero").find("/dev/zero: not a regular file"), std::string::npos);
+  std::string scene = write("dev.json", R"({"format": "pmrender-scene", "version": 1,
+    "meshes": [{"file": "/dev/zero"}], "lights": [{"position": [0, 2, 0], "power": [1, 1, 1]}],
+    "camera": {"position": [0, 0, -5], "look_at": [0, 0, 0]}})");
+  EXPECT_NE(error_of(scene).find("meshes[0].file: '/dev/zero' is not a regular file"), std::string::npos);
+}
+
 TEST_F(SceneJsonErrors, MissingFileNamesIt) {
   expect_message(error_of((dir_ / "nope.json").string()), "nope.json", "nope.json: cannot open");
 }

@@ -1,0 +1,55 @@
+// Differences of two renders of the same frame, as `pmrender compare` and the golden-image tests
+// compute them: the perceptual HDR-FLIP (render/flip.h) and three plain statistics, each with a
+// per-pixel error map. Bad input (different sizes, a missing layer, NaN or Inf) is a
+// pm::InputError naming the file and, for non-finite values, the pixel.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "render/flip.h"
+#include "render/image.h"
+
+namespace pm {
+
+enum class ImageMetric {
+  flip,    // mean HDR-FLIP over the image, in [0, 1]
+  rmse,    // sqrt(mean over pixels and channels of (test - reference)^2), radiance units
+  relmse,  // mean over pixels and channels of (test - reference)^2 / (reference^2 + 0.01)
+  mean,    // |mean(test) - mean(reference)| / mean(reference), means over pixels and channels
+};
+
+// "flip", "rmse", "relmse", "mean"; InputError naming --metric otherwise.
+ImageMetric parse_image_metric(const std::string& name);
+const char* image_metric_name(ImageMetric metric);
+
+struct ImageComparison {
+  int width = 0, height = 0;
+  double flip = 0, rmse = 0, relmse = 0, mean = 0;
+  flip::ExposureRange exposures;  // HDR-FLIP's exposures
+  double ppd = 0;                 // HDR-FLIP's viewing conditions
+
+  // Per-pixel error maps, width*height each: HDR-FLIP; sqrt of the channel-mean squared
+  // difference; channel-mean relative squared difference; channel-mean |difference| divided by
+  // mean(reference). Each map's mean is its metric, except rmse (root of the mean of squares).
+  std::vector<float> flip_map, rmse_map, relmse_map, mean_map;
+
+  double value(ImageMetric metric) const;
+  const std::vector<float>& map(ImageMetric metric) const;
+};
+
+// Both images are linear RGB, width*height*3 floats, already checked finite.
+ImageComparison compare_images(const std::vector<float>& reference, const std::vector<float>& test, int width,
+                               int height, double ppd = flip::default_pixels_per_degree());
+
+// The named layer ("" or "combined": the combined image) of an image read from file; InputError
+// naming the file, the layer and the layers the file has when it is missing.
+const ImageLayer& require_layer(const FrameImage& image, const std::string& layer, const std::string& file);
+
+// InputError "<file>: layer <name>: pixel (x, y) channel G is NaN" at the first non-finite value.
+void require_finite(const std::vector<float>& rgb, int width, const std::string& file, const std::string& layer);
+
+// The error map as an image to write: the combined layer holds the map as grey (R = G = B).
+FrameImage error_map_image(const std::vector<float>& map, int width, int height);
+
+}  // namespace pm

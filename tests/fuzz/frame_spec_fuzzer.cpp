@@ -1,0 +1,43 @@
+// libFuzzer target for --frames specifications (animations/frame_spec.h). The first four bytes
+// choose the sequence's frame range [first, last] (first in -128..127, up to 65535 frames, and
+// sometimes last < first); the rest is the specification. The contract checked: every problem is
+// a pm::InputError naming --frames, and an accepted list is non-empty, duplicate-free and inside
+// the range.
+#include <cstdint>
+#include <cstdio>
+#include <set>
+#include <string>
+
+#include "animations/frame_spec.h"
+#include "render/errors.h"
+
+namespace {
+
+void require(bool ok, const char* what) {
+  if (!ok) {
+    std::fprintf(stderr, "frame spec fuzzer: %s\n", what);
+    __builtin_trap();
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  if (size < 4) return 0;
+  const int first = int(int8_t(data[0]));
+  const int span = int(data[1]) | int(data[2]) << 8;
+  const int last = (data[3] & 1) ? first + span : first - span % 16;
+  const std::string spec(reinterpret_cast<const char*>(data + 4), size - 4);
+  try {
+    const std::vector<int> frames = pm::parse_frame_spec(spec, first, last);
+    require(!frames.empty(), "accepted an empty list");
+    std::set<int> seen;
+    for (int f : frames) {
+      require(f >= first && f <= last, "frame outside the range");
+      require(seen.insert(f).second, "duplicate frame");
+    }
+  } catch (const pm::InputError& e) {
+    require(std::string(e.what()).rfind("--frames", 0) == 0, "message does not start with --frames");
+  }
+  return 0;
+}
