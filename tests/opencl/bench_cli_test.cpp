@@ -13,23 +13,15 @@
 
 #include "render/stage_timer.h"
 #include "support/paths.h"
+#include "support/pmrender_process.h"
 
 namespace pm {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct BenchResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using BenchResult = test::ProcessResult;
+using test::read_text;
 
 class BenchCli : public ::testing::Test {
  protected:
@@ -41,16 +33,7 @@ class BenchCli : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  BenchResult pmrender(const std::string& args) {
-    BenchResult r;
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    std::string cmd = test::pmrender_binary() + " " + args + " </dev/null >" + out.string() + " 2>" + err.string();
-    int status = std::system(cmd.c_str());
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = slurp(out);
-    r.err = slurp(err);
-    return r;
-  }
+  BenchResult pmrender(const std::string& args) { return test::run_pmrender(args, dir_); }
 
   // Files the bench left in dir_ besides the captured output.
   std::vector<std::string> written() {
@@ -87,7 +70,7 @@ TEST_F(BenchCli, CornellBoxPrintsEveryStageAndWritesJson) {
 
   ASSERT_TRUE(fs::exists(json));
   EXPECT_EQ(written(), std::vector<std::string>{"bench.json"});  // no temporary file left
-  const nlohmann::json j = nlohmann::json::parse(slurp(json));
+  const nlohmann::json j = nlohmann::json::parse(read_text(json));
   EXPECT_EQ(j.at("pmrender_version"), PMRENDER_VERSION);
   EXPECT_FALSE(j.at("date").get<std::string>().empty());
   EXPECT_EQ(j.at("scene").at("name"), "cornell-box");
@@ -139,7 +122,7 @@ TEST_F(BenchCli, LeafSweepAndRadiusHistogram) {
   EXPECT_NE(r.out.find("0.95 - 1.00"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("> 1.00"), std::string::npos) << r.out;
 
-  const nlohmann::json j = nlohmann::json::parse(slurp(json));
+  const nlohmann::json j = nlohmann::json::parse(read_text(json));
   const nlohmann::json& points = j.at("leaf_sweep").at("points");
   ASSERT_EQ(points.size(), 3u);  // 1, 4 and auto
   EXPECT_EQ(points[0].at("leaf"), 1);

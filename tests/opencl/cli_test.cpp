@@ -12,23 +12,14 @@
 #include "render/exr_io.h"
 #include "support/image_stats.h"
 #include "support/paths.h"
+#include "support/pmrender_process.h"
 
 namespace pm {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct ProcessResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string read_file(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::ProcessResult;
 
 class Cli : public ::testing::Test {
  protected:
@@ -40,16 +31,7 @@ class Cli : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  ProcessResult pmrender(const std::string& args) {
-    ProcessResult r;
-    std::string cmd = test::pmrender_binary() + " " + args + " </dev/null >" + (dir_ / "stdout").string() +
-                      " 2>" + (dir_ / "stderr").string();
-    int status = std::system(cmd.c_str());
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = read_file(dir_ / "stdout");
-    r.err = read_file(dir_ / "stderr");
-    return r;
-  }
+  ProcessResult pmrender(const std::string& args) { return test::run_pmrender(args, dir_); }
 
   std::string data(const std::string& name) { return test::test_data_dir() + "/cli/" + name; }
   bool any_exr_written() {

@@ -30,6 +30,7 @@
 #include "support/device_checks.h"
 #include "support/image_stats.h"
 #include "support/paths.h"
+#include "support/pmrender_process.h"
 
 namespace pm {
 namespace {
@@ -264,17 +265,8 @@ TEST_F(Sequence, HaltonPhotonsReduceFlicker) {
 
 // --- the command line ---------------------------------------------------------------------
 
-struct Process {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using Process = test::ProcessResult;
+using test::read_text;
 
 class SequenceCli : public ::testing::Test {
  protected:
@@ -286,16 +278,7 @@ class SequenceCli : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  Process pmrender(const std::string& args) {
-    Process r;
-    const std::string cmd = test::pmrender_binary() + " " + args + " </dev/null >" + (dir_ / "stdout").string() +
-                            " 2>" + (dir_ / "stderr").string();
-    const int status = std::system(cmd.c_str());
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = read_text(dir_ / "stdout");
-    r.err = read_text(dir_ / "stderr");
-    return r;
-  }
+  Process pmrender(const std::string& args) { return test::run_pmrender(args, dir_); }
   std::string out(const std::string& pattern) { return (dir_ / "out" / pattern).string(); }
   std::set<std::string> files() {
     std::set<std::string> names;

@@ -1,0 +1,41 @@
+// Running the pmrender binary as a user would, from tests: a separate process with no standard
+// input, its output captured through files, its exit code returned.
+#pragma once
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "support/paths.h"
+
+namespace pm::test {
+
+struct ProcessResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+inline std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// stdout and stderr go through dir/stdout.txt and dir/stderr.txt.
+inline ProcessResult run_pmrender(const std::string& args, const std::filesystem::path& dir) {
+  const std::filesystem::path out = dir / "stdout.txt", err = dir / "stderr.txt";
+  const std::string cmd = pmrender_binary() + " " + args + " </dev/null >" + out.string() + " 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  ProcessResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = read_text(out);
+  r.err = read_text(err);
+  return r;
+}
+
+}  // namespace pm::test
