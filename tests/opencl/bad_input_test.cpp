@@ -62,7 +62,7 @@ TEST(BadInput, EveryCorpusSceneIsListed) {
 }
 
 TEST(BadInput, ScenesExitTwoWithOneLineNamingFileAndFieldAndWriteNothing) {
-  const fs::path out = fs::temp_directory_path() / "pm_bad_input";
+  const fs::path out = test::process_temp_dir() / "pm_bad_input";
   for (const auto& row : read_tsv(corpus_dir() + "/scenes/EXPECTED.tsv")) {
     ASSERT_EQ(row.size(), 2u);
     fs::remove_all(out);

@@ -418,7 +418,7 @@ TEST(Extremes, PhotonCountsBeyondTheRandomStreamsAreRefused) {
 
 TEST(Extremes, CommandLineRefusesTooManyPhotonsWithoutWritingAFile) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "pm_extremes_cli";
+  const fs::path dir = test::process_temp_dir() / "pm_extremes_cli";
   fs::remove_all(dir);
   fs::create_directories(dir);
   // timeout: a build that accepted the count would start tracing 5e9 photons.
