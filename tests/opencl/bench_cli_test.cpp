@@ -23,17 +23,9 @@ namespace fs = std::filesystem;
 using BenchResult = test::ProcessResult;
 using test::read_text;
 
-class BenchCli : public ::testing::Test {
+class BenchCli : public test::PmrenderProcessTest {
  protected:
-  void SetUp() override {
-    dir_ = test::process_temp_dir() /
-           ("pm_bench_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
 
-  BenchResult pmrender(const std::string& args) { return test::run_pmrender(args, dir_); }
 
   // Files the bench left in dir_ besides the captured output.
   std::vector<std::string> written() {
@@ -53,7 +45,6 @@ class BenchCli : public ::testing::Test {
     EXPECT_TRUE(written().empty()) << args;
   }
 
-  fs::path dir_;
 };
 
 TEST_F(BenchCli, CornellBoxPrintsEveryStageAndWritesJson) {

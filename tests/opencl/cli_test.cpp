@@ -21,17 +21,9 @@ namespace fs = std::filesystem;
 
 using test::ProcessResult;
 
-class Cli : public ::testing::Test {
+class Cli : public test::PmrenderProcessTest {
  protected:
-  void SetUp() override {
-    dir_ = test::process_temp_dir() /
-           ("pm_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
 
-  ProcessResult pmrender(const std::string& args) { return test::run_pmrender(args, dir_); }
 
   std::string data(const std::string& name) { return test::test_data_dir() + "/cli/" + name; }
   bool any_exr_written() {
@@ -49,7 +41,6 @@ class Cli : public ::testing::Test {
     EXPECT_FALSE(any_exr_written());
   }
 
-  fs::path dir_;
 };
 
 TEST_F(Cli, DefaultSceneRendersAFiniteLitExr) {

@@ -268,17 +268,13 @@ TEST_F(Sequence, HaltonPhotonsReduceFlicker) {
 using Process = test::ProcessResult;
 using test::read_text;
 
-class SequenceCli : public ::testing::Test {
+class SequenceCli : public test::PmrenderProcessTest {
  protected:
   void SetUp() override {
-    dir_ = test::process_temp_dir() /
-           ("pm_sequence_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
+    PmrenderProcessTest::SetUp();
     fs::create_directories(dir_ / "out");
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
-  Process pmrender(const std::string& args) { return test::run_pmrender(args, dir_); }
   std::string out(const std::string& pattern) { return (dir_ / "out" / pattern).string(); }
   std::set<std::string> files() {
     std::set<std::string> names;
@@ -303,7 +299,6 @@ class SequenceCli : public ::testing::Test {
     EXPECT_TRUE(files().empty()) << args;
   }
 
-  fs::path dir_;
 };
 
 const char kSmall[] = " --backend opencl --resolution 40x30 --photons 20000";

@@ -4,6 +4,8 @@
 
 #include <sys/wait.h>
 
+#include <gtest/gtest.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -37,5 +39,21 @@ inline ProcessResult run_pmrender(const std::string& args, const std::filesystem
   r.err = read_text(err);
   return r;
 }
+
+// Fixture for command-line tests: a fresh folder per test (under this process's temporary folder,
+// named after the suite and the test) and pmrender() run with its output captured there.
+class PmrenderProcessTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = process_temp_dir() / (std::string(info->test_suite_name()) + "_" + info->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  ProcessResult pmrender(const std::string& args) { return run_pmrender(args, dir_); }
+
+  std::filesystem::path dir_;
+};
 
 }  // namespace pm::test
