@@ -1,7 +1,7 @@
 // Keyframe tracks: a value of N float components given at key times (seconds) and interpolated
 // between them. Before the first key and after the last the track holds the end key's value.
 // Pure host code with no file or scene knowledge; loaders fill tracks, animations/
-// scene_animation.h evaluates the scene's tracks at a frame (docs/animation.md).
+// render/scene_frame.h evaluates the scene's tracks at a frame (docs/animation.md).
 #pragma once
 
 #include <array>

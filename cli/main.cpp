@@ -27,6 +27,10 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("devices")) return devices();
     if (app.got_subcommand("compare")) return compare();
     if (app.got_subcommand("bench")) return bench();
+  } catch (const pm::SettingError& e) {
+    // The library names the setting; on the command line it is the option of the same name.
+    std::cerr << "pmrender: --" << e.what() << "\n";
+    return 2;
   } catch (const pm::InputError& e) {
     std::cerr << "pmrender: " << e.what() << "\n";
     return 2;

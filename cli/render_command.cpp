@@ -8,6 +8,7 @@
 
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -16,9 +17,8 @@
 #include <set>
 #include <sstream>
 
-#include "animations/frame_spec.h"
-#include "animations/scene_animation.h"
 #include "cli/commands.h"
+#include "cli/progress_line.h"
 #include "cli/render_options.h"
 #include "render/device.h"
 #include "render/errors.h"
@@ -26,7 +26,9 @@
 #include "render/output_pattern.h"
 #include "render/preview_png.h"
 #include "render/renderer.h"
+#include "render/scene_frame.h"
 #include "scene_io/cornell_box.h"
+#include "scene_io/frame_spec.h"
 #include "scene_io/scene_file.h"
 
 namespace pm::cli {
@@ -48,25 +50,15 @@ struct RenderCommandOptions {
   bool resume = false;
   bool quiet = false;
   bool verbose = false;
-  std::string photon_sequence = "random";
-  bool no_photon_reuse = false;
   CLI::Option* frame_option = nullptr;
   CLI::Option* frames_option = nullptr;
 };
 
-std::string seconds_text(double s) {
+// A statistic for an EXR header: integers without a fraction, others with full precision.
+std::string number_text(double v) {
   char text[32];
-  if (s < 1) {
-    std::snprintf(text, sizeof(text), "%.0f ms", s * 1000);
-  } else if (s < 60) {
-    std::snprintf(text, sizeof(text), "%.1f s", s);
-  } else {
-    const long total = long(s + 0.5);
-    if (total >= 3600)
-      std::snprintf(text, sizeof(text), "%ld:%02ld:%02ld", total / 3600, (total / 60) % 60, total % 60);
-    else
-      std::snprintf(text, sizeof(text), "%ld:%02ld", total / 60, total % 60);
-  }
+  if (v == double(int64_t(v)) && std::fabs(v) < 1e15) std::snprintf(text, sizeof(text), "%lld", (long long)v);
+  else std::snprintf(text, sizeof(text), "%.9g", v);
   return text;
 }
 
@@ -85,7 +77,13 @@ std::vector<int> select_frames(const RenderCommandOptions& o, const Scene& scene
   const int last = a.enabled ? a.last_frame : kMaxFrameNumber;
   const bool frame_given = o.frame_option->count() > 0, frames_given = o.frames_option->count() > 0;
   if (frame_given && frames_given) throw InputError("--frame and --frames: give one of them, not both");
-  if (frames_given) return parse_frame_spec(o.frames, first, last);
+  if (frames_given) {
+    try {
+      return parse_frame_spec(o.frames, first, last);
+    } catch (const InputError& e) {
+      throw InputError(std::string("--frames: ") + e.what());
+    }
+  }
   if (frame_given) {
     if (o.frame < first || o.frame > last)
       throw InputError("--frame: " + std::to_string(o.frame) + " is outside the scene's frames " + std::to_string(first) +
@@ -132,35 +130,10 @@ void remove_stale_temporaries(const std::vector<std::string>& targets, bool verb
   }
 }
 
-class Progress {
- public:
-  Progress(bool enabled, size_t total) : enabled_(enabled), total_(total) {}
-  void clear() {
-    if (enabled_ && drawn_) std::fprintf(stderr, "\r\033[K");
-    drawn_ = false;
-  }
-  void show(int frame, size_t done, double frame_seconds, double mean_seconds) {
-    if (!enabled_) return;
-    const double percent = total_ ? 100.0 * double(done) / double(total_) : 100.0;
-    std::fprintf(stderr, "\r\033[Kframe %d  %zu/%zu (%.0f%%)  %s/frame  ETA %s", frame, done, total_, percent,
-                 seconds_text(frame_seconds).c_str(), seconds_text(mean_seconds * double(total_ - done)).c_str());
-    std::fflush(stderr);
-    drawn_ = true;
-  }
-
- private:
-  bool enabled_;
-  size_t total_;
-  bool drawn_ = false;
-};
-
 int run_render(const RenderCommandOptions& o) {
   SceneLoadReport report;
   Scene scene = o.render.scene_path.empty() ? builtin_cornell_box() : load_scene_file(o.render.scene_path, &report);
-  RenderSettings settings = render_settings(o.render);
-  settings.photons.sequence =
-      o.photon_sequence == "halton" ? PM_PHOTON_SEQUENCE_HALTON : PM_PHOTON_SEQUENCE_RANDOM;
-  settings.reuse_photons = !o.no_photon_reuse;
+  const RenderSettings settings = render_settings(o.render);
   if (!o.preview.empty() && !preview_available())
     throw InputError("--preview needs OpenImageIO, which this build does not have");
   const std::string pattern = o.output.empty() ? default_output_pattern(scene.name) : o.output;
@@ -199,14 +172,13 @@ int run_render(const RenderCommandOptions& o) {
     for (const std::string& warning : report.warnings) std::fprintf(stderr, "pmrender: warning: %s\n", warning.c_str());
 
   const bool sequence = frames.size() > 1;
-  Progress progress(sequence && !o.quiet && ::isatty(STDERR_FILENO), todo.size());
+  ProgressLine progress(sequence && !o.quiet);
   std::vector<int> failed;
   size_t rendered = 0, reused = 0;
   const auto start = std::chrono::steady_clock::now();
   for (size_t i = 0; i < todo.size(); ++i) {
     const int f = todo[i];
     const std::string path = expand_output_pattern(pattern, f);
-    const auto frame_start = std::chrono::steady_clock::now();
     try {
       FrameStats stats;
       FrameImage image = renderer->render_frame(f, &stats);
@@ -219,19 +191,21 @@ int run_render(const RenderCommandOptions& o) {
                           {"pmrender/scene", scene.name + " (" + scene.source + ")"},
                           {"pmrender/frame", std::to_string(f)},
                           {"pmrender/time", std::to_string(frame_time(scene, f))},
-                          {"pmrender/photon_frame", std::to_string(stats.photon_frame)},
-                          {"pmrender/photons_reused", stats.photons_reused ? "1" : "0"},
                           {"pmrender/backend", info.backend},
                           {"pmrender/device", info.name},
-                          {"pmrender/settings", settings.describe()},
+                          {"pmrender/settings", renderer->describe()},
+                          {"pmrender/passes", std::to_string(stats.passes)},
                           {"pmrender/render_ms", std::to_string(stats.render_ms)}};
+      for (const MethodStats::Entry& e : stats.method.entries)
+        image.attributes.push_back({"pmrender/" + e.name, number_text(e.value)});
+      const bool photons_reused = stats.method.get("photons_reused") != 0;
       write_exr(path, image, o.full_float);
       if (!o.preview.empty()) write_preview_png(expand_output_pattern(o.preview, f), image);
       ++rendered;
-      reused += stats.photons_reused;
+      reused += photons_reused ? 1 : 0;
       if (!o.quiet) {
         std::printf("wrote %s (frame %d, %dx%d, %s: %s, %.2f ms%s)\n", path.c_str(), f, image.width, image.height,
-                    info.backend.c_str(), info.name.c_str(), stats.render_ms, stats.photons_reused ? ", photons reused" : "");
+                    info.backend.c_str(), info.name.c_str(), stats.render_ms, photons_reused ? ", photons reused" : "");
         std::fflush(stdout);
       }
     } catch (const std::exception& e) {
@@ -240,9 +214,8 @@ int run_render(const RenderCommandOptions& o) {
       std::fprintf(stderr, "pmrender: frame %d: %s\n", f, e.what());
       failed.push_back(f);
     }
-    const auto now = std::chrono::steady_clock::now();
-    progress.show(f, i + 1, std::chrono::duration<double>(now - frame_start).count(),
-                  std::chrono::duration<double>(now - start).count() / double(i + 1));
+    progress.show_count("frame " + std::to_string(f), i + 1, todo.size(),
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), "frame");
   }
   progress.clear();
   const double total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -292,12 +265,6 @@ Run add_render_command(CLI::App& app) {
   options->frame_option =
       cmd->add_option("--frame", options->frame, "One frame to render (the same as --frames N)")->check(CLI::NonNegativeNumber);
   cmd->add_flag("--resume", options->resume, "Skip frames whose output file is already complete");
-  cmd->add_option("--photon-sequence", options->photon_sequence,
-                  "random, or halton: emission directions from a Halton sequence, the same in every frame")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"random", "halton"}));
-  cmd->add_flag("--no-photon-reuse", options->no_photon_reuse,
-                "Trace photons in every frame, keyed by its own frame number, also over camera-only motion");
   cmd->add_flag("-q,--quiet", options->quiet, "Print nothing on success (no progress, no summary)");
   cmd->add_flag("-v,--verbose", options->verbose, "Also list skipped frames and removed stale temporaries");
   return [options] { return run_render(*options); };

@@ -14,27 +14,17 @@ void add_render_options(CLI::App* cmd, RenderOptions& o) {
       ->check(CLI::IsMember({"auto", "cuda", "opencl"}));
   cmd->add_option("--device", o.device, "Device index within the backend (see 'pmrender devices')");
   cmd->add_option("--resolution", o.resolution, "WIDTHxHEIGHT, overrides the scene camera's");
-  cmd->add_option("--mirror-depth", o.mirror_depth, "Perfect-mirror bounces followed from the eye")
-      ->capture_default_str()->check(CLI::Range(0, 16));
+  cmd->add_option("--mirror-depth", o.mirror_depth, "Perfect-mirror bounces followed from the eye")->capture_default_str();
   cmd->add_option("--seed", o.seed, "Random seed")->capture_default_str();
-  PhotonSettings& ph = o.photons;
-  cmd->add_option("--photons", ph.photons, "Photons emitted per frame (0: direct light only)")->capture_default_str();
-  cmd->add_option("--batch", ph.batch, "Photons per pass; memory is bounded by this, not by --photons")
-      ->capture_default_str()->check(CLI::PositiveNumber);
-  cmd->add_option("--bounces", ph.bounces, "Diffuse bounces of indirect light")->capture_default_str()->check(CLI::Range(0, 16));
-  cmd->add_option("--estimator", o.estimator, "pd (photon differentials), knn or radius")
-      ->capture_default_str()->check(CLI::IsMember({"pd", "knn", "radius"}));
-  cmd->add_option("--kernel", o.kernel, "Density estimation kernel: constant or epanechnikov")
-      ->capture_default_str()->check(CLI::IsMember({"constant", "epanechnikov"}));
-  cmd->add_option("--smoothing", ph.smoothing, "Footprint smoothing factor s (section 4.3)")->capture_default_str();
-  cmd->add_option("--rmax", ph.rmax, "Largest footprint semiaxis and k-NN search radius, metres "
-                                     "(default: 10% of the scene diagonal)");
-  cmd->add_option("--radius", ph.radius, "Gather radius of --estimator radius, metres (default: 5% of the scene diagonal)");
-  cmd->add_option("--k", ph.knn_k, "Neighbours of --estimator knn")->capture_default_str()->check(CLI::Range(1, 256));
-  cmd->add_option("--leaf", o.leaf, "Photon map leaf threshold T: auto or a number")->capture_default_str();
-  cmd->add_option("--photon-bvh", o.photon_bvh, "Photon map builder: lbvh (device, per frame) or vvh (voxel volume "
-                                                "heuristic on the host, for comparison)")
-      ->capture_default_str()->check(CLI::IsMember({"lbvh", "vvh"}));
+  cmd->add_option("--passes", o.passes, "Passes of the indirect-light method per frame, summed in the film "
+                                        "(photon mapping: independent photon batches; memory is one pass's)")
+      ->capture_default_str();
+  std::string method_help = "Indirect-light method:";
+  for (const MethodEntry& m : methods()) method_help += std::string(" ") + m.name + " (" + m.summary + ")";
+  cmd->add_option("--method", o.method, method_help)->capture_default_str()->check(CLI::IsMember(method_names()));
+  cmd->add_flag("--no-photon-reuse,--no-reuse", o.no_reuse,
+                "Compute the lighting of every frame keyed by its own frame number, also over camera-only motion");
+  for (const MethodEntry& m : methods()) o.method_options[m.name] = m.add_options(cmd);
 }
 
 Scene load_scene(const RenderOptions& o) {
@@ -45,24 +35,11 @@ RenderSettings render_settings(const RenderOptions& o) {
   RenderSettings settings;
   settings.mirror_depth = o.mirror_depth;
   settings.seed = o.seed;
+  settings.passes = o.passes;
+  settings.reuse_lighting = !o.no_reuse;
   if (!o.resolution.empty()) parse_resolution(o.resolution, &settings.width, &settings.height);
-  settings.photons = o.photons;
-  PhotonSettings& ph = settings.photons;
-  ph.estimator = o.estimator == "knn" ? PM_ESTIMATOR_KNN : o.estimator == "radius" ? PM_ESTIMATOR_RADIUS : PM_ESTIMATOR_PD;
-  ph.kernel_shape = o.kernel == "epanechnikov" ? PM_KERNEL_EPANECHNIKOV : PM_KERNEL_CONSTANT;
-  ph.vvh_map = o.photon_bvh == "vvh";
-  if (o.leaf == "auto") {
-    ph.leaf_threshold = 0;
-  } else {
-    try {
-      size_t used = 0;
-      int t = std::stoi(o.leaf, &used);
-      if (used != o.leaf.size() || t < 1) throw std::invalid_argument("");
-      ph.leaf_threshold = t;
-    } catch (const std::exception&) {
-      throw InputError("--leaf: expected 'auto' or a positive integer, got '" + o.leaf + "'");
-    }
-  }
+  settings.method = o.method_options.at(o.method)->settings();
+  settings.validate();
   return settings;
 }
 

@@ -1,10 +1,14 @@
-// The options every rendering command shares (render, bench): scene, device, resolution and the
-// photon-mapping settings, registered once and turned into a Scene and RenderSettings once.
+// The options every rendering command shares (render, bench): scene, device, resolution, passes,
+// the method and each method's own options, registered once and turned into a Scene and
+// validated RenderSettings once.
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <map>
+#include <memory>
 #include <string>
 
+#include "cli/method_options.h"
 #include "render/renderer.h"
 #include "render/scene.h"
 
@@ -17,16 +21,15 @@ struct RenderOptions {
   std::string resolution;
   int mirror_depth = 1;
   uint32_t seed = 1;
-  PhotonSettings photons;
-  std::string estimator = "pd";
-  std::string kernel = "constant";
-  std::string leaf = "auto";
-  std::string photon_bvh = "lbvh";
+  uint32_t passes = 1;
+  std::string method = "photon";
+  bool no_reuse = false;
+  std::map<std::string, std::shared_ptr<MethodOptions>> method_options;  // by method name
 };
 
 void add_render_options(CLI::App* cmd, RenderOptions& options);
 
-// The scene the options name, and the settings they describe; InputError on bad values.
+// The scene the options name, and the settings they describe; SettingError/InputError on bad values.
 Scene load_scene(const RenderOptions& options);
 RenderSettings render_settings(const RenderOptions& options);
 

@@ -48,7 +48,7 @@ const char* kernel_name(KernelId id) {
 
 const char* buffer_slot_name(BufferSlot slot) {
   static const char* const names[] = {
-#define PM_SLOT_NAME(type, name) #name,
+#define PM_SLOT_NAME(group, type, name, extent, per) #name,
       PM_BUFFER_LIST(PM_SLOT_NAME)
 #undef PM_SLOT_NAME
   };
@@ -83,11 +83,11 @@ std::unique_ptr<Device> create_device(const std::string& backend, int index) {
 #if PMRENDER_HAVE_CUDA
     return create_cuda_device(index);
 #else
-    throw InputError("--backend cuda: this pmrender was built without CUDA (rebuild with nvcc available)");
+    throw SettingError("backend", "cuda: this pmrender was built without CUDA (rebuild with nvcc available)");
 #endif
   }
   if (backend == "opencl") return create_opencl_device(index);
-  throw InputError("--backend: unknown backend '" + backend + "' (expected auto, cuda or opencl)");
+  throw SettingError("backend", "unknown backend '" + backend + "' (expected auto, cuda or opencl)");
 }
 
 }  // namespace pm

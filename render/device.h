@@ -48,10 +48,6 @@ class DeviceBuffer {
   size_t bytes_ = 0;
 };
 
-struct SortBuffers {
-  DeviceBuffer keys, values, keys_alt, values_alt;
-};
-
 // A point in the device's command stream; the difference of two is device time.
 using TimerEvent = std::shared_ptr<void>;
 
@@ -67,16 +63,22 @@ class Device {
   virtual void copy(const DeviceBuffer& src, DeviceBuffer& dst, size_t bytes) = 0;
 
   // Kernels read their buffers from the slot table; a slot left unbound is null on the device.
-  void bind(BufferSlot slot, const DeviceBuffer& buffer) { slots_[static_cast<size_t>(slot)] = buffer.handle(); }
-  void unbind(BufferSlot slot) { slots_[static_cast<size_t>(slot)] = nullptr; }
+  // The host binds a frame's buffers once (render/buffer_table.h); backends pass the table to
+  // the device only when it changed (slots_version()).
+  void bind(BufferSlot slot, const DeviceBuffer& buffer) { set_slot(slot, buffer.handle()); }
+  void unbind(BufferSlot slot) { set_slot(slot, nullptr); }
   // Clears every slot bound to handle (DeviceBuffer::reset calls it: no launch may pass a freed buffer).
-  void unbind_handle(const void* handle) { for (void*& s : slots_) if (s == handle) s = nullptr; }
+  void unbind_handle(const void* handle) {
+    for (size_t s = 0; s < slots_.size(); ++s)
+      if (slots_[s] == handle) set_slot(static_cast<BufferSlot>(s), nullptr);
+  }
   virtual void launch(KernelId kernel, uint32_t work_items, const LaunchParams& params) = 0;
 
-  // Sorts count (key, value) pairs by the low key_bits of the key, stably. The pairs start in
-  // keys/values, which hold the result on return; keys_alt/values_alt are scratch of equal size.
-  // CUDA runs CUB; OpenCL runs the portable radix sort kernels (render/portable_sort.h).
-  virtual void sort_pairs(SortBuffers& buffers, uint32_t count, int key_bits) = 0;
+  // Sorts count (key, value) pairs by the low key_bits of the key, stably, from keys_in/values_in
+  // into keys_out/values_out (the inputs may be overwritten). CUDA runs CUB; OpenCL runs the
+  // portable radix sort kernels (render/portable_sort.h).
+  virtual void sort_pairs(DeviceBuffer& keys_in, DeviceBuffer& values_in, DeviceBuffer& keys_out,
+                          DeviceBuffer& values_out, uint32_t count, int key_bits) = 0;
 
   virtual void synchronize() = 0;
 
@@ -99,9 +101,20 @@ class Device {
 
  protected:
   const std::array<void*, kBufferSlotCount>& slots() const { return slots_; }
+  // Increases whenever a slot changes.
+  uint64_t slots_version() const { return slots_version_; }
 
  private:
+  void set_slot(BufferSlot slot, void* handle) {
+    void*& s = slots_[static_cast<size_t>(slot)];
+    if (s != handle) {
+      s = handle;
+      ++slots_version_;
+    }
+  }
+
   std::array<void*, kBufferSlotCount> slots_{};
+  uint64_t slots_version_ = 1;
   uint64_t allocated_ = 0, peak_ = 0;
 };
 

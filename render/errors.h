@@ -13,6 +13,19 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A setting outside its range, from the library's validation of its settings structs. The
+// message starts with the setting's name ("smoothing: must be positive, got -1"), which the
+// command line spells as its option (--smoothing); the library itself names no option.
+class SettingError : public InputError {
+ public:
+  SettingError(const std::string& setting, const std::string& problem)
+      : InputError(setting + ": " + problem), setting_(setting) {}
+  const std::string& setting() const { return setting_; }
+
+ private:
+  std::string setting_;
+};
+
 // A device call failed. The message names the failing call and where it was made.
 class DeviceError : public std::runtime_error {
  public:

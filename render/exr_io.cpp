@@ -18,7 +18,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstdint>
@@ -31,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "render/atomic_file.h"
 #include "render/errors.h"
 
 namespace pm {
@@ -49,7 +49,6 @@ std::string layer_label(const std::string& layer) {
   return layer.empty() ? "combined" : "'" + layer + "'";
 }
 
-std::string errno_text(const std::string& what) { return what + ": " + std::strerror(errno); }
 
 // A malformed image is a bug in the caller; catch it before anything touches the disk.
 void check_image_shape(const std::string& path, const FrameImage& image) {
@@ -121,57 +120,6 @@ class DescriptorOStream : public Imf::OStream {
   std::string first_error_;
 };
 
-// A hidden file next to the target (same folder, so the final rename cannot cross file systems).
-// Removed by the destructor unless renamed onto the target.
-class TemporaryFile {
- public:
-  explicit TemporaryFile(const fs::path& target) {
-    // pid and counter keep concurrent writers, in this process or others, off each other's file.
-    static std::atomic<unsigned> counter{0};
-    path_ = target.parent_path() / ("." + target.filename().string() + ".tmp-" +
-                                    std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd_ < 0) throw std::runtime_error(errno_text("cannot create '" + path_.string() + "'"));
-  }
-  ~TemporaryFile() {
-    if (fd_ >= 0) ::close(fd_);
-    if (!renamed_) ::unlink(path_.c_str());
-  }
-  TemporaryFile(const TemporaryFile&) = delete;
-  TemporaryFile& operator=(const TemporaryFile&) = delete;
-
-  const fs::path& path() const { return path_; }
-  int fd() const { return fd_; }
-
-  // fsync first: without it a crash soon after the rename can leave an empty target on some
-  // file systems, which is exactly the partial file the rename is meant to avoid.
-  void sync_and_close() {
-    if (::fsync(fd_) != 0) throw std::runtime_error(errno_text("fsync"));
-    const int fd = fd_;
-    fd_ = -1;
-    if (::close(fd) != 0) throw std::runtime_error(errno_text("close"));
-  }
-  void rename_onto(const fs::path& target) {
-    if (std::rename(path_.c_str(), target.c_str()) != 0) {
-      throw std::runtime_error(errno_text("cannot rename '" + path_.string() + "' onto it"));
-    }
-    renamed_ = true;
-  }
-
- private:
-  fs::path path_;
-  int fd_ = -1;
-  bool renamed_ = false;
-};
-
-// Makes the rename itself durable. Best effort: some file systems refuse fsync on folders.
-void sync_folder(const fs::path& folder) {
-  const int fd = ::open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd < 0) return;
-  ::fsync(fd);
-  ::close(fd);
-}
-
 void write_exr_atomically(const std::string& path, const FrameImage& image, bool full_float) {
   const Imf::PixelType type = full_float ? Imf::FLOAT : Imf::HALF;
   Imf::Header header(image.width, image.height);
@@ -205,27 +153,15 @@ void write_exr_atomically(const std::string& path, const FrameImage& image, bool
     }
   }
 
-  const fs::path target(path);
-  if (!target.parent_path().empty()) {
-    std::error_code error;
-    fs::create_directories(target.parent_path(), error);
-    if (error) {
-      throw std::runtime_error("cannot create folder '" + target.parent_path().string() +
-                               "': " + error.message());
-    }
-  }
-
-  TemporaryFile temporary(target);
-  DescriptorOStream stream(temporary.path().string(), temporary.fd());
+  AtomicFile temporary{fs::path(path)};
+  DescriptorOStream stream(temporary.temporary_path().string(), temporary.fd());
   {
     Imf::OutputFile file(stream, header);
     file.setFrameBuffer(frame_buffer);
     file.writePixels(image.height);
   }  // the destructor writes the offset table; its errors only show in the stream
   if (!stream.first_error().empty()) throw std::runtime_error(stream.first_error());
-  temporary.sync_and_close();
-  temporary.rename_onto(target);
-  sync_folder(target.parent_path());
+  temporary.commit();
 }
 
 FrameImage read_exr_layers(const std::string& path) {

@@ -1,6 +1,7 @@
 // Image differences for `pmrender compare` and the golden-image tests.
 #include "render/image_metrics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -21,7 +22,7 @@ ImageMetric parse_image_metric(const std::string& name) {
   if (name == "rmse") return ImageMetric::rmse;
   if (name == "relmse") return ImageMetric::relmse;
   if (name == "mean") return ImageMetric::mean;
-  throw InputError("--metric: expected flip, rmse, relmse or mean, got '" + name + "'");
+  throw SettingError("metric", "expected flip, rmse, relmse or mean, got '" + name + "'");
 }
 
 const char* image_metric_name(ImageMetric metric) {
@@ -128,6 +129,26 @@ FrameImage error_map_image(const std::vector<float>& map, int width, int height)
   for (size_t i = 0; i < map.size(); ++i) layer.rgb[3 * i] = layer.rgb[3 * i + 1] = layer.rgb[3 * i + 2] = map[i];
   image.layers.push_back(std::move(layer));
   return image;
+}
+
+FlickerStats sequence_flicker(const std::vector<std::vector<float>>& frames) {
+  FlickerStats stats;
+  if (frames.size() < 2) return stats;
+  double total = 0;
+  for (size_t f = 1; f < frames.size(); ++f) {
+    const std::vector<float>& a = frames[f - 1];
+    const std::vector<float>& b = frames[f];
+    double diff = 0, level = 0;
+    for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
+      diff += std::fabs(double(b[i]) - double(a[i]));
+      level += 0.5 * (std::fabs(double(a[i])) + std::fabs(double(b[i])));
+    }
+    const double relative = level > 0 ? diff / level : 0.0;
+    total += relative;
+    stats.max = std::max(stats.max, relative);
+  }
+  stats.mean = total / double(frames.size() - 1);
+  return stats;
 }
 
 }  // namespace pm

@@ -19,7 +19,7 @@ enum class ImageMetric {
   mean,    // |mean(test) - mean(reference)| / mean(reference), means over pixels and channels
 };
 
-// "flip", "rmse", "relmse", "mean"; InputError naming --metric otherwise.
+// "flip", "rmse", "relmse", "mean"; SettingError for the setting "metric" otherwise.
 ImageMetric parse_image_metric(const std::string& name);
 const char* image_metric_name(ImageMetric metric);
 
@@ -51,5 +51,14 @@ void require_finite(const std::vector<float>& rgb, int width, const std::string&
 
 // The error map as an image to write: the combined layer holds the map as grey (R = G = B).
 FrameImage error_map_image(const std::vector<float>& map, int width, int height);
+
+// Mean absolute frame-to-frame difference of a sequence of images, relative to their mean:
+// for each consecutive pair, sum |b - a| / sum (|a| + |b|) / 2 over all pixels and channels,
+// then the mean and the largest value over the pairs. Fewer than two frames give zeros.
+struct FlickerStats {
+  double mean = 0;
+  double max = 0;
+};
+FlickerStats sequence_flicker(const std::vector<std::vector<float>>& frames);
 
 }  // namespace pm

@@ -16,12 +16,17 @@
 
 namespace pm {
 
+// The shared structs' sizes, as every device compiler must see them too (layout_probe).
+static_assert(sizeof(Material) == 48 && sizeof(PointLight) == 32 && sizeof(CameraParams) == 64,
+              "shared structs hold only float4 members");
+static_assert(sizeof(LaunchParams) % 16 == 0, "LaunchParams is a whole number of 16-byte rows");
+
 enum class BufferSlot : int {
-#define PM_SLOT_ENUM(type, name) name,
+#define PM_SLOT_ENUM(group, type, name, extent, per) name,
   PM_BUFFER_LIST(PM_SLOT_ENUM)
 #undef PM_SLOT_ENUM
 };
-#define PM_SLOT_COUNT(type, name) +1
+#define PM_SLOT_COUNT(group, type, name, extent, per) +1
 constexpr size_t kBufferSlotCount = 0 PM_BUFFER_LIST(PM_SLOT_COUNT);
 #undef PM_SLOT_COUNT
 

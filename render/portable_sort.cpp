@@ -24,9 +24,15 @@ DeviceBuffer& PortableSortScratch::histogram(Device& device, uint32_t count) {
   return histogram_;
 }
 
-void portable_sort_pairs(Device& device, PortableSortScratch& scratch, SortBuffers& buffers, uint32_t count,
+void portable_sort_pairs(Device& device, PortableSortScratch& scratch, DeviceBuffer& keys_in,
+                         DeviceBuffer& values_in, DeviceBuffer& keys_out, DeviceBuffer& values_out, uint32_t count,
                          int key_bits) {
-  if (count <= 1) return;
+  const size_t bytes = size_t(count) * sizeof(uint32_t);
+  if (count <= 1) {
+    device.copy(keys_in, keys_out, bytes);
+    device.copy(values_in, values_out, bytes);
+    return;
+  }
   LaunchParams params{};
   params.sort_count = count;
   params.sort_tile_count = tile_count(count);
@@ -34,11 +40,19 @@ void portable_sort_pairs(Device& device, PortableSortScratch& scratch, SortBuffe
   uint32_t chunks = (entries + PM_SORT_TILE - 1) / PM_SORT_TILE;
   device.bind(BufferSlot::sort_histogram, scratch.histogram(device, count));
 
-  DeviceBuffer* keys = &buffers.keys;
-  DeviceBuffer* values = &buffers.values;
-  DeviceBuffer* keys_alt = &buffers.keys_alt;
-  DeviceBuffer* values_alt = &buffers.values_alt;
-  int passes = (key_bits + PM_SORT_RADIX_BITS - 1) / PM_SORT_RADIX_BITS;
+  // Each pass scatters from (keys, values) into the other pair. With an even pass count the
+  // input pair first goes to the output buffers, so that the last pass lands there.
+  const int passes = (key_bits + PM_SORT_RADIX_BITS - 1) / PM_SORT_RADIX_BITS;
+  DeviceBuffer* keys = &keys_in;
+  DeviceBuffer* values = &values_in;
+  DeviceBuffer* keys_alt = &keys_out;
+  DeviceBuffer* values_alt = &values_out;
+  if (passes % 2 == 0) {
+    device.copy(keys_in, keys_out, bytes);
+    device.copy(values_in, values_out, bytes);
+    std::swap(keys, keys_alt);
+    std::swap(values, values_alt);
+  }
   for (int pass = 0; pass < passes; ++pass) {
     params.sort_shift = uint32_t(pass * PM_SORT_RADIX_BITS);
     device.bind(BufferSlot::sort_keys, *keys);
@@ -52,11 +66,9 @@ void portable_sort_pairs(Device& device, PortableSortScratch& scratch, SortBuffe
     std::swap(keys, keys_alt);
     std::swap(values, values_alt);
   }
-  // An odd number of passes leaves the result in the alternate buffers: hand them over.
-  if (keys != &buffers.keys) {
-    std::swap(buffers.keys, buffers.keys_alt);
-    std::swap(buffers.values, buffers.values_alt);
-  }
+  for (BufferSlot slot : {BufferSlot::sort_keys, BufferSlot::sort_values, BufferSlot::sort_keys_alt,
+                          BufferSlot::sort_values_alt})
+    device.unbind(slot);
 }
 
 }  // namespace pm

@@ -1,5 +1,5 @@
 // Host driver of the portable radix sort kernels (kernels/common/radix_sort.h), used by backends
-// without a library sort. Four bits per pass; the result ends in SortBuffers::keys/values.
+// without a library sort. Four bits per pass, ping-ponging between the input and output pairs.
 #pragma once
 
 #include "render/device.h"
@@ -16,7 +16,10 @@ class PortableSortScratch {
   DeviceBuffer histogram_;
 };
 
-void portable_sort_pairs(Device& device, PortableSortScratch& scratch, SortBuffers& buffers, uint32_t count,
+// Device::sort_pairs for backends without a library sort: the sorted pairs end in
+// keys_out/values_out; keys_in/values_in are used as the other half of each double buffer.
+void portable_sort_pairs(Device& device, PortableSortScratch& scratch, DeviceBuffer& keys_in,
+                         DeviceBuffer& values_in, DeviceBuffer& keys_out, DeviceBuffer& values_out, uint32_t count,
                          int key_bits);
 
 }  // namespace pm

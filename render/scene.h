@@ -58,8 +58,8 @@ struct LightAnimation {
   bool empty() const { return position.empty() && power.empty(); }
 };
 
-// A sequence: frame f shows the scene at time f / frame_rate seconds (animations/
-// scene_animation.h evaluates it). Geometry and materials never move.
+// A sequence: frame f shows the scene at time f / frame_rate seconds (render/
+// scene_frame.h evaluates it). Geometry and materials never move.
 struct SceneAnimation {
   // false: a still scene, the default. It renders as frame 0, any frame number shows the same
   // scene, and each frame number draws its own random numbers (as `--frame N` always did).

@@ -5,30 +5,30 @@
 
 namespace pm {
 
-const char* stage_name(Stage stage) {
-  static const char* const names[] = {"camera", "photon trace", "footprints", "map: morton",
-                                      "map: sort", "map: tree", "gather", "film"};
-  return names[static_cast<int>(stage)];
-}
+void StageTimer::begin(const std::string& stage) { intervals_.push_back({stage, device_.record_timer(), nullptr}); }
 
-void StageTimer::begin(Stage stage) { intervals_.push_back({stage, device_.record_timer(), nullptr}); }
-
-void StageTimer::end(Stage stage) {
+void StageTimer::end(const std::string& stage) {
   for (auto it = intervals_.rbegin(); it != intervals_.rend(); ++it)
     if (it->stage == stage && !it->stop) {
       it->stop = device_.record_timer();
       return;
     }
-  throw DeviceError(std::string("stage timer: end of ") + stage_name(stage) + " without a begin");
+  throw DeviceError("stage timer: end of " + stage + " without a begin");
 }
 
-std::array<double, kStageCount> StageTimer::collect() {
+std::vector<StageTime> StageTimer::collect() {
   device_.synchronize();
-  std::array<double, kStageCount> ms{};
-  for (const Interval& i : intervals_)
-    if (i.stop) ms[static_cast<size_t>(i.stage)] += device_.elapsed_ms(i.start, i.stop);
+  std::vector<StageTime> sums;
+  for (const Interval& i : intervals_) {
+    if (!i.stop) continue;
+    const double ms = device_.elapsed_ms(i.start, i.stop);
+    auto it = sums.begin();
+    while (it != sums.end() && it->stage != i.stage) ++it;
+    if (it == sums.end()) sums.push_back({i.stage, ms});
+    else it->ms += ms;
+  }
   intervals_.clear();
-  return ms;
+  return sums;
 }
 
 }  // namespace pm

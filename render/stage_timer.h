@@ -1,41 +1,42 @@
-// Per-stage device timing for benchmarks: records device timer events around each stage of a
-// frame and sums them per stage. Attached only by `pmrender bench`; a render without a timer
-// records no events and adds no synchronisation.
+// Per-stage device timing for benchmarks: records device timer events around each named stage
+// of a frame and sums them per stage. Stage names are the renderer's ("camera", "film") and the
+// method's own; nothing here knows which method runs. Attached only by `pmrender bench` and
+// `tradeoff`: a render without a timer records no events and adds no synchronisation.
 #pragma once
 
-#include <array>
+#include <string>
 #include <vector>
 
 #include "render/device.h"
 
 namespace pm {
 
-enum class Stage : int {
-  camera,          // S5: primary rays, mirror recursion, direct light + shadow rays
-  photon_trace,    // S1+S2: emission and tracing
-  footprints,      // S3: footprint ellipsoids and the bounds/area/count reduction
-  map_morton,      // S4: Morton codes
-  map_sort,        // S4: radix sort of (code, index)
-  map_tree,        // S4: radix tree, bottom-up boxes, reorder into sorted order
-  gather,          // S6
-  film,            // S7: resolve (the read-back to the host is not a device stage)
-  count
+// What one stage processes per frame, for throughput columns: work units per frame and their name.
+struct StageInfo {
+  std::string name;
+  double work_per_frame = 0;  // 0: no throughput
+  std::string unit;           // e.g. "rays/s"
+  std::string counts;         // what the work counts, in words
 };
-constexpr size_t kStageCount = static_cast<size_t>(Stage::count);
-const char* stage_name(Stage stage);
+
+struct StageTime {
+  std::string stage;
+  double ms = 0;
+};
 
 class StageTimer {
  public:
   explicit StageTimer(Device& device) : device_(device) {}
 
-  void begin(Stage stage);
-  void end(Stage stage);
-  // Waits for the device, then returns each stage's summed milliseconds since the last call.
-  std::array<double, kStageCount> collect();
+  void begin(const std::string& stage);
+  void end(const std::string& stage);
+  // Waits for the device, then returns each stage's summed milliseconds since the last call, in
+  // the order the stages first ran.
+  std::vector<StageTime> collect();
 
  private:
   struct Interval {
-    Stage stage;
+    std::string stage;
     TimerEvent start, stop;
   };
   Device& device_;
@@ -45,7 +46,7 @@ class StageTimer {
 // RAII helper: times a scope when a timer is attached, does nothing otherwise.
 class StageScope {
  public:
-  StageScope(StageTimer* timer, Stage stage) : timer_(timer), stage_(stage) {
+  StageScope(StageTimer* timer, const char* stage) : timer_(timer), stage_(stage) {
     if (timer_) timer_->begin(stage_);
   }
   ~StageScope() {
@@ -56,7 +57,7 @@ class StageScope {
 
  private:
   StageTimer* timer_;
-  Stage stage_;
+  const char* stage_;
 };
 
 }  // namespace pm

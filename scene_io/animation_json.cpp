@@ -8,7 +8,7 @@
 #include <map>
 #include <sstream>
 
-#include "animations/scene_animation.h"
+#include "render/scene_frame.h"
 #include "scene_io/load_error.h"
 
 namespace pm {

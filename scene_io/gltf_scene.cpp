@@ -17,7 +17,7 @@
 #include <set>
 #include <sstream>
 
-#include "animations/scene_animation.h"
+#include "render/scene_frame.h"
 #include "scene_io/animation_json.h"
 #include "scene_io/gltf_animation.h"
 #include "scene_io/json_reader.h"

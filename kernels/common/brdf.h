@@ -8,8 +8,6 @@
 #include "types.h"
 #include "vec3.h"
 
-#define PM_PI 3.14159265358979323846f
-#define PM_INV_PI 0.31830988618379067154f
 
 PM_DEVICE Material material_load(PM_GLOBAL const Material* materials, int index)
 {

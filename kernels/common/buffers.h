@@ -1,62 +1,79 @@
-/* Every device buffer, listed once (X-macro). Each backend expands the list into kernel
-   parameters, kernel_globals.h into the KernelGlobals struct the stage functions read, and the
-   host into the BufferSlot enum it binds allocations to. Adding a buffer is one line here. */
+/* Every device buffer, listed once (X-macro). Each backend expands the list into its kernel
+   globals, kernel_globals.h into the KernelGlobals struct the stage functions read, and the host
+   into the BufferSlot enum and the buffer table (render/buffer_table.h) that allocates, binds,
+   resizes and frees every buffer. Adding a buffer is one line here.
+
+   X(group, type, name, extent, per):
+     group   who owns it and how long it lives: scene (uploaded once per renderer), frame (sized
+             by the resolution), a method's group (photon, ...: sized by its pass), backend
+             (scratch a backend binds itself), test (bound by tests only)
+     type    element type, shared with the host (types.h)
+     extent  the BufferExtents field that counts its elements, times per; "uploaded" buffers
+             are sized by the data uploaded into them */
 #ifndef PM_BUFFERS_H
 #define PM_BUFFERS_H
 
-#define PM_BUFFER_LIST(X)                                                                      \
-  /* S0 scene, uploaded once per sequence */                                                   \
-  X(float4, scene_nodes)    /* BVH2, 4 float4 per node, child boxes stored in the parent */    \
-  X(float4, triangles)      /* 3 float4 per triangle in BVH leaf order; v0.w = material */     \
-  X(Material, materials)                                                                       \
-  X(PointLight, lights)                                                                        \
-  /* S5 camera: one shading point per pixel and mirror depth, [depth * pixels + pixel] */     \
-  X(float4, shade_position) /* xyz, w = material index as int bits, -1 when the path ended */  \
-  X(float4, shade_normal)   /* xyz geometric normal facing the viewer */                      \
-  X(float4, shade_outgoing) /* xyz direction towards the viewer */                            \
-  X(float4, shade_weight)   /* rgb product of mirror reflectances along the eye path */       \
-  /* S2 photon hits, slot order [photon * hit_slots_per_photon + k] */                       \
-  X(float4, hit_position)   /* xyz */                                                         \
-  X(float4, hit_normal)     /* xyz facing the photon's side, w = PM_HIT_* flags as uint bits */\
-  X(float4, hit_incident)   /* xyz unit direction back towards where it came from, w = Delta */\
-  X(float4, hit_flux)       /* rgb watts */                                                   \
-  X(float4, hit_dp_u)       /* positional differentials (eq. 8 scaling) */                    \
-  X(float4, hit_dp_v)                                                                          \
-  /* S3 footprints, slot order */                                                              \
-  X(float4, footprint_lo)   /* AABB of the footprint ellipsoid */                             \
-  X(float4, footprint_hi)                                                                      \
-  X(float4, footprint_center) /* xyz hit position, w = flags */                               \
-  X(float4, footprint_row_u)  /* rows of the inverse ellipsoid basis: local = rows . (x - c) */\
-  X(float4, footprint_row_v)                                                                   \
-  X(float4, footprint_row_n)                                                                   \
-  X(float4, footprint_power)  /* rgb flux / footprint area (irradiance of a uniform kernel) */ \
-  X(float4, footprint_partials) /* per tile: (bounds lo, area sum), (bounds hi, valid count) */\
-  /* S4 photon map, sorted order */                                                            \
-  X(float4, map_nodes)      /* 4 float4 per inner node, photon_map.h */                       \
-  X(uint, map_node_parent)                                                                     \
-  X(uint, map_leaf_parent)                                                                     \
-  X(uint, map_visits)                                                                          \
-  X(float4, map_lo)         /* sorted footprint AABBs */                                      \
-  X(float4, map_hi)                                                                            \
-  X(float4, map_center)     /* sorted copies of the footprint_* gather data */               \
-  X(float4, map_row_u)                                                                         \
-  X(float4, map_row_v)                                                                         \
-  X(float4, map_row_n)                                                                         \
-  X(float4, map_power)                                                                         \
-  X(float4, map_incident)                                                                      \
-  X(uint, gather_stats)     /* [0] hits accepted, [1] shading points, when collect_stats */   \
-  /* S7 film layers, one float4 per pixel (rgb, w unused) */                                  \
-  X(float4, film_direct)                                                                       \
-  X(float4, film_indirect)                                                                     \
-  X(float4, film_caustic)                                                                      \
-  X(float4, film_combined)                                                                     \
-  /* portable radix sort (OpenCL backend; CUDA uses CUB) */                                   \
-  X(uint, sort_keys)                                                                           \
-  X(uint, sort_values)                                                                         \
-  X(uint, sort_keys_alt)                                                                       \
-  X(uint, sort_values_alt)                                                                     \
-  X(uint, sort_histogram)                                                                      \
-  /* host/device layout agreement check */                                                     \
-  X(uint, layout_probe)
+#define PM_BUFFER_LIST(X)                                                                                   \
+  /* S0 scene, uploaded once per renderer */                                                               \
+  X(scene, float4, scene_nodes, uploaded, 1)  /* BVH2, 4 float4 per node, child boxes in the parent */      \
+  X(scene, float4, triangles, uploaded, 1)    /* 3 float4 per triangle in BVH leaf order; v0.w = material */\
+  X(scene, Material, materials, uploaded, 1)                                                               \
+  X(scene, PointLight, lights, uploaded, 1)   /* re-uploaded when an animated light moves */               \
+  /* S5 camera: one shading point per pixel and mirror depth, [depth * pixels + pixel] */                  \
+  X(frame, float4, shade_position, shading_points, 1) /* xyz, w = material index as int bits, -1: none */  \
+  X(frame, float4, shade_normal, shading_points, 1)   /* xyz geometric normal facing the viewer */         \
+  X(frame, float4, shade_outgoing, shading_points, 1) /* xyz direction towards the viewer */               \
+  X(frame, float4, shade_weight, shading_points, 1)   /* rgb product of mirror reflectances on the path */ \
+  /* S7 film: direct light once per frame; indirect and caustic summed over passes (rgb, w unused) */      \
+  X(frame, float4, film_direct, pixels, 1)                                                                  \
+  X(frame, float4, film_indirect_sum, pixels, 1)                                                            \
+  X(frame, float4, film_caustic_sum, pixels, 1)                                                             \
+  X(frame, float4, film_indirect, pixels, 1)  /* resolved: sum / passes */                                  \
+  X(frame, float4, film_caustic, pixels, 1)                                                                 \
+  X(frame, float4, film_combined, pixels, 1)  /* direct + indirect + caustic; w = 1: repaired pixel */      \
+  /* photon mapping, S1 emitters: per light (first photon of the pass, photon count, 0, 0) */              \
+  X(photon, uint4, photon_emitters, uploaded, 1)                                                            \
+  /* photon mapping, S2 hits: slot order [photon * hit_slots_per_photon + k] */                            \
+  X(photon, float4, hit_position, hit_slots, 1)  /* xyz */                                                  \
+  X(photon, float4, hit_normal, hit_slots, 1)    /* xyz facing the photon's side, w = PM_HIT_* flags */     \
+  X(photon, float4, hit_incident, hit_slots, 1)  /* xyz unit direction back to its origin, w = Delta */     \
+  X(photon, float4, hit_flux, hit_slots, 1)      /* rgb watts */                                            \
+  X(photon, float4, hit_dp_u, hit_slots, 1)      /* positional differentials (eq. 8 scaling) */             \
+  X(photon, float4, hit_dp_v, hit_slots, 1)                                                                 \
+  /* photon mapping, S3 footprints: slot order */                                                          \
+  X(photon, float4, footprint_lo, hit_slots, 1)      /* AABB of the footprint ellipsoid; lo.w = area */     \
+  X(photon, float4, footprint_hi, hit_slots, 1)                                                             \
+  X(photon, float4, footprint_center, hit_slots, 1)  /* xyz hit position, w = flags */                      \
+  X(photon, float4, footprint_row_u, hit_slots, 1)   /* rows of the inverse ellipsoid basis */              \
+  X(photon, float4, footprint_row_v, hit_slots, 1)                                                          \
+  X(photon, float4, footprint_row_n, hit_slots, 1)                                                          \
+  X(photon, float4, footprint_power, hit_slots, 1)   /* rgb flux / footprint area */                        \
+  X(photon, float4, footprint_partials, bounds_tiles, 2) /* per tile: (lo, area sum), (hi, count) */        \
+  /* photon mapping, S4 photon map: sorted order */                                                        \
+  X(photon, float4, map_nodes, hit_slots, 4)   /* 4 float4 per inner node, photon_map.h */                  \
+  X(photon, uint, map_node_parent, hit_slots, 1)                                                            \
+  X(photon, uint, map_leaf_parent, hit_slots, 1)                                                            \
+  X(photon, uint, map_visits, hit_slots, 1)                                                                 \
+  X(photon, float4, map_lo, hit_slots, 1)      /* sorted footprint AABBs */                                 \
+  X(photon, float4, map_hi, hit_slots, 1)                                                                   \
+  X(photon, float4, map_center, hit_slots, 1)  /* sorted copies of the footprint_* gather data */           \
+  X(photon, float4, map_row_u, hit_slots, 1)                                                                \
+  X(photon, float4, map_row_v, hit_slots, 1)                                                                \
+  X(photon, float4, map_row_n, hit_slots, 1)                                                                \
+  X(photon, float4, map_power, hit_slots, 1)                                                                \
+  X(photon, float4, map_incident, hit_slots, 1)                                                             \
+  X(photon, uint, gather_stats, counters, 2)   /* [0] hits accepted, [1] shading points (collect_stats) */ \
+  X(photon, uint, morton_keys, hit_slots, 1)   /* S4 input of the sort: Morton key per slot */           \
+  X(photon, uint, morton_slots, hit_slots, 1)  /* and the slot it belongs to */                          \
+  X(photon, uint, sorted_keys, hit_slots, 1)   /* S4 output of the sort: keys ascending */               \
+  X(photon, uint, sorted_slots, hit_slots, 1)  /* and their slots */                                     \
+  /* portable radix sort (OpenCL backend; CUDA uses CUB): bound by its driver to the pairs it sorts */   \
+  X(backend, uint, sort_keys, uploaded, 1)                                                                \
+  X(backend, uint, sort_values, uploaded, 1)                                                              \
+  X(backend, uint, sort_keys_alt, uploaded, 1)                                                            \
+  X(backend, uint, sort_values_alt, uploaded, 1)                                                          \
+  X(backend, uint, sort_histogram, uploaded, 1)                                                           \
+  /* host/device layout agreement check */                                                                 \
+  X(test, uint, layout_probe, uploaded, 1)
 
 #endif

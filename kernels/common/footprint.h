@@ -10,9 +10,9 @@
 #ifndef PM_FOOTPRINT_H
 #define PM_FOOTPRINT_H
 
+#include "types.h"
 #include "vec3.h"
 
-#define PM_FP_PI 3.14159265358979323846f
 /* Smoothing factor of photons whose path was specular only (sharp caustics, section 7). */
 #ifndef PM_CAUSTIC_SMOOTHING
 #define PM_CAUSTIC_SMOOTHING 5.0f
@@ -119,7 +119,7 @@ PM_DEVICE Footprint footprint_from_differentials(Vec3 dp_u, Vec3 dp_v, Vec3 norm
 /* Area of the skewed elliptical footprint, A = pi |a_u x a_v| (eq. 10). */
 PM_DEVICE float footprint_area(Footprint f)
 {
-  return PM_FP_PI * vec3_length(vec3_cross(f.axis_u, f.axis_v));
+  return PM_PI * vec3_length(vec3_cross(f.axis_u, f.axis_v));
 }
 
 /* Axis-aligned bounds of the ellipsoid: along world axis i, the largest value of

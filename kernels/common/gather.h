@@ -1,12 +1,13 @@
 /* Stage S6 (sections 3.2 and 6.3, eq. 1): at every shading point of the camera pass, sum over
    the photon hits whose footprint ellipsoid contains the point: kernel value times BRDF for the
    photon's incident direction times flux / footprint area. Indirect and caustic photons go to
-   their own layers. Photon batches add into the film (each photon carries 1/batches of the flux),
-   so the same work item accumulates its pixel across batches without atomics. */
+   their own layers. Each pass adds its estimate into the film sums (film.h), which the resolve
+   divides by the pass count. */
 #ifndef PM_GATHER_H
 #define PM_GATHER_H
 
 #include "brdf.h"
+#include "film.h"
 #include "footprint.h"
 #include "kernel_globals.h"
 #include "knn_gather.h"
@@ -66,12 +67,7 @@ PM_DEVICE void kernel_gather(const KernelGlobals* kg, const LaunchParams* p, uin
     caustic = vec3_add(caustic, vec3_mul(weight, point_caustic));
     ++points;
   }
-  float4 old_indirect = kg->film_indirect[pixel];
-  float4 old_caustic = kg->film_caustic[pixel];
-  kg->film_indirect[pixel] = PM_MAKE_FLOAT4(old_indirect.x + indirect.x, old_indirect.y + indirect.y,
-                                            old_indirect.z + indirect.z, 0.0f);
-  kg->film_caustic[pixel] = PM_MAKE_FLOAT4(old_caustic.x + caustic.x, old_caustic.y + caustic.y,
-                                           old_caustic.z + caustic.z, 0.0f);
+  film_add(kg, pixel, indirect, caustic);
   if (p->collect_stats) {
     pm_atomic_add_u32(&kg->gather_stats[0], accepted);
     pm_atomic_add_u32(&kg->gather_stats[1], points);

@@ -126,7 +126,7 @@ PM_DEVICE void knn_gather_at(const KernelGlobals* kg, const LaunchParams* p, con
   knn_search(kg, p, x, &h);
   float r2 = knn_radius2(&h, p->rmax * p->rmax);
   if (!(r2 > 0.0f)) return;
-  float inv_area = 1.0f / (PM_FP_PI * r2);
+  float inv_area = 1.0f / (PM_PI * r2);
   for (uint i = 0; i < h.size; ++i) {
     uint k = h.index[i];
     Vec3 wi = vec3_from_float4(PM_LOAD(&kg->map_incident[k]));

@@ -11,10 +11,9 @@
 #ifndef PM_PHOTON_DIFFERENTIALS_H
 #define PM_PHOTON_DIFFERENTIALS_H
 
+#include "types.h"
 #include "vec3.h"
 
-#define PM_PD_PI 3.14159265358979323846f
-#define PM_PD_TWO_PI 6.28318530717958647692f
 /* Smallest |cos| between a ray and the plane normal used by the transfer's projection: at
    grazing incidence the projected differential grows like 1/cos, so it is bounded by 1e4 times
    the unprojected one (and the footprint is clamped to r_max later, footprint.h). */
@@ -34,7 +33,7 @@ typedef struct PhotonRay {
 PM_DEVICE float photon_spacing(uint n)
 {
   float count = n > 0u ? (float)n : 1.0f;
-  return 2.0f * pm_sqrtf(PM_PD_PI / count);
+  return 2.0f * pm_sqrtf(PM_PI / count);
 }
 
 /* Direction of eq. 2 and its pre-scaled derivatives of eq. 8, in the frame (x, y, z):
@@ -63,7 +62,7 @@ PM_DEVICE void photon_emit_point(Vec3 light_pos, float u1, float u2, PhotonRay* 
 {
   float sin_theta = 2.0f * pm_sqrtf(pm_fmaxf(0.0f, u1 * (1.0f - u1)));
   out->origin = light_pos;
-  photon_sphere_direction(1.0f - 2.0f * u1, sin_theta, PM_PD_TWO_PI * u2, &out->direction, &out->dd_u,
+  photon_sphere_direction(1.0f - 2.0f * u1, sin_theta, PM_TWO_PI * u2, &out->direction, &out->dd_u,
                           &out->dd_v);
   out->dp_u = vec3_splat(0.0f);
   out->dp_v = vec3_splat(0.0f);
@@ -129,7 +128,7 @@ PM_DEVICE void photon_roulette_rescale(PhotonRay* ray, float p)
 /* Footprint area of eq. 10: A = pi |Delta dp_u x Delta dp_v| = pi Delta^2 |dp_u x dp_v|. */
 PM_DEVICE float photon_footprint_area(Vec3 dp_u, Vec3 dp_v, float delta)
 {
-  return PM_PD_PI * delta * delta * vec3_length(vec3_cross(dp_u, dp_v));
+  return PM_PI * delta * delta * vec3_length(vec3_cross(dp_u, dp_v));
 }
 
 /* S2: diffuse reflection as absorption and re-emission (section 4.3, eq. 10-13).
@@ -183,7 +182,7 @@ PM_DEVICE float photon_diffuse_reemit(PhotonRay* ray, Vec3 n, float u1, float u2
   Vec3 nf = vec3_dot(ray->direction, n) > 0.0f ? vec3_neg(n) : n;
   Vec3 t, b;
   vec3_onb(nf, &t, &b);
-  return photon_reemit_in_frame(ray, t, b, nf, pm_sqrtf(1.0f - u1), pm_sqrtf(u1), PM_PD_TWO_PI * u2);
+  return photon_reemit_in_frame(ray, t, b, nf, pm_sqrtf(1.0f - u1), pm_sqrtf(u1), PM_TWO_PI * u2);
 }
 
 #endif

@@ -1,8 +1,8 @@
 /* Stage S3 (end of section 4.3): turns each recorded hit into its footprint ellipsoid, and
    stores what the photon map and the gather need: the ellipsoid's AABB, the rows of its inverse
    basis (so the gather's containment test is three dot products), and flux / area. The radius
-   estimator uses the same path with a sphere of the fixed radius. A tile reduction then gives
-   the hits' bounds (for Morton codes), their count and the total footprint area (for T_auto). */
+   estimator uses the same path with a sphere of the fixed radius. A tile reduction
+   (photon_map_stage.h) then gives the hits' bounds, count and total footprint area. */
 #ifndef PM_PHOTON_FOOTPRINT_H
 #define PM_PHOTON_FOOTPRINT_H
 
@@ -72,29 +72,6 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
   kg->footprint_row_v[slot] = vec3_to_float4(vec3_scale(c_nu, inv_det), 0.0f);
   kg->footprint_row_n[slot] = vec3_to_float4(vec3_scale(c_uv, inv_det), 0.0f);
   kg->footprint_power[slot] = vec3_to_float4(power, 0.0f);
-}
-
-/* Work item = tile of PM_PHOTON_MAP_BOUNDS_TILE slots: bounds of the valid hits' positions,
-   their footprint area sum and their count. The host combines the few partials. */
-PM_DEVICE void kernel_photon_reduce(const KernelGlobals* kg, const LaunchParams* p, uint tile)
-{
-  uint slots = p->photon_count * p->hit_slots_per_photon;
-  uint begin = tile * PM_PHOTON_MAP_BOUNDS_TILE;
-  uint end = pm_min_u(begin + PM_PHOTON_MAP_BOUNDS_TILE, slots);
-  Vec3 lo = vec3_splat(1e30f), hi = vec3_splat(-1e30f);
-  float area = 0.0f;
-  uint count = 0;
-  for (uint i = begin; i < end; ++i) {
-    float4 c = kg->footprint_center[i];
-    if ((PM_AS_UINT(c.w) & PM_HIT_VALID) == 0u) continue;
-    Vec3 x = vec3_from_float4(c);
-    lo = vec3_min(lo, x);
-    hi = vec3_max(hi, x);
-    area += kg->footprint_lo[i].w;
-    ++count;
-  }
-  kg->footprint_partials[2 * tile] = vec3_to_float4(lo, area);
-  kg->footprint_partials[2 * tile + 1] = vec3_to_float4(hi, PM_UINT_AS_FLOAT(count));
 }
 
 #endif

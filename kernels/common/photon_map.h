@@ -6,10 +6,10 @@
    library's (CUB on CUDA, radix_sort.h on OpenCL).
 
    Pipeline, each step "one call per work item", n hits, n <= 2^29 (int index arithmetic):
-     1. photon_map_bounds_tile     work item = tile of PM_PHOTON_MAP_BOUNDS_TILE boxes; run in passes
-                                   (positions as both lo_in and hi_in first, then the partials)
-                                   until one tile remains: its output [0] is the overall bounds.
-     2. photon_map_morton          i < n: codes[i], indices[i] = i.
+     1. photon_map_bounds_tile     work item = tile of PM_PHOTON_MAP_BOUNDS_TILE hit slots: bounds,
+                                   area and count of its valid hits; the host combines the tiles
+                                   (photon_map_combine_partials).
+     2. photon_map_morton_key      per hit slot: its Morton code, empty slots last.
      3. sort (codes, indices) ascending by code (any stable or unstable sort: ties are broken by
         sorted position below, which is exactly "augment the key with the index").
      4. photon_map_build_node      i < n - 1: Karras's range + split of inner node i; parent links;
@@ -58,33 +58,70 @@ PM_DEVICE uint photon_map_bounds_tile_count(uint count)
   return (count + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
 }
 
-/* Work item = tile: reduces boxes [tile * TILE, min(count, (tile + 1) * TILE)) sequentially into
-   lo_out[tile], hi_out[tile]. An empty tile gives the empty box (+inf, -inf). */
-PM_DEVICE void photon_map_bounds_tile(uint tile, uint count, PM_GLOBAL const float4* lo_in,
-                                      PM_GLOBAL const float4* hi_in, PM_GLOBAL float4* lo_out,
-                                      PM_GLOBAL float4* hi_out)
+/* Work item = tile of slots [tile * TILE, min(count, (tile + 1) * TILE)): bounds of the valid
+   hits' positions (centers[i].w holds PM_HIT_* flags), the sum of their footprint areas
+   (area_in[i].w) and their count, into partials[2 tile] = (lo, area), [2 tile + 1] = (hi, count
+   as uint bits). A tile without valid hits gives the empty box (+1e30, -1e30). */
+PM_DEVICE void photon_map_bounds_tile(uint tile, uint count, PM_GLOBAL const float4* centers,
+                                      PM_GLOBAL const float4* area_in, PM_GLOBAL float4* partials)
 {
-  Vec3 lo = vec3_splat(PM_UINT_AS_FLOAT(0x7F800000u));
-  Vec3 hi = vec3_splat(PM_UINT_AS_FLOAT(0xFF800000u));
   uint begin = tile * PM_PHOTON_MAP_BOUNDS_TILE;
   uint end = pm_min_u(begin + PM_PHOTON_MAP_BOUNDS_TILE, count);
+  Vec3 lo = vec3_splat(1e30f), hi = vec3_splat(-1e30f);
+  float area = 0.0f;
+  uint valid = 0;
   for (uint i = begin; i < end; ++i) {
-    lo = vec3_min(lo, vec3_from_float4(PM_LOAD(&lo_in[i])));
-    hi = vec3_max(hi, vec3_from_float4(PM_LOAD(&hi_in[i])));
+    float4 c = PM_LOAD(&centers[i]);
+    if ((PM_AS_UINT(c.w) & PM_HIT_VALID) == 0u) continue;
+    Vec3 x = vec3_from_float4(c);
+    lo = vec3_min(lo, x);
+    hi = vec3_max(hi, x);
+    area += PM_LOAD(&area_in[i]).w;
+    ++valid;
   }
-  lo_out[tile] = vec3_to_float4(lo, 0.0f);
-  hi_out[tile] = vec3_to_float4(hi, 0.0f);
+  partials[2 * tile] = vec3_to_float4(lo, area);
+  partials[2 * tile + 1] = vec3_to_float4(hi, PM_UINT_AS_FLOAT(valid));
 }
+
+#ifdef PM_HOST_BACKEND
+/* The few tile partials combined on the host, after one small read-back: overall bounds, the
+   area sum (in double: many small terms) and the valid count. Host only (no fp64 on the device). */
+typedef struct PhotonMapBounds {
+  float4 lo, hi;
+  double area;
+  uint count;
+} PhotonMapBounds;
+
+PM_DEVICE PhotonMapBounds photon_map_combine_partials(const float4* partials, uint tiles)
+{
+  PhotonMapBounds b;
+  Vec3 lo = vec3_splat(1e30f), hi = vec3_splat(-1e30f);
+  b.area = 0.0;
+  b.count = 0u;
+  for (uint t = 0; t < tiles; ++t) {
+    lo = vec3_min(lo, vec3_from_float4(partials[2 * t]));
+    hi = vec3_max(hi, vec3_from_float4(partials[2 * t + 1]));
+    b.area += (double)partials[2 * t].w;
+    b.count += PM_AS_UINT(partials[2 * t + 1].w);
+  }
+  b.lo = vec3_to_float4(lo, 0.0f);
+  b.hi = vec3_to_float4(hi, 0.0f);
+  return b;
+}
+#endif
 
 /* ---- 2. Morton codes (sections 5.2, 6.2: 30-bit codes in the overall bounds) ---- */
 
-/* Work item = hit i. bounds_lo[0], bounds_hi[0]: the final output of step 1. */
-PM_DEVICE void photon_map_morton(uint i, PM_GLOBAL const float4* positions, PM_GLOBAL const float4* bounds_lo,
-                                 PM_GLOBAL const float4* bounds_hi, PM_GLOBAL uint* codes, PM_GLOBAL uint* indices)
+/* Sort key of a hit slot: the 30-bit Morton code of its position within the overall bounds, or
+   PM_MORTON_EMPTY_KEY, above every code, for an empty slot, so the valid hits form the prefix of
+   the sorted order. */
+#define PM_MORTON_EMPTY_KEY 0x7FFFFFFFu
+#define PM_MORTON_SORT_BITS 31
+
+PM_DEVICE uint photon_map_morton_key(float4 center, float4 bounds_lo, float4 bounds_hi)
 {
-  codes[i] = morton_code(vec3_from_float4(PM_LOAD(&positions[i])), vec3_from_float4(PM_LOAD(&bounds_lo[0])),
-                         vec3_from_float4(PM_LOAD(&bounds_hi[0])));
-  indices[i] = i;
+  if ((PM_AS_UINT(center.w) & PM_HIT_VALID) == 0u) return PM_MORTON_EMPTY_KEY;
+  return morton_code(vec3_from_float4(center), vec3_from_float4(bounds_lo), vec3_from_float4(bounds_hi));
 }
 
 /* ---- 4. binary radix tree over the sorted codes (Karras 2012, section 4) ---- */

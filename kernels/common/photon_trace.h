@@ -18,13 +18,13 @@
 
 PM_DEVICE float channel_mean(Vec3 c) { return (c.x + c.y + c.z) * (1.0f / 3.0f); }
 
-/* Photons are shared out by power: light l owns batch indices [first, first + count). */
+/* Photons are shared out by power: light l owns pass indices [first, first + count) of
+   photon_emitters[l] = (first, count, 0, 0). */
 PM_DEVICE int photon_light_of(const KernelGlobals* kg, const LaunchParams* p, uint photon)
 {
   for (uint l = 0; l < p->light_count; ++l) {
-    PointLight light = kg->lights[l];
-    uint first = PM_AS_UINT(light.position.w), count = PM_AS_UINT(light.power.w);
-    if (photon >= first && photon < first + count) return (int)l;
+    uint4 e = kg->photon_emitters[l];
+    if (photon >= e.x && photon < e.x + e.y) return (int)l;
   }
   return -1;
 }
@@ -41,7 +41,7 @@ PM_DEVICE int photon_glossy_reemit(PhotonRay* ray, Vec3 n, float exponent, float
   vec3_onb(r, &t, &b);
   float cos_a = pm_powf(pm_fmaxf(u1, 1e-12f), 1.0f / (exponent + 1.0f));
   float sin_a = pm_sqrtf(pm_fmaxf(0.0f, 1.0f - cos_a * cos_a));
-  photon_reemit_in_frame(ray, t, b, r, cos_a, sin_a, PM_PD_TWO_PI * u2);
+  photon_reemit_in_frame(ray, t, b, r, cos_a, sin_a, PM_TWO_PI * u2);
   return vec3_dot(ray->direction, nf) > 0.0f;
 }
 
@@ -64,18 +64,19 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
   int light_index = photon_light_of(kg, p, photon);
   if (light_index >= 0) {
     PointLight light = kg->lights[light_index];
-    uint emitted = PM_AS_UINT(light.power.w);
-    float delta = photon_spacing(emitted); /* eq. 9 with n = this light's photons in the batch */
-    Vec3 flux = vec3_scale(vec3_from_float4(light.power), 1.0f / ((float)emitted * (float)p->batch_count));
+    uint4 emitter = kg->photon_emitters[light_index];
+    uint emitted = emitter.y;
+    float delta = photon_spacing(emitted); /* eq. 9 with n = this light's photons in the pass */
+    Vec3 flux = vec3_scale(vec3_from_float4(light.power), 1.0f / (float)emitted);
     /* Random numbers: RANDOM keys them by (seed, photon_frame) and the photon's index in the
        frame; HALTON by the seed, the light and the photon's number within that light only, so
        the same lights give the same photons in every frame (types.h). */
     uint rng_frame = p->photon_frame, rng_index = p->photon_offset + photon, rng_extra = 0u;
     Uniform4 u;
     if (p->photon_sequence == PM_PHOTON_SEQUENCE_HALTON) {
-      uint batch = p->photon_count > 0u ? p->photon_offset / p->photon_count : 0u;
+      uint pass = p->photon_count > 0u ? p->photon_offset / p->photon_count : 0u;
       rng_frame = 0u;
-      rng_index = batch * emitted + (photon - PM_AS_UINT(light.position.w));
+      rng_index = pass * emitted + (photon - emitter.x);
       rng_extra = (uint)light_index + 1u;
       /* Halton points (bases 2 and 3), shifted modulo 1 by one random offset per seed and light
          (Cranley-Patterson rotation) so that lights and seeds do not share directions. */

@@ -1,9 +1,14 @@
 /* Structs shared between the host and every device backend. Only 4-byte scalars and 16-byte
    float4/uint4 members, in an order that needs no padding, so the layout is identical in C++,
-   CUDA and OpenCL C. render/device_layout.cpp static_asserts each size on the host and
-   tests/opencl_layout_test.cpp checks the OpenCL compiler's view. */
+   CUDA and OpenCL C. render/kernel_abi.h static_asserts each size on the host, and the
+   layout_probe kernel lets tests/opencl and tests/gpu check each device compiler's view. */
 #ifndef PM_TYPES_H
 #define PM_TYPES_H
+
+/* The one definition of pi, for device and host code alike. */
+#define PM_PI 3.14159265358979323846f
+#define PM_TWO_PI 6.28318530717958647692f
+#define PM_INV_PI 0.31830988618379067154f
 
 /* Modified Phong material (Lafortune & Willems 1994) with a perfect-mirror term.
    diffuse.rgb = rho_d, glossy.rgb = rho_s and glossy.w = Phong exponent, mirror.rgb = mirror
@@ -14,10 +19,9 @@ typedef struct Material {
   float4 mirror;
 } Material;
 
-/* Isotropic point light: position.xyz in metres, power.rgb in watts (radiant flux).
-   For photon emission the host stores, as uint bits, the light's first photon index within a
-   batch in position.w and its photon count per batch in power.w, and scales nothing: the flux
-   per photon is power / (count * batches) (photon_trace.h). */
+/* Isotropic point light: position.xyz in metres, power.rgb in watts (radiant flux); w unused.
+   (Photon emission keeps each light's share of a pass's photons in its own buffer,
+   photon_emitters.) */
 typedef struct PointLight {
   float4 position;
   float4 power;
@@ -57,15 +61,15 @@ typedef struct LaunchParams {
   uint mirror_depth;    /* eye-ray mirror bounces followed (default 1) */
   uint seed;
   uint frame;
-  uint work_offset;     /* first work item of a batched launch */
+  uint pass_index;      /* the method's pass within the frame (0, 1, ...) */
 
   float ray_epsilon;    /* scale of the scene, for robust ray offsets (metres) */
   uint sort_count;      /* portable radix sort: number of keys */
   uint sort_shift;      /* portable radix sort: bit offset of the current digit */
   uint sort_tile_count; /* portable radix sort: tiles of PM_SORT_TILE keys */
 
-  uint photon_count;         /* photons emitted in this batch, all lights */
-  uint photon_offset;        /* global index of the batch's first photon (random stream) */
+  uint photon_count;         /* photons emitted in this pass, all lights */
+  uint photon_offset;        /* index of the pass's first photon within the frame (random stream) */
   uint hit_slots_per_photon; /* hit records reserved per photon */
   uint max_bounces;          /* diffuse bounces a recorded photon may have undergone */
 
@@ -76,10 +80,10 @@ typedef struct LaunchParams {
 
   uint estimator;       /* PM_ESTIMATOR_* */
   uint kernel_shape;    /* PM_KERNEL_* */
-  uint hit_count;       /* valid hits of the batch: the sorted prefix the photon map covers */
+  uint hit_count;       /* valid hits of the pass: the sorted prefix the photon map covers */
   uint leaf_threshold;  /* T: subtrees of at most T hits become one leaf */
 
-  uint batch_count;     /* photon batches per frame: each photon carries 1/batch_count */
+  uint film_passes;     /* passes summed in the film: the resolve divides the sums by it */
   uint collect_stats;   /* gather counts photons per shading point (benchmarks) */
   uint photon_frame;    /* the frame whose random numbers the photons draw (animations: camera-only
                            runs share the photons of their first frame; docs/animation.md) */

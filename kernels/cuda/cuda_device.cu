@@ -1,6 +1,8 @@
-// CUDA implementation of the device interface: one stream, cudaMalloc'd buffers, every buffer
-// slot passed as a kernel argument in PM_BUFFER_LIST order through cudaLaunchKernel, CUB's
-// radix sort for sort_pairs, CUDA events for timers.
+// CUDA implementation of the device interface: one stream, cudaMalloc'd buffers, the buffer
+// slot table copied into the kernels' constant-memory KernelGlobals when it changed (once per
+// frame), launches through cudaLaunchKernel with the LaunchParams alone, CUB's radix sort for
+// sort_pairs, CUDA events for timers. Every call makes its device current first, so several
+// CudaDevices can live in one process.
 #include "kernels/cuda/cuda_device.h"
 
 #include <cuda_runtime.h>
@@ -52,20 +54,28 @@ DeviceInfo describe(int index) {
 
 class CudaDevice final : public Device {
  public:
-  explicit CudaDevice(int index) {
+  explicit CudaDevice(int index) : index_(index) {
     info_ = describe(index);
     PM_CUDA_CHECK(cudaSetDevice(index));
     PM_CUDA_CHECK(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking));
+    // Pinned, so the copy into constant memory is asynchronous; the event says when the staging
+    // copy may be overwritten.
+    PM_CUDA_CHECK(cudaMallocHost(&globals_staging_, sizeof(void*) * kBufferSlotCount));
+    PM_CUDA_CHECK(cudaEventCreateWithFlags(&globals_copied_, cudaEventDisableTiming));
   }
 
   ~CudaDevice() override {
+    activate();
     sort_temp_.reset();
+    if (globals_copied_) cudaEventDestroy(globals_copied_);
+    if (globals_staging_) cudaFreeHost(globals_staging_);
     if (stream_) cudaStreamDestroy(stream_);
   }
 
   const DeviceInfo& info() const override { return info_; }
 
   DeviceBuffer allocate(size_t bytes, const char* what) override {
+    activate();
     void* ptr = nullptr;
     cudaError_t err = cudaMalloc(&ptr, bytes > 0 ? bytes : 4);
     if (err != cudaSuccess)
@@ -74,10 +84,14 @@ class CudaDevice final : public Device {
     return DeviceBuffer(this, ptr, bytes);
   }
 
-  void release(void* handle) noexcept override { cudaFree(handle); }
+  void release(void* handle) noexcept override {
+    cudaSetDevice(index_);
+    cudaFree(handle);
+  }
 
   void upload(DeviceBuffer& dst, const void* src, size_t bytes, size_t offset) override {
     if (bytes == 0) return;
+    activate();
     PM_CUDA_CHECK(cudaMemcpyAsync(static_cast<char*>(dst.handle()) + offset, src, bytes, cudaMemcpyHostToDevice, stream_));
     // The source is the caller's memory, which may go away as soon as we return.
     PM_CUDA_CHECK(cudaStreamSynchronize(stream_));
@@ -85,29 +99,30 @@ class CudaDevice final : public Device {
 
   void download(const DeviceBuffer& src, void* dst, size_t bytes, size_t offset) override {
     if (bytes == 0) return;
+    activate();
     PM_CUDA_CHECK(cudaMemcpyAsync(dst, static_cast<const char*>(src.handle()) + offset, bytes, cudaMemcpyDeviceToHost, stream_));
     PM_CUDA_CHECK(cudaStreamSynchronize(stream_));
   }
 
   void fill_zero(DeviceBuffer& dst, size_t bytes) override {
     if (bytes == 0) return;
+    activate();
     PM_CUDA_CHECK(cudaMemsetAsync(dst.handle(), 0, bytes, stream_));
   }
 
   void copy(const DeviceBuffer& src, DeviceBuffer& dst, size_t bytes) override {
     if (bytes == 0) return;
+    activate();
     PM_CUDA_CHECK(cudaMemcpyAsync(dst.handle(), src.handle(), bytes, cudaMemcpyDeviceToDevice, stream_));
   }
 
   void launch(KernelId id, uint32_t work_items, const LaunchParams& params) override {
     if (work_items == 0) return;
-    void* args[kBufferSlotCount + 2];
-    auto slot_values = slots();  // cudaLaunchKernel reads each argument through a pointer to it
-    for (size_t i = 0; i < kBufferSlotCount; ++i) args[i] = &slot_values[i];
+    activate();
+    upload_globals_if_changed();
     LaunchParams params_copy = params;
     uint32_t items = work_items;
-    args[kBufferSlotCount] = &params_copy;
-    args[kBufferSlotCount + 1] = &items;
+    void* args[2] = {&params_copy, &items};  // cudaLaunchKernel reads each argument through a pointer
     const unsigned block = 128;
     const unsigned grid = (work_items + block - 1) / block;
     cudaError_t err = cudaLaunchKernel(pm_cuda_kernel_table[static_cast<int>(id)], dim3(grid), dim3(block), args, 0, stream_);
@@ -117,27 +132,28 @@ class CudaDevice final : public Device {
                         cudaGetErrorString(err) + ")");
   }
 
-  void sort_pairs(SortBuffers& buffers, uint32_t count, int key_bits) override {
-    if (count <= 1) return;
-    cub::DoubleBuffer<uint32_t> keys(static_cast<uint32_t*>(buffers.keys.handle()),
-                                     static_cast<uint32_t*>(buffers.keys_alt.handle()));
-    cub::DoubleBuffer<uint32_t> values(static_cast<uint32_t*>(buffers.values.handle()),
-                                       static_cast<uint32_t*>(buffers.values_alt.handle()));
+  void sort_pairs(DeviceBuffer& keys_in, DeviceBuffer& values_in, DeviceBuffer& keys_out, DeviceBuffer& values_out,
+                  uint32_t count, int key_bits) override {
+    activate();
+    const auto* k_in = static_cast<const uint32_t*>(keys_in.handle());
+    const auto* v_in = static_cast<const uint32_t*>(values_in.handle());
+    auto* k_out = static_cast<uint32_t*>(keys_out.handle());
+    auto* v_out = static_cast<uint32_t*>(values_out.handle());
     size_t temp_bytes = 0;
-    PM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, keys, values, int(count), 0, key_bits, stream_));
-    if (sort_temp_.bytes() < temp_bytes) sort_temp_ = allocate(temp_bytes, "CUB radix sort temporary storage");
-    PM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(sort_temp_.handle(), temp_bytes, keys, values, int(count), 0,
+    PM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, k_in, k_out, v_in, v_out, int(count), 0,
                                                   key_bits, stream_));
-    // CUB picks which half of each double buffer holds the result.
-    if (keys.Current() != buffers.keys.handle()) {
-      std::swap(buffers.keys, buffers.keys_alt);
-      std::swap(buffers.values, buffers.values_alt);
-    }
+    if (sort_temp_.bytes() < temp_bytes) sort_temp_ = allocate(temp_bytes, "CUB radix sort temporary storage");
+    PM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(sort_temp_.handle(), temp_bytes, k_in, k_out, v_in, v_out,
+                                                  int(count), 0, key_bits, stream_));
   }
 
-  void synchronize() override { PM_CUDA_CHECK(cudaStreamSynchronize(stream_)); }
+  void synchronize() override {
+    activate();
+    PM_CUDA_CHECK(cudaStreamSynchronize(stream_));
+  }
 
   TimerEvent record_timer() override {
+    activate();
     cudaEvent_t event = nullptr;
     PM_CUDA_CHECK(cudaEventCreate(&event));
     PM_CUDA_CHECK(cudaEventRecord(event, stream_));
@@ -153,9 +169,33 @@ class CudaDevice final : public Device {
   }
 
  private:
+  // The calling thread's current device becomes this one (a no-op when it already is).
+  void activate() {
+    int current = -1;
+    if (cudaGetDevice(&current) != cudaSuccess || current != index_) PM_CUDA_CHECK(cudaSetDevice(index_));
+  }
+
+  // The kernels read their buffer pointers from constant memory (kernels/cuda/kernels.cu):
+  // copy the slot table there when a binding changed since the last launch. The copy is queued
+  // on the stream, so launches already queued keep the pointers they were launched with.
+  void upload_globals_if_changed() {
+    if (globals_version_ == slots_version()) return;
+    PM_CUDA_CHECK(cudaEventSynchronize(globals_copied_));  // the previous copy has left the staging area
+    const auto& table = slots();
+    for (size_t i = 0; i < kBufferSlotCount; ++i) globals_staging_[i] = table[i];
+    PM_CUDA_CHECK(cudaMemcpyToSymbolAsync(pm_cuda_kernel_globals_symbol(), globals_staging_,
+                                          sizeof(void*) * kBufferSlotCount, 0, cudaMemcpyHostToDevice, stream_));
+    PM_CUDA_CHECK(cudaEventRecord(globals_copied_, stream_));
+    globals_version_ = slots_version();
+  }
+
+  int index_ = 0;
   DeviceInfo info_;
   cudaStream_t stream_ = nullptr;
   DeviceBuffer sort_temp_;
+  void** globals_staging_ = nullptr;
+  cudaEvent_t globals_copied_ = nullptr;
+  uint64_t globals_version_ = 0;
 };
 
 }  // namespace
@@ -171,7 +211,7 @@ std::unique_ptr<Device> create_cuda_device(int index) {
   int count = cuda_device_count();
   if (count == 0) throw DeviceError("CUDA: no CUDA device found (no GPU, or no CUDA driver)");
   if (index < 0 || index >= count)
-    throw InputError("--device " + std::to_string(index) + ": CUDA has " + std::to_string(count) +
+    throw SettingError("device", "no device " + std::to_string(index) + ": CUDA has " + std::to_string(count) +
                      " device(s); see 'pmrender devices'");
   return std::make_unique<CudaDevice>(index);
 }

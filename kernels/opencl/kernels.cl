@@ -5,8 +5,8 @@
 #include "kernels/opencl/compat.h"
 #include "kernels/common/stages.h"
 
-#define PM_CL_PARAM(type, name) __global type* restrict name,
-#define PM_CL_BIND(type, name) kg.name = name;
+#define PM_CL_PARAM(group, type, name, extent, per) __global type* restrict name,
+#define PM_CL_BIND(group, type, name, extent, per) kg.name = name;
 #define PM_CL_ENTRY(kernel)                                                                     \
   __kernel void pm_##kernel(PM_BUFFER_LIST(PM_CL_PARAM) const LaunchParams params, const uint work_items) \
   {                                                                                             \

@@ -1,11 +1,14 @@
 // OpenCL implementation of the device interface: one in-order queue, buffers as cl_mem, the
 // embedded kernel source built once per device (drivers such as PoCL and NVIDIA's cache the
-// binary themselves), every buffer slot passed as a kernel argument in PM_BUFFER_LIST order.
+// binary themselves), every buffer slot a kernel argument in PM_BUFFER_LIST order. Kernel
+// arguments persist in each cl_kernel, so a launch sets only the slots that changed since that
+// kernel's last launch, and its LaunchParams.
 #include "kernels/opencl/opencl_device.h"
 
 #include <CL/cl.h>
 #include <CL/cl_ext.h>
 
+#include <array>
 #include <cstring>
 #include <string>
 
@@ -156,15 +159,21 @@ class OpenclDevice final : public Device {
 
   void launch(KernelId id, uint32_t work_items, const LaunchParams& params) override {
     if (work_items == 0) return;
-    cl_kernel kernel = kernels_[static_cast<size_t>(id)];
-    cl_uint arg = 0;
-    for (void* handle : slots()) {
-      cl_mem buffer = static_cast<cl_mem>(handle);
-      PM_CL_CHECK(clSetKernelArg(kernel, arg++, sizeof(cl_mem), &buffer));
+    const size_t k = static_cast<size_t>(id);
+    cl_kernel kernel = kernels_[k];
+    if (bound_version_[k] != slots_version()) {
+      const auto& table = slots();
+      for (size_t slot = 0; slot < kBufferSlotCount; ++slot) {
+        cl_mem buffer = static_cast<cl_mem>(table[slot]);
+        if (bound_version_[k] != 0 && bound_[k][slot] == buffer) continue;
+        PM_CL_CHECK(clSetKernelArg(kernel, cl_uint(slot), sizeof(cl_mem), &buffer));
+        bound_[k][slot] = buffer;
+      }
+      bound_version_[k] = slots_version();
     }
-    PM_CL_CHECK(clSetKernelArg(kernel, arg++, sizeof(LaunchParams), &params));
+    PM_CL_CHECK(clSetKernelArg(kernel, cl_uint(kBufferSlotCount), sizeof(LaunchParams), &params));
     cl_uint items = work_items;
-    PM_CL_CHECK(clSetKernelArg(kernel, arg++, sizeof(cl_uint), &items));
+    PM_CL_CHECK(clSetKernelArg(kernel, cl_uint(kBufferSlotCount + 1), sizeof(cl_uint), &items));
     const size_t local = 64;
     const size_t global = (size_t(work_items) + local - 1) / local * local;
     cl_int err = clEnqueueNDRangeKernel(queue_, kernel, 1, nullptr, &global, &local, 0, nullptr, nullptr);
@@ -173,8 +182,9 @@ class OpenclDevice final : public Device {
                         std::to_string(work_items) + " work items failed with " + cl_error_name(err));
   }
 
-  void sort_pairs(SortBuffers& buffers, uint32_t count, int key_bits) override {
-    portable_sort_pairs(*this, sort_scratch_, buffers, count, key_bits);
+  void sort_pairs(DeviceBuffer& keys_in, DeviceBuffer& values_in, DeviceBuffer& keys_out, DeviceBuffer& values_out,
+                  uint32_t count, int key_bits) override {
+    portable_sort_pairs(*this, sort_scratch_, keys_in, values_in, keys_out, values_out, count, key_bits);
   }
 
   void synchronize() override { PM_CL_CHECK(clFinish(queue_)); }
@@ -228,6 +238,10 @@ class OpenclDevice final : public Device {
   cl_command_queue queue_ = nullptr;
   cl_program program_ = nullptr;
   cl_kernel kernels_[kKernelCount] = {};
+  // The buffer arguments each kernel was last given, and the slot table version they match
+  // (0: none set yet).
+  std::array<std::array<cl_mem, kBufferSlotCount>, kKernelCount> bound_{};
+  std::array<uint64_t, kKernelCount> bound_version_{};
   PortableSortScratch sort_scratch_;
 };
 
@@ -245,7 +259,7 @@ std::unique_ptr<Device> create_opencl_device(int index) {
   if (entries.empty())
     throw DeviceError("OpenCL: no OpenCL device found (is an ICD such as pocl-opencl-icd installed?)");
   if (index < 0 || index >= static_cast<int>(entries.size()))
-    throw InputError("--device " + std::to_string(index) + ": OpenCL has " + std::to_string(entries.size()) +
+    throw SettingError("device", "no device " + std::to_string(index) + ": OpenCL has " + std::to_string(entries.size()) +
                      " device(s); see 'pmrender devices'");
   return std::make_unique<OpenclDevice>(entries[index], index);
 }

@@ -38,6 +38,7 @@
 #include "scene_io/cornell_box.h"
 #include "scene_io/scene_file.h"
 #include "support/device_checks.h"
+#include "support/render_settings.h"
 
 namespace pm {
 namespace {
@@ -45,14 +46,14 @@ namespace {
 namespace fs = std::filesystem;
 
 // --- the golden settings ---------------------------------------------------------------------
-// Photon-differential footprints shrink as the photons of a batch grow, so the noise of one batch
-// does not fall with more photons per batch; it falls with more batches. The goldens are
-// therefore rendered with the test's batch size and about 10x as many batches (3x less noise),
-// and with their own seed, so that no test render shares random numbers with them.
+// Photon-differential footprints shrink as the photons of a pass grow, so the noise of one pass
+// does not fall with more photons per pass; it falls with more passes. The goldens are therefore
+// rendered with the test's photons per pass and about 10x as many passes (3x less noise), and
+// with their own seed, so that no test render shares random numbers with them.
 constexpr int kSize = 128;
-constexpr uint32_t kBatch = 65536;
-constexpr int kTestBatches = 6;
-constexpr int kGoldenBatches = 64;
+constexpr uint32_t kPhotonsPerPass = 65536;
+constexpr int kTestPasses = 6;
+constexpr int kGoldenPasses = 64;
 constexpr uint32_t kGoldenSeed = 1000;
 constexpr uint32_t kTestSeed = 1;
 constexpr uint32_t kReseed = 2;  // the calibration's second noise sample (seed 1 is the check)
@@ -101,25 +102,15 @@ Scene load_golden_scene(const GoldenScene& g) {
   return g.file ? load_scene_file(golden_dir() + "/scenes/" + g.file) : builtin_cornell_box();
 }
 
-double scene_diagonal(const Scene& s) {
-  Float3 lo = s.positions.at(0), hi = lo;
-  for (const Float3& p : s.positions) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  return std::sqrt(double(hi.x - lo.x) * (hi.x - lo.x) + double(hi.y - lo.y) * (hi.y - lo.y) +
-                   double(hi.z - lo.z) * (hi.z - lo.z));
-}
-
-RenderSettings golden_settings(uint32_t seed, int batches) {
-  RenderSettings s;
+RenderSettings golden_settings(uint32_t seed, int passes) {
+  PhotonSettings photons;
+  photons.photons = kPhotonsPerPass;
+  photons.bounces = 2;
+  RenderSettings s = test::photon_render_settings(photons, uint32_t(passes));
   s.width = kSize;
   s.height = kSize;
   s.mirror_depth = 1;
   s.seed = seed;
-  s.photons.batch = kBatch;
-  s.photons.photons = uint64_t(kBatch) * batches;
-  s.photons.bounces = 2;
   return s;
 }
 
@@ -203,14 +194,15 @@ TEST_P(Golden, MatchesGoldenAndSeparatesNoiseFromBias) {
   const std::string golden_path = golden_dir() + "/" + g.name + ".exr";
 
   if (update_mode()) {
-    RenderSettings settings = golden_settings(kGoldenSeed, kGoldenBatches);
-    FrameImage image = render(scene, settings);
+    RenderSettings settings = golden_settings(kGoldenSeed, kGoldenPasses);
+    Renderer renderer(device(), scene, settings);
+    FrameImage image = renderer.render_frame(0);
     FrameImage golden;
     golden.width = image.width;
     golden.height = image.height;
     golden.layers.push_back(*image.find(""));
     golden.attributes = {{"pmrender/scene", scene.name + " (" + (g.file ? g.file : "builtin") + ")"},
-                         {"pmrender/settings", settings.describe()},
+                         {"pmrender/settings", renderer.describe()},
                          {"pmrender/golden", "regenerate with PMRENDER_UPDATE_GOLDENS=1 (golden/README.md)"}};
     write_exr(golden_path, golden, false);
     std::printf("updated %s\n", golden_path.c_str());
@@ -230,7 +222,7 @@ TEST_P(Golden, MatchesGoldenAndSeparatesNoiseFromBias) {
   };
 
   // The regression check proper: this build's render at the golden settings, another seed.
-  const FrameImage test = render(scene, golden_settings(kTestSeed, kTestBatches));
+  const FrameImage test = render(scene, golden_settings(kTestSeed, kTestPasses));
   ASSERT_TRUE(std::all_of(combined(test).begin(), combined(test).end(), [](float v) { return std::isfinite(v); }));
   const ImageComparison regression = measure("seed 1", combined(test));
   if (regression.flip > g.threshold) {
@@ -241,7 +233,7 @@ TEST_P(Golden, MatchesGoldenAndSeparatesNoiseFromBias) {
 
   // Calibration: another seed passes with margin, and so does seed 1 ...
   {
-    const ImageComparison c = measure("seed 2", combined(render(scene, golden_settings(kReseed, kTestBatches))));
+    const ImageComparison c = measure("seed 2", combined(render(scene, golden_settings(kReseed, kTestPasses))));
     EXPECT_LE(c.flip, g.threshold / kMargin)
         << g.name << ": noise of seed " << kReseed << " is too close to the threshold";
   }
@@ -259,17 +251,17 @@ TEST_P(Golden, MatchesGoldenAndSeparatesNoiseFromBias) {
     Scene brighter = scene;
     for (LightDesc& light : brighter.lights)
       light.power = {light.power.x * 1.05f, light.power.y * 1.05f, light.power.z * 1.05f};
-    expect_fails(kFlux, combined(render(brighter, golden_settings(kTestSeed, kTestBatches))));
+    expect_fails(kFlux, combined(render(brighter, golden_settings(kTestSeed, kTestPasses))));
   }
   {
-    RenderSettings wide = golden_settings(kTestSeed, kTestBatches);
-    wide.photons.smoothing *= 2.0f;
-    wide.photons.rmax = float(2.0 * 0.1 * scene_diagonal(scene));  // twice the default r_max
+    RenderSettings wide = golden_settings(kTestSeed, kTestPasses);
+    test::edit_photons(wide).smoothing *= 2.0f;
+    test::edit_photons(wide).rmax = float(2.0 * 0.1 * measure_scene(scene).diagonal);  // twice the default r_max
     expect_fails(kFootprint, combined(render(scene, wide)));
   }
   {
-    RenderSettings one_bounce = golden_settings(kTestSeed, kTestBatches);
-    one_bounce.photons.bounces = 1;
+    RenderSettings one_bounce = golden_settings(kTestSeed, kTestPasses);
+    test::edit_photons(one_bounce).bounces = 1;
     expect_fails(kBounce, combined(render(scene, one_bounce)));
   }
   if (g.has_caustic) {

@@ -7,6 +7,7 @@
 
 #include "render/renderer.h"
 #include "scene_io/cornell_box.h"
+#include "support/render_settings.h"
 #include "support/device_checks.h"
 #include "support/image_stats.h"
 
@@ -27,7 +28,7 @@ TEST(BackendEquivalence, CornellBoxCudaMatchesOpencl) {
   ASSERT_NE(opencl, nullptr);
 
   Scene scene = builtin_cornell_box();
-  RenderSettings settings;  // default photon mapping: 262144 photons, two bounces
+  const RenderSettings settings = test::photon_render_settings(PhotonSettings{});  // 262144 photons, two bounces
   Renderer cuda_renderer(*cuda, scene, settings);
   Renderer opencl_renderer(*opencl, scene, settings);
   FrameStats cuda_stats, opencl_stats;

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "render/renderer.h"
+#include "support/render_settings.h"
 #include "support/analytic_scenes.h"
 #include "support/device_checks.h"
 
@@ -32,13 +33,13 @@ TEST_P(AnalyticSphere, IndirectRadianceMatchesClosedForm) {
   const double area = test::surface_area(scene);
   double series = 0, rho_b = 1;
   for (int b = 1; b <= bounces; ++b) series += (rho_b *= rho);
-  const double expected = rho / M_PI * power / area * series;
+  const double expected = rho / double(PM_PI) * power / area * series;
 
-  RenderSettings settings;
-  settings.photons.photons = 200000;
-  settings.photons.bounces = bounces;
-  settings.photons.estimator = c.estimator;
-  Renderer renderer(*device, scene, settings);
+  PhotonSettings photons;
+  photons.photons = 200000;
+  photons.bounces = bounces;
+  photons.estimator = c.estimator;
+  Renderer renderer(*device, scene, test::photon_render_settings(photons));
   FrameImage image = renderer.render_frame(0);
   const ImageLayer* indirect = image.find("indirect");
   ASSERT_NE(indirect, nullptr);

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "animations/frame_spec.h"
+#include "scene_io/frame_spec.h"
 #include "render/errors.h"
 #include "support/paths.h"
 

@@ -76,7 +76,7 @@ TEST_F(Cli, UnknownKeyNamesTheField) { expect_input_error("render " + data("unkn
 TEST_F(Cli, NonFinitePositionNamesTheField) { expect_input_error("render " + data("nan_position.json"), "lights[0].position"); }
 TEST_F(Cli, MissingSceneFileIsAnInputError) { expect_input_error("render " + data("nope.json"), "nope.json"); }
 TEST_F(Cli, BadResolutionIsAnInputError) { expect_input_error("render --resolution 12by4", "--resolution"); }
-TEST_F(Cli, OutOfRangeDeviceIsAnInputError) { expect_input_error("render --backend opencl --device 99", "--device 99"); }
+TEST_F(Cli, OutOfRangeDeviceIsAnInputError) { expect_input_error("render --backend opencl --device 99", "--device: no device 99"); }
 
 TEST_F(Cli, UnknownOptionIsUsageError) {
   ProcessResult r = pmrender("render --no-such-option");

@@ -22,6 +22,7 @@
 #include "render/errors.h"
 #include "render/renderer.h"
 #include "scene_io/cornell_box.h"
+#include "support/render_settings.h"
 #include "support/analytic_scenes.h"
 #include "support/device_checks.h"
 #include "support/paths.h"
@@ -49,11 +50,10 @@ Rendered render(const Scene& scene, RenderSettings settings, int width = 40, int
   return r;
 }
 
-RenderSettings photons(uint64_t count, uint32_t batch = 1u << 20) {
-  RenderSettings s;
-  s.photons.photons = count;
-  s.photons.batch = batch;
-  return s;
+RenderSettings photons(uint64_t per_pass, uint32_t passes = 1) {
+  PhotonSettings p;
+  p.photons = per_pass;
+  return test::photon_render_settings(p, passes);
 }
 
 double layer_mean(const FrameImage& image, const std::string& name) {
@@ -143,7 +143,7 @@ TEST(Extremes, SceneScaleFromMillimetresTo100Kilometres) {
     expect_clean(r, what);
     const double direct = layer_mean(r.image, "direct"), indirect = layer_mean(r.image, "indirect");
     std::printf("scale %-8g direct %.5f (x%.4f)  indirect %.5f (x%.4f)  hits %llu\n", k, direct, direct / direct1,
-                indirect, indirect / indirect1, (unsigned long long)r.stats.photons.hits);
+                indirect, indirect / indirect1, (unsigned long long)r.stats.method.get("hits"));
     // Same irradiance at every scale: the ray-traced direct light must agree (ray offsets are
     // relative to coordinates, so some self-shadowing on planes through the origin remains at
     // 1e3 and beyond: about -3 % there) ...
@@ -161,7 +161,7 @@ TEST(Extremes, SceneScaleFromMillimetresTo100Kilometres) {
   // With s scaled by k^(3/4) the footprints scale with the scene and the photon map returns.
   const double k = 1e5;
   RenderSettings grown = settings;
-  grown.photons.smoothing = float(settings.photons.smoothing * std::pow(k, 0.75));
+  test::edit_photons(grown).smoothing = float(test::photon_settings_of(settings).smoothing * std::pow(k, 0.75));
   const Rendered r = render(scaled(base, k), grown);
   expect_clean(r, "scale 1e5, s x k^(3/4)");
   EXPECT_NEAR(layer_mean(r.image, "indirect") / indirect1, 1.0, 0.1);
@@ -199,7 +199,7 @@ TEST(Extremes, NoRecordedHitsGivesAnEmptyPhotonMap) {
     const Scene s = floor_scene(light, 0.7f);
     const Rendered r = render(s, photons(10000));
     expect_clean(r, "open floor");
-    EXPECT_EQ(r.stats.photons.hits, 0u);
+    EXPECT_EQ(r.stats.method.get("hits"), 0.0);
     EXPECT_EQ(layer_mean(r.image, "indirect"), 0.0);
     EXPECT_EQ(layer_mean(r.image, "caustic"), 0.0);
   }
@@ -220,7 +220,7 @@ TEST(Extremes, NoRecordedHitsGivesAnEmptyPhotonMap) {
   add_quad(enclosed, p(1, -1, -1), p(1, 1, -1), p(1, 1, 1), p(1, -1, 1), m);
   const Rendered r = render(enclosed, photons(10000));
   expect_clean(r, "enclosed light");
-  EXPECT_EQ(r.stats.photons.hits, 0u);
+  EXPECT_EQ(r.stats.method.get("hits"), 0.0);
   EXPECT_EQ(layer_mean(r.image, ""), 0.0);
 }
 
@@ -247,7 +247,7 @@ TEST(Extremes, NearlyCoincidentHitsInsideATinyBox) {
   s.camera.look_at = {0, 0, 0};
   const Rendered r = render(s, photons(20000));
   expect_clean(r, "tiny box");
-  EXPECT_GT(r.stats.photons.hits, 10000u);
+  EXPECT_GT(r.stats.method.get("hits"), 10000.0);
   EXPECT_EQ(layer_mean(r.image, "direct"), 0.0) << "direct light leaks through the walls";
   // Footprints of hits on the inside of a wall reach h = |a|/4 past its edges, onto the outside
   // of the adjoining walls (zero-thickness geometry, kernels/common/footprint.h): some indirect
@@ -266,8 +266,8 @@ TEST(Extremes, TinyAndHugeFootprintSettings) {
   for (Case c : {Case{1e-9f, 8}, Case{1e-30f, 8}, Case{1e6f, 8}, Case{0, 1e-6f}, Case{0, 1e4f}, Case{1e6f, 1e4f},
                  Case{1e-9f, 1e-6f}}) {
     RenderSettings settings = photons(4096);
-    settings.photons.rmax = c.rmax;
-    settings.photons.smoothing = c.smoothing;
+    test::edit_photons(settings).rmax = c.rmax;
+    test::edit_photons(settings).smoothing = c.smoothing;
     const Rendered r = render(s, settings, 24, 24);
     const std::string what = "rmax " + std::to_string(c.rmax) + " smoothing " + std::to_string(c.smoothing);
     expect_clean(r, what);
@@ -281,28 +281,28 @@ TEST(Extremes, ZeroNegativeOrNonFiniteFootprintSettingsAreRefused) {
   const Scene s = builtin_cornell_box();
   auto message = [&](float rmax, float smoothing) -> std::string {
     RenderSettings settings = photons(100);
-    settings.photons.rmax = rmax;
-    settings.photons.smoothing = smoothing;
+    test::edit_photons(settings).rmax = rmax;
+    test::edit_photons(settings).smoothing = smoothing;
     try {
       Renderer renderer(device(), s, settings);
-    } catch (const InputError& e) {
-      return e.what();
+    } catch (const SettingError& e) {
+      return e.setting();
     }
     return "(accepted)";
   };
-  EXPECT_NE(message(-1, 8).find("--rmax"), std::string::npos);
-  EXPECT_NE(message(INFINITY, 8).find("--rmax"), std::string::npos);
-  EXPECT_NE(message(0, 0).find("--smoothing"), std::string::npos);
-  EXPECT_NE(message(0, NAN).find("--smoothing"), std::string::npos);
+  EXPECT_EQ(message(-1, 8), "rmax");
+  EXPECT_EQ(message(INFINITY, 8), "rmax");
+  EXPECT_EQ(message(0, 0), "smoothing");
+  EXPECT_EQ(message(0, NAN), "smoothing");
 }
 
 TEST(Extremes, OnePhoton) {
   for (uint32_t seed : {1u, 2u, 3u}) {
-    RenderSettings settings = photons(1, 1);
+    RenderSettings settings = photons(1);
     settings.seed = seed;
     const Rendered r = render(builtin_cornell_box(), settings);
     expect_clean(r, "one photon");
-    EXPECT_LE(r.stats.photons.hits, 4u);  // at most bounces + 2 records
+    EXPECT_LE(r.stats.method.get("hits"), 4.0);  // at most bounces + 2 records
   }
 }
 
@@ -328,7 +328,7 @@ TEST(Extremes, RaysAlongSharedEdgesHitATriangle) {
   Renderer renderer(device(), s, settings);
   renderer.render_frame(0);
   std::vector<float4> position(128 * 128);
-  device().download(*renderer.buffer(BufferSlot::shade_position), position.data(), position.size() * sizeof(float4));
+  device().download(renderer.buffers()[BufferSlot::shade_position], position.data(), position.size() * sizeof(float4));
   int missed = 0;
   for (const float4& p : position) missed += PM_AS_INT(p.w) < 0;
   EXPECT_EQ(missed, 0) << "eye rays slipped through the edges between the room's triangles";
@@ -376,43 +376,47 @@ TEST(Extremes, OnlyDegenerateTrianglesRenderBlack) {
 // --- photon counts ----------------------------------------------------------------------------
 
 TEST(Extremes, FourBillionPhotonsRenderInBoundedMemory) {
-  // 4e9 < 2^32: the photons' random streams fit; memory is sized by the batch, not the total.
-  // (Only the set-up runs here: tracing 4e9 photons on PoCL would take hours.)
+  // 61035 passes of 65536 photons: 4e9 < 2^32, so the photons' random streams fit; memory is
+  // sized by one pass, not by the total. (Only the set-up runs here: tracing 4e9 photons on PoCL
+  // would take hours.)
   const Scene s = builtin_cornell_box();
-  RenderSettings settings = photons(4000000000ull, 65536);
+  RenderSettings settings = photons(65536, 61035);
   settings.width = settings.height = 16;
   const uint64_t before = device().allocated_bytes();
   device().reset_peak();
   {
     Renderer renderer(device(), s, settings);
-    ASSERT_NE(renderer.photon_pass(), nullptr);
-    EXPECT_EQ(renderer.photon_pass()->photons_per_batch(), 65536u);
+    ASSERT_NE(renderer.method(), nullptr);
+    EXPECT_EQ(renderer.method()->work_per_pass().second, 65536.0);
     EXPECT_LT(device().peak_allocated_bytes() - before, 256ull << 20);
   }
 }
 
 TEST(Extremes, PhotonCountsBeyondTheRandomStreamsAreRefused) {
   // Photon i of a frame draws from random stream i, a 32-bit number: more than 2^32 photons per
-  // frame would reuse streams (correlated photons, silently), so they are refused.
+  // frame would reuse streams (correlated photons, silently), so they are refused, naming the
+  // pass count.
   const Scene s = builtin_cornell_box();
-  for (uint64_t count : {(1ull << 32) + 1, 5000000000ull, 1ull << 40, ~0ull}) {
-    for (uint32_t batch : {1u, 1000000u, 1u << 20}) {
-      RenderSettings settings = photons(count, batch);
+  for (uint64_t count : {(1ull << 32) + 1, 5000000000ull, 1ull << 40}) {
+    for (uint32_t per_pass : {1000u, 1000000u, 1u << 20}) {
+      const uint64_t passes = (count + per_pass - 1) / per_pass;
+      if (passes > 0xffffffffull) continue;
+      RenderSettings settings = photons(per_pass, uint32_t(passes));
       try {
         Renderer renderer(device(), s, settings);
-        ADD_FAILURE() << count << " photons in batches of " << batch << " were accepted";
-      } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("--photons"), std::string::npos) << e.what();
+        ADD_FAILURE() << passes << " passes of " << per_pass << " photons were accepted";
+      } catch (const SettingError& e) {
+        EXPECT_EQ(e.setting(), "passes") << e.what();
       }
     }
   }
-  // A batch too large for the hit records names --batch.
-  RenderSettings huge = photons(3000000000ull, 3000000000u);
+  // A pass too large for the hit records names the photons per pass.
+  RenderSettings huge = photons(3000000000ull);
   try {
     Renderer renderer(device(), s, huge);
-    ADD_FAILURE() << "a batch of 3e9 photons was accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--batch"), std::string::npos) << e.what();
+    ADD_FAILURE() << "a pass of 3e9 photons was accepted";
+  } catch (const SettingError& e) {
+    EXPECT_EQ(e.setting(), "photons") << e.what();
   }
 }
 
@@ -423,14 +427,14 @@ TEST(Extremes, CommandLineRefusesTooManyPhotonsWithoutWritingAFile) {
   fs::create_directories(dir);
   // timeout: a build that accepted the count would start tracing 5e9 photons.
   const std::string cmd = "timeout 120 " + test::pmrender_binary() +
-                          " render --backend opencl --photons 5000000000 --batch 1000000 --resolution 8x8 -o " +
+                          " render --backend opencl --photons 1000000 --passes 5000 --resolution 8x8 -o " +
                           (dir / "x.exr").string() + " >" + (dir / "out").string() + " 2>" + (dir / "err").string();
   const int status = std::system(cmd.c_str());
   std::ifstream in(dir / "err");
   std::stringstream err;
   err << in.rdbuf();
   EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 2) << err.str();
-  EXPECT_NE(err.str().find("--photons"), std::string::npos) << err.str();
+  EXPECT_NE(err.str().find("--passes"), std::string::npos) << err.str();
   EXPECT_FALSE(fs::exists(dir / "x.exr"));
   fs::remove_all(dir);
 }

@@ -4,6 +4,7 @@
 #include "scene_io/cornell_box.h"
 #include "support/device_checks.h"
 #include "support/gather_checks.h"
+#include "support/render_settings.h"
 
 namespace pm {
 namespace {
@@ -31,7 +32,7 @@ TEST_F(OpenclGather, AutoLeafSizeEqualsBruteForce) {
 }
 TEST_F(OpenclGather, VoxelVolumeHeuristicMapEqualsBruteForce) {
   PhotonSettings p = photons(PM_ESTIMATOR_PD, PM_KERNEL_CONSTANT, 8);
-  p.vvh_map = true;
+  p.builder = kPhotonMapVvh;
   test::check_gather_equals_brute_force(*device_, builtin_cornell_box(), p, 24, 24);
 }
 TEST_F(OpenclGather, RadiusEqualsBruteForce) {
@@ -44,10 +45,9 @@ TEST_F(OpenclGather, NearestNeighboursEqualBruteForce) {
 // The photon map is rebuilt in parallel every frame: the same frame must come out bit-identical,
 // whatever order the work items ran in (atomics decide only who finishes a node, not its value).
 TEST_F(OpenclGather, SameFrameRendersBitIdentically) {
-  RenderSettings settings;
+  RenderSettings settings = test::photon_render_settings(photons(PM_ESTIMATOR_PD, PM_KERNEL_CONSTANT, 0));
   settings.width = 32;
   settings.height = 32;
-  settings.photons = photons(PM_ESTIMATOR_PD, PM_KERNEL_CONSTANT, 0);
   Scene scene = builtin_cornell_box();
   Renderer first(*device_, scene, settings);
   std::vector<float> a = first.render_frame(3).find("")->rgb;

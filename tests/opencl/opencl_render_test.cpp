@@ -23,10 +23,9 @@ FrameImage render_direct_cornell_64() {
   std::unique_ptr<Device> device = test::open_first_device("opencl");
   EXPECT_NE(device, nullptr);
   if (!device) return {};
-  RenderSettings settings;
+  RenderSettings settings;  // no indirect-light method: direct light only
   settings.width = 64;
   settings.height = 64;
-  settings.photons.photons = 0;
   const Scene scene = builtin_cornell_box();
   Renderer renderer(*device, scene, settings);
   return renderer.render_frame(0);

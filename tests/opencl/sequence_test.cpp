@@ -22,13 +22,15 @@
 #include <sstream>
 #include <thread>
 
-#include "animations/scene_animation.h"
+#include "render/image_metrics.h"
+#include "render/scene_frame.h"
 #include "render/exr_io.h"
 #include "render/renderer.h"
 #include "render/stage_timer.h"
 #include "scene_io/scene_file.h"
 #include "support/device_checks.h"
 #include "support/image_stats.h"
+#include "support/render_settings.h"
 #include "support/paths.h"
 #include "support/pmrender_process.h"
 
@@ -39,12 +41,25 @@ namespace fs = std::filesystem;
 
 std::string data(const std::string& name) { return test::test_data_dir() + "/animation/" + name; }
 
-RenderSettings small_settings(int width = 48, int height = 36, uint64_t photons = 20000) {
-  RenderSettings settings;
+RenderSettings small_settings(int width = 48, int height = 36, uint64_t photons = 20000,
+                              int sequence = PM_PHOTON_SEQUENCE_RANDOM, uint32_t passes = 1) {
+  PhotonSettings photon;
+  photon.photons = photons;
+  photon.sequence = sequence;
+  RenderSettings settings = test::photon_render_settings(photon, passes);
   settings.width = width;
   settings.height = height;
-  settings.photons.photons = photons;
   return settings;
+}
+
+bool photons_reused(const FrameStats& stats) { return stats.method.get("photons_reused") != 0; }
+int photon_frame(const FrameStats& stats) { return int(stats.method.get("photon_frame", -1)); }
+
+double stage_ms(const std::vector<StageTime>& times, const std::string& stage) {
+  double ms = 0;
+  for (const StageTime& t : times)
+    if (t.stage == stage) ms += t.ms;
+  return ms;
 }
 
 // Every layer of two images, bit for bit.
@@ -79,19 +94,19 @@ TEST_F(Sequence, CameraOnlyFramesReuseThePhotonsAndEqualAFreshRender) {
     SCOPED_TRACE("frame " + std::to_string(f));
     FrameStats stats;
     FrameImage image = renderer.render_frame(f, &stats);
-    const double trace_ms = timer.collect()[size_t(Stage::photon_trace)];
+    const double trace_ms = stage_ms(timer.collect(), "photon trace");
     const bool expect_reuse = f >= 13;
-    EXPECT_EQ(stats.photons_reused, expect_reuse);
-    EXPECT_EQ(stats.photon_frame, f >= 12 ? 12 : f);
+    EXPECT_EQ(photons_reused(stats), expect_reuse);
+    EXPECT_EQ(photon_frame(stats), f >= 12 ? 12 : f);
     if (expect_reuse) EXPECT_EQ(trace_ms, 0.0) << "a reused frame traced photons";
     else EXPECT_GT(trace_ms, 0.0);
-    EXPECT_GT(stats.photons.hits, 0u);
+    EXPECT_GT(stats.method.get("hits"), 0.0);
 
     // A fresh Renderer that rendered nothing before traces the same photons (keyed by frame 12).
     Renderer fresh(*device_, scene, settings);
     FrameStats fresh_stats;
     expect_same_image(image, fresh.render_frame(f, &fresh_stats), "reused against fresh");
-    EXPECT_FALSE(fresh_stats.photons_reused);
+    EXPECT_FALSE(photons_reused(fresh_stats));
     if (f > 10) {
       EXPECT_NE(image.find("")->rgb, previous.find("")->rgb) << "the camera moved; the image must too";
     }
@@ -102,15 +117,15 @@ TEST_F(Sequence, CameraOnlyFramesReuseThePhotonsAndEqualAFreshRender) {
 TEST_F(Sequence, WithoutReuseEveryFrameDrawsItsOwnPhotons) {
   const Scene scene = load_scene_file(data("moving_room.json"));
   RenderSettings settings = small_settings();
-  settings.reuse_photons = false;
+  settings.reuse_lighting = false;
   Renderer renderer(*device_, scene, settings);
   RenderSettings reusing = small_settings();
   Renderer reference(*device_, scene, reusing);
   for (int f = 12; f <= 14; ++f) {
     FrameStats stats;
     const FrameImage own = renderer.render_frame(f, &stats);
-    EXPECT_FALSE(stats.photons_reused);
-    EXPECT_EQ(stats.photon_frame, f);
+    EXPECT_FALSE(photons_reused(stats));
+    EXPECT_EQ(photon_frame(stats), f);
     const FrameImage shared = reference.render_frame(f);
     EXPECT_EQ(own.find("direct")->rgb, shared.find("direct")->rgb) << "the same camera and lights";
     if (f > 12) EXPECT_NE(own.find("indirect")->rgb, shared.find("indirect")->rgb) << "other photons";
@@ -118,16 +133,16 @@ TEST_F(Sequence, WithoutReuseEveryFrameDrawsItsOwnPhotons) {
   }
 }
 
-TEST_F(Sequence, SeveralBatchesTraceEveryFrameAgain) {
+TEST_F(Sequence, SeveralPassesTraceEveryFrameAgain) {
   const Scene scene = load_scene_file(data("moving_room.json"));
-  RenderSettings settings = small_settings();
-  settings.photons.batch = 8000;  // 3 batches: the device only ever holds the last batch's map
+  // 3 passes: the device only ever holds the last pass's map, and a frame starts with pass 0.
+  const RenderSettings settings = small_settings(48, 36, 6667, PM_PHOTON_SEQUENCE_RANDOM, 3);
   Renderer renderer(*device_, scene, settings);
   for (int f = 12; f <= 14; ++f) {
     FrameStats stats;
     const FrameImage image = renderer.render_frame(f, &stats);
-    EXPECT_FALSE(stats.photons_reused);
-    EXPECT_EQ(stats.photons.batches, 3);
+    EXPECT_FALSE(photons_reused(stats));
+    EXPECT_EQ(stats.passes, 3u);
     Renderer fresh(*device_, scene, settings);
     expect_same_image(image, fresh.render_frame(f), "frame " + std::to_string(f));
   }
@@ -160,12 +175,12 @@ TEST_F(Sequence, HaltonPhotonsAreUnbiasedAndTheSameInEveryFrame) {
   Scene scene = load_scene_file(data("moving_room.json"));
   scene.animation.camera = CameraAnimation{};
   scene.animation.lights.clear();  // a static sequence
-  RenderSettings settings = small_settings(48, 36, 200000);
-  settings.reuse_photons = false;
-  settings.photons.sequence = PM_PHOTON_SEQUENCE_HALTON;
+  RenderSettings settings = small_settings(48, 36, 200000, PM_PHOTON_SEQUENCE_HALTON);
+  settings.reuse_lighting = false;
   Renderer halton(*device_, scene, settings);
-  settings.photons.sequence = PM_PHOTON_SEQUENCE_RANDOM;
-  Renderer random(*device_, scene, settings);
+  RenderSettings random_settings = small_settings(48, 36, 200000, PM_PHOTON_SEQUENCE_RANDOM);
+  random_settings.reuse_lighting = false;
+  Renderer random(*device_, scene, random_settings);
   const FrameImage h3 = halton.render_frame(3), h4 = halton.render_frame(4);
   const FrameImage r3 = random.render_frame(3), r4 = random.render_frame(4);
   expect_same_image(h3, h4, "halton frames 3 and 4");
@@ -175,13 +190,12 @@ TEST_F(Sequence, HaltonPhotonsAreUnbiasedAndTheSameInEveryFrame) {
   EXPECT_GT(mean_h, 0.0);
   EXPECT_NEAR(mean_h / mean_r, 1.0, 0.03);
   // Another seed gives other (rotated) Halton points.
-  settings.photons.sequence = PM_PHOTON_SEQUENCE_HALTON;
   settings.seed = 7;
   Renderer other_seed(*device_, scene, settings);
   EXPECT_NE(other_seed.render_frame(3).find("indirect")->rgb, h3.find("indirect")->rgb);
 }
 
-// Flicker (animations/scene_animation.h, sequence_flicker) of a static-camera sequence. Sizes can
+// Flicker (render/scene_frame.h, sequence_flicker) of a static-camera sequence. Sizes can
 // be raised through PM_FLICKER_WIDTH, PM_FLICKER_HEIGHT, PM_FLICKER_PHOTONS and PM_FLICKER_FRAMES
 // (docs/animation.md lists the numbers measured that way).
 int env_int(const char* name, int fallback) {
@@ -241,9 +255,8 @@ TEST_F(Sequence, HaltonPhotonsReduceFlicker) {
     for (int sequence : {PM_PHOTON_SEQUENCE_RANDOM, PM_PHOTON_SEQUENCE_HALTON}) {
       for (bool reuse : {false, true}) {
         if (scene != &still && reuse) continue;  // the light moves every frame: nothing to reuse
-        RenderSettings settings = small_settings(width, height, uint64_t(photons));
-        settings.photons.sequence = sequence;
-        settings.reuse_photons = reuse;
+        RenderSettings settings = small_settings(width, height, uint64_t(photons), sequence);
+        settings.reuse_lighting = reuse;
         const FlickerRow row = measure_flicker(*device_, *scene, settings, frames);
         const std::string name = label + ", " + (sequence == PM_PHOTON_SEQUENCE_HALTON ? "halton" : "random") +
                                  (reuse ? ", reuse" : "");

@@ -12,6 +12,7 @@
 
 #include "kernels/common/compat_host.h"
 #include "kernels/common/brdf.h"
+#include "render/photon/photon_mapping.h"
 #include "render/renderer.h"
 
 namespace pm::test {
@@ -19,9 +20,9 @@ namespace pm::test {
 template <typename T>
 std::vector<T> read_slot(Device& device, const Renderer& renderer, BufferSlot slot, size_t count) {
   std::vector<T> data(count);
-  const DeviceBuffer* buffer = renderer.buffer(slot);
-  EXPECT_NE(buffer, nullptr) << buffer_slot_name(slot);
-  if (buffer && count) device.download(*buffer, data.data(), count * sizeof(T));
+  const DeviceBuffer& buffer = renderer.buffers()[slot];
+  EXPECT_TRUE(bool(buffer)) << buffer_slot_name(slot);
+  if (buffer && count) device.download(buffer, data.data(), count * sizeof(T));
   return data;
 }
 
@@ -44,12 +45,14 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   settings.width = width;
   settings.height = height;
   settings.mirror_depth = 1;
-  settings.photons = photons;
-  settings.photons.batch = uint32_t(photons.photons);  // one batch: the map holds every hit
+  settings.passes = 1;  // one pass: the map holds every hit
+  settings.method = std::make_shared<PhotonSettings>(photons);
   Renderer renderer(device, scene, settings);
   renderer.render_frame(0);
-  const PhotonSettings& used = renderer.photon_pass()->settings();
-  const size_t n = renderer.photon_pass()->last_hit_count();
+  const auto* method = dynamic_cast<const PhotonMapping*>(renderer.method());
+  ASSERT_NE(method, nullptr);
+  const PhotonSettings& used = method->settings();
+  const size_t n = method->last_hit_count();
   ASSERT_GT(n, 100u);
   auto center = read_slot<float4>(device, renderer, BufferSlot::map_center, n);
   auto row_u = read_slot<float4>(device, renderer, BufferSlot::map_row_u, n);
@@ -102,7 +105,7 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
           if (vec3_dot(v3(incident[k]), nrm) <= 0.0f) continue;
           double w = used.kernel_shape == PM_KERNEL_EPANECHNIKOV ? 2.0 * (1.0 - near[i].first / radius2) : 1.0;
           Vec3 f = brdf_eval(&m, nrm, v3(incident[k]), wo);
-          double scale = w / (M_PI * radius2);
+          double scale = w / (double(PM_PI) * radius2);
           sum[0] += sw[r].x * scale * f.x * power[k].x;
           sum[1] += sw[r].y * scale * f.y * power[k].y;
           sum[2] += sw[r].z * scale * f.z * power[k].z;

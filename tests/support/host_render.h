@@ -14,7 +14,7 @@ namespace pm::test {
 inline std::vector<float4> render_direct_on_host(const Scene& scene, int width, int height, int mirror_depth) {
   SceneBvh bvh = build_scene_bvh(scene);
   std::vector<Material> materials = to_device_materials(scene);
-  std::vector<PointLight> lights = to_device_lights(scene);
+  std::vector<PointLight> lights = to_device_lights(scene.lights);
   const size_t pixels = size_t(width) * height;
   const size_t records = pixels * (mirror_depth + 1);
   std::vector<float4> position(records), normal(records), outgoing(records), weight(records), direct(pixels);

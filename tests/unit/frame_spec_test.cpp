@@ -1,7 +1,7 @@
 // --frames parsing: ranges, steps, lists, order and duplicates, and every kind of bad spec.
 #include <gtest/gtest.h>
 
-#include "animations/frame_spec.h"
+#include "scene_io/frame_spec.h"
 #include "render/errors.h"
 
 namespace pm {
@@ -23,7 +23,9 @@ TEST(FrameSpec, RejectsMalformedSpecsNamingThePart) {
       parse_frame_spec(spec, 0, 100);
       ADD_FAILURE() << "accepted '" << spec << "'";
     } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find("--frames"), std::string::npos) << e.what();
+      const std::string message = e.what();
+      EXPECT_EQ(message.find("--frames"), std::string::npos) << "the library names no option: " << message;
+      if (*spec) EXPECT_NE(message.find(std::string("'") + spec), std::string::npos) << message;
     }
   }
 }

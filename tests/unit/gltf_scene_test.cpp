@@ -10,7 +10,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "animations/scene_animation.h"
+#include "render/scene_frame.h"
 #include "render/errors.h"
 #include "scene_io/gltf_scene.h"
 #include "scene_io/scene_file.h"

@@ -45,24 +45,20 @@ struct HostPhotonMap {
 // Never written by a correct build: lets the tests see any slot the bottom-up pass missed.
 constexpr uint kPoison = 0x7FBADBADu;
 
-// Overall bounds by repeated tile passes, as the device runs them. Needs at least one box.
-inline void reduce_bounds(const std::vector<float4>& lo_in, const std::vector<float4>& hi_in, float4* lo,
-                          float4* hi)
+// Hit slots as the footprint stage leaves them: position with PM_HIT_VALID in w (or 0: an empty
+// slot), and the footprint area in w of the second array.
+inline float4 valid_center(float4 p) { return PM_MAKE_FLOAT4(p.x, p.y, p.z, PM_UINT_AS_FLOAT(PM_HIT_VALID)); }
+
+// Step 1 as the pipeline runs it: one tile per work item, the partials combined on the host.
+inline PhotonMapBounds reduce_bounds(const std::vector<float4>& centers, const std::vector<float4>& areas)
 {
-  std::vector<float4> cur_lo = lo_in, cur_hi = hi_in;
-  uint count = (uint)cur_lo.size();
-  do {
-    uint tiles = photon_map_bounds_tile_count(count);
-    std::vector<float4> out_lo(tiles), out_hi(tiles);
-    run_items(tiles, Order::kForward, 0, [&](uint t) {
-      photon_map_bounds_tile(t, count, cur_lo.data(), cur_hi.data(), out_lo.data(), out_hi.data());
-    });
-    cur_lo.swap(out_lo);
-    cur_hi.swap(out_hi);
-    count = tiles;
-  } while (count > 1);
-  *lo = cur_lo[0];
-  *hi = cur_hi[0];
+  uint count = (uint)centers.size();
+  uint tiles = photon_map_bounds_tile_count(count);
+  std::vector<float4> partials(2 * (size_t)tiles);
+  run_items(tiles, Order::kReverse, 0, [&](uint t) {
+    photon_map_bounds_tile(t, count, centers.data(), areas.data(), partials.data());
+  });
+  return photon_map_combine_partials(partials.data(), tiles);
 }
 
 inline void sort_pairs(std::vector<uint>* codes, std::vector<uint>* indices)
@@ -110,11 +106,13 @@ inline HostPhotonMap build(const std::vector<float4>& positions, const std::vect
                            const std::vector<float4>& hi, uint threshold, Order order, uint32_t seed)
 {
   uint n = (uint)positions.size();
-  float4 b_lo, b_hi;
-  reduce_bounds(positions, positions, &b_lo, &b_hi);
+  std::vector<float4> centers(n);
+  for (uint i = 0; i < n; ++i) centers[i] = valid_center(positions[i]);
+  PhotonMapBounds bounds = reduce_bounds(centers, lo);
   std::vector<uint> codes(n), indices(n);
   run_items(n, order, seed, [&](uint i) {
-    photon_map_morton(i, positions.data(), &b_lo, &b_hi, codes.data(), indices.data());
+    codes[i] = photon_map_morton_key(centers[i], bounds.lo, bounds.hi);
+    indices[i] = i;
   });
   sort_pairs(&codes, &indices);
   return build_from_sorted(std::move(codes), std::move(indices), lo, hi, threshold, order, seed + 2);

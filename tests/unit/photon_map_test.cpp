@@ -180,27 +180,53 @@ uint expect_queries_exact(const HostPhotonMap& m, const Hits& h, const std::vect
   return overflowed;
 }
 
-TEST(PhotonMapBounds, TilePassesEqualMinMax)
+TEST(PhotonMapBounds, TilesGiveBoundsCountAndAreaOfValidHitsOnly)
 {
   for (uint n : {1u, 255u, 256u, 257u, 513u, 70000u}) {
     Hits h = make_hits(n, 11 + n, 0, 0.1f);
     // Put the extremes at tile edges and ends, where an off-by-one in a tile's range shows.
     for (uint at : {0u, 255u, 256u, 511u, 512u, n - 1}) {
       if (at >= n) continue;
-      std::vector<float4> pos = h.pos;
-      pos[at] = PM_MAKE_FLOAT4(50.0f, -50.0f, 0.5f, 0.0f);
-      pos[n - 1 - at] = PM_MAKE_FLOAT4(pos[n - 1 - at].x, pos[n - 1 - at].y, -60.0f, 0.0f);
-      float4 lo, hi;
-      reduce_bounds(pos, pos, &lo, &hi);
-      Vec3 elo = vec3_splat(INFINITY), ehi = vec3_splat(-INFINITY);
-      for (const float4& p : pos) {
-        elo = vec3_min(elo, vec3_from_float4(p));
-        ehi = vec3_max(ehi, vec3_from_float4(p));
+      std::vector<float4> centers(n), areas(n);
+      for (uint i = 0; i < n; ++i) {
+        centers[i] = valid_center(h.pos[i]);
+        areas[i] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, 0.25f * float(i % 7));
       }
-      EXPECT_TRUE(lo.x == elo.x && lo.y == elo.y && lo.z == elo.z) << n << " at " << at;
-      EXPECT_TRUE(hi.x == ehi.x && hi.y == ehi.y && hi.z == ehi.z) << n << " at " << at;
+      centers[at] = valid_center(PM_MAKE_FLOAT4(50.0f, -50.0f, 0.5f, 0.0f));
+      centers[n - 1 - at].z = -60.0f;
+      // Empty slots far outside, with an area: they must count for nothing.
+      uint empty = 0;
+      for (uint i = 3; i < n; i += 97, ++empty) {
+        if (i == at || i == n - 1 - at) continue;
+        centers[i] = PM_MAKE_FLOAT4(1e6f, 1e6f, -1e6f, PM_UINT_AS_FLOAT(0u));
+      }
+      PhotonMapBounds b = reduce_bounds(centers, areas);
+      Vec3 elo = vec3_splat(INFINITY), ehi = vec3_splat(-INFINITY);
+      double area = 0;
+      uint count = 0;
+      for (uint i = 0; i < n; ++i) {
+        if ((PM_AS_UINT(centers[i].w) & PM_HIT_VALID) == 0u) continue;
+        elo = vec3_min(elo, vec3_from_float4(centers[i]));
+        ehi = vec3_max(ehi, vec3_from_float4(centers[i]));
+        area += areas[i].w;
+        ++count;
+      }
+      EXPECT_TRUE(b.lo.x == elo.x && b.lo.y == elo.y && b.lo.z == elo.z) << n << " at " << at;
+      EXPECT_TRUE(b.hi.x == ehi.x && b.hi.y == ehi.y && b.hi.z == ehi.z) << n << " at " << at;
+      EXPECT_EQ(b.count, count) << n << " at " << at;
+      EXPECT_NEAR(b.area, area, 1e-6 * area + 1e-9) << n << " at " << at;
     }
   }
+}
+
+TEST(PhotonMapMorton, EmptySlotsSortAfterEveryHit)
+{
+  float4 lo = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, 0.0f), hi = PM_MAKE_FLOAT4(1.0f, 1.0f, 1.0f, 0.0f);
+  uint corner = photon_map_morton_key(valid_center(hi), lo, hi);
+  EXPECT_LT(corner, PM_MORTON_EMPTY_KEY);
+  EXPECT_EQ(corner, (1u << 30) - 1u);  // the far corner is the largest 30-bit code
+  EXPECT_EQ(photon_map_morton_key(PM_MAKE_FLOAT4(0.5f, 0.5f, 0.5f, PM_UINT_AS_FLOAT(0u)), lo, hi), PM_MORTON_EMPTY_KEY);
+  EXPECT_LT(PM_MORTON_EMPTY_KEY, 1u << PM_MORTON_SORT_BITS);  // within the bits the sort compares
 }
 
 // Step 4 alone: every hit and every inner node but the root has one parent, every inner node
@@ -211,9 +237,13 @@ TEST(PhotonMapTree, BuildLinksEveryChildOnce)
   for (uint n : {2u, 3u, 1000u, 50000u}) {
     Hits h = make_hits(n, 200 + n, n == 1000 ? 4 : 0, 0.05f);
     std::vector<uint> codes(n), index(n);
-    float4 b_lo, b_hi;
-    reduce_bounds(h.pos, h.pos, &b_lo, &b_hi);
-    for (uint i = 0; i < n; ++i) photon_map_morton(i, h.pos.data(), &b_lo, &b_hi, codes.data(), index.data());
+    std::vector<float4> centers(n);
+    for (uint i = 0; i < n; ++i) centers[i] = valid_center(h.pos[i]);
+    PhotonMapBounds b = reduce_bounds(centers, h.pos);
+    for (uint i = 0; i < n; ++i) {
+      codes[i] = photon_map_morton_key(centers[i], b.lo, b.hi);
+      index[i] = i;
+    }
     sort_pairs(&codes, &index);
     std::vector<uint> node_parent(n - 1, kPoison), leaf_parent(n, kPoison), visits(n - 1, 7u);
     run_items(n - 1, Order::kRandom, n, [&](uint i) {

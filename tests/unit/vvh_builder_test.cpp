@@ -1,4 +1,4 @@
-// The VVH photon map builder (render/vvh_builder.h; paper section 5.1, eq. 14, and the count
+// The VVH photon map builder (render/photon/vvh_builder.h; paper section 5.1, eq. 14, and the count
 // threshold of section 5.3): tree structure in photon_map.h's layout (reachability, permutation,
 // exact child boxes, leaf / inner counts against T, Karras-style node numbering), the depth bound
 // on adversarial inputs, queries through photon_map.h's own iterator against brute force (with
@@ -19,7 +19,7 @@
 #include "kernels/common/vec3.h"
 #include "kernels/common/types.h"
 #include "kernels/common/photon_map.h"
-#include "render/vvh_builder.h"
+#include "render/photon/vvh_builder.h"
 
 namespace {
 

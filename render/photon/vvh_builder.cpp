@@ -10,7 +10,7 @@
 // split) and a prefix sweep (V_L N_L + V_R N_R). The winning axis' copy is already split at the
 // chosen position; the other two are partitioned stably with a per-hit flag, so they stay sorted
 // and the children again hold [b, b + k) and [b + k, e) of all three copies. O(N) per level.
-#include "render/vvh_builder.h"
+#include "render/photon/vvh_builder.h"
 
 #include <algorithm>
 #include <cmath>

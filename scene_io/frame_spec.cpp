@@ -1,5 +1,5 @@
-// Parser of --frames specifications: comma-separated items, each N, A-B or A-B:STEP.
-#include "animations/frame_spec.h"
+// Parser of frame specifications: comma-separated items, each N, A-B or A-B:STEP.
+#include "scene_io/frame_spec.h"
 
 #include <cctype>
 #include <set>
@@ -11,7 +11,7 @@ namespace pm {
 namespace {
 
 [[noreturn]] void bad(const std::string& item, const std::string& why) {
-  throw InputError("--frames: '" + item + "': " + why);
+  throw InputError("'" + item + "': " + why);
 }
 
 int parse_number(const std::string& item, const std::string& text) {
@@ -24,7 +24,7 @@ int parse_number(const std::string& item, const std::string& text) {
 }  // namespace
 
 std::vector<int> parse_frame_spec(const std::string& spec, int first, int last) {
-  if (spec.empty()) throw InputError("--frames: empty frame specification");
+  if (spec.empty()) throw InputError("empty frame specification");
   std::vector<int> frames;
   std::set<int> seen;
   size_t start = 0;

@@ -1,6 +1,6 @@
 // Evaluation of a scene's camera and light tracks at a frame, and the per-sequence facts built
-// on it (light runs for photon reuse, camera checks, flicker).
-#include "animations/scene_animation.h"
+// on it (light runs for reuse over camera-only motion, camera checks).
+#include "render/scene_frame.h"
 
 #include <cmath>
 #include <cstring>
@@ -74,26 +74,6 @@ std::string camera_problem(const CameraDesc& camera) {
   if (!(camera.vertical_fov_degrees > 0 && camera.vertical_fov_degrees < 180))
     return "vertical_fov " + std::to_string(camera.vertical_fov_degrees) + " is outside (0, 180) degrees";
   return "";
-}
-
-FlickerStats sequence_flicker(const std::vector<std::vector<float>>& frames) {
-  FlickerStats stats;
-  if (frames.size() < 2) return stats;
-  double total = 0;
-  for (size_t f = 1; f < frames.size(); ++f) {
-    const std::vector<float>& a = frames[f - 1];
-    const std::vector<float>& b = frames[f];
-    double diff = 0, level = 0;
-    for (size_t i = 0; i < a.size() && i < b.size(); ++i) {
-      diff += std::fabs(double(b[i]) - double(a[i]));
-      level += 0.5 * (std::fabs(double(a[i])) + std::fabs(double(b[i])));
-    }
-    const double relative = level > 0 ? diff / level : 0.0;
-    total += relative;
-    stats.max = std::max(stats.max, relative);
-  }
-  stats.mean = total / double(frames.size() - 1);
-  return stats;
 }
 
 }  // namespace pm

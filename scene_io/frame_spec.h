@@ -12,8 +12,8 @@ namespace pm {
 constexpr size_t kMaxFrameSpecFrames = 1000000;
 
 // The frames in the order given, duplicates removed (first occurrence kept). Throws InputError
-// naming --frames and the offending part. Frames must lie in [first, last]; at most
-// kMaxFrameSpecFrames of them.
+// naming the offending part (the command line adds the option's name). Frames must lie in
+// [first, last]; at most kMaxFrameSpecFrames of them.
 std::vector<int> parse_frame_spec(const std::string& spec, int first, int last);
 
 }  // namespace pm

@@ -1,5 +1,6 @@
-// A scene at a frame: the camera and lights its tracks give at time frame / frame_rate, plus the
-// facts the renderer needs about a sequence (which frames share their lights). Pure host code.
+// A scene at a frame: the camera and lights its tracks (animations/keyframe_track.h) give at
+// time frame / frame_rate, plus the facts the renderer needs about a sequence (which frames
+// share their lights). Pure host code.
 #pragma once
 
 #include <string>
@@ -30,14 +31,5 @@ int light_run_start(const Scene& scene, int frame);
 // What is wrong with a camera, or "" when it is usable: the view direction is zero, up is zero or
 // parallel to it, or the field of view is outside (0, 180) degrees.
 std::string camera_problem(const CameraDesc& camera);
-
-// Mean absolute frame-to-frame difference of a sequence of images, relative to their mean:
-// for each consecutive pair, sum |b - a| / sum (|a| + |b|) / 2 over all pixels and channels,
-// then the mean and the largest value over the pairs. Fewer than two frames give zeros.
-struct FlickerStats {
-  double mean = 0;
-  double max = 0;
-};
-FlickerStats sequence_flicker(const std::vector<std::vector<float>>& frames);
 
 }  // namespace pm

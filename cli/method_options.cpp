@@ -1,0 +1,20 @@
+// The table of indirect-light methods on the command line.
+#include "cli/method_options.h"
+
+namespace pm::cli {
+
+const std::vector<MethodEntry>& methods() {
+  static const std::vector<MethodEntry> table = {
+      {"photon", "photon mapping with photon-differential footprints (Fabianowski & Dingliana 2009)",
+       &add_photon_options},
+  };
+  return table;
+}
+
+std::vector<std::string> method_names() {
+  std::vector<std::string> names;
+  for (const MethodEntry& m : methods()) names.push_back(m.name);
+  return names;
+}
+
+}  // namespace pm::cli

@@ -1,0 +1,35 @@
+// The indirect-light methods the command line offers (--method NAME): each registers its own
+// options on a rendering command and turns them into its MethodSettings. Adding a method to the
+// command line is one entry in kMethods (cli/method_options.cpp) and its options file.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/indirect_method.h"
+
+namespace pm::cli {
+
+// A method's options as parsed; settings() turns them into validated MethodSettings.
+class MethodOptions {
+ public:
+  virtual ~MethodOptions() = default;
+  virtual std::shared_ptr<const MethodSettings> settings() const = 0;
+};
+
+struct MethodEntry {
+  const char* name;
+  const char* summary;
+  // Registers the method's options (in their own help group) and returns where they land.
+  std::shared_ptr<MethodOptions> (*add_options)(CLI::App* cmd);
+};
+
+const std::vector<MethodEntry>& methods();
+std::vector<std::string> method_names();
+
+// Each method's options file.
+std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd);
+
+}  // namespace pm::cli

@@ -1,0 +1,77 @@
+// Options of the photon-mapping method (render/photon/photon_settings.h): registration in their
+// own help group, and the settings they describe. Values are checked by
+// PhotonSettings::validate (one layer); names come from the library's name tables.
+#include <memory>
+
+#include "cli/method_options.h"
+#include "render/errors.h"
+#include "render/photon/photon_settings.h"
+
+namespace pm::cli {
+
+namespace {
+
+class PhotonOptions final : public MethodOptions {
+ public:
+  PhotonSettings settings_;
+  std::string estimator = "pd";
+  std::string kernel = "constant";
+  std::string leaf = "auto";
+  std::string photon_bvh = "lbvh";
+  std::string sequence = "random";
+
+  std::shared_ptr<const MethodSettings> settings() const override {
+    auto s = std::make_shared<PhotonSettings>(settings_);
+    value_of(kEstimatorNames, estimator, &s->estimator);
+    value_of(kKernelShapeNames, kernel, &s->kernel_shape);
+    value_of(kPhotonMapBuilderNames, photon_bvh, &s->builder);
+    value_of(kPhotonSequenceNames, sequence, &s->sequence);
+    if (leaf == "auto") {
+      s->leaf_threshold = 0;
+    } else {
+      size_t used = 0;
+      int t = 0;
+      try {
+        t = std::stoi(leaf, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != leaf.size() || t < 1) throw SettingError("leaf", "expected auto or a positive integer, got '" + leaf + "'");
+      s->leaf_threshold = t;
+    }
+    s->validate();
+    return s;
+  }
+};
+
+}  // namespace
+
+std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
+  auto o = std::make_shared<PhotonOptions>();
+  PhotonSettings& ph = o->settings_;
+  const std::string group = "Photon mapping (--method photon)";
+  cmd->add_option("--photons", ph.photons, "Photons emitted per pass (0: direct light only)")
+      ->capture_default_str()->group(group);
+  cmd->add_option("--bounces", ph.bounces, "Diffuse bounces of indirect light")->capture_default_str()->group(group);
+  cmd->add_option("--estimator", o->estimator, "pd (photon differentials), knn or radius")
+      ->capture_default_str()->check(CLI::IsMember(names_of(kEstimatorNames)))->group(group);
+  cmd->add_option("--kernel", o->kernel, "Density estimation kernel: constant or epanechnikov")
+      ->capture_default_str()->check(CLI::IsMember(names_of(kKernelShapeNames)))->group(group);
+  cmd->add_option("--smoothing", ph.smoothing, "Footprint smoothing factor s (section 4.3)")
+      ->capture_default_str()->group(group);
+  cmd->add_option("--rmax", ph.rmax, "Largest footprint semiaxis and k-NN search radius, metres "
+                                     "(default: 10% of the scene diagonal)")->group(group);
+  cmd->add_option("--radius", ph.radius, "Gather radius of --estimator radius, metres (default: 5% of the scene diagonal)")
+      ->group(group);
+  cmd->add_option("--k", ph.knn_k, "Neighbours of --estimator knn")->capture_default_str()->group(group);
+  cmd->add_option("--leaf", o->leaf, "Photon map leaf threshold T: auto or a number")->capture_default_str()->group(group);
+  cmd->add_option("--photon-bvh", o->photon_bvh, "Photon map builder: lbvh (device, per pass) or vvh (voxel volume "
+                                                 "heuristic on the host, for comparison)")
+      ->capture_default_str()->check(CLI::IsMember(names_of(kPhotonMapBuilderNames)))->group(group);
+  cmd->add_option("--photon-sequence", o->sequence,
+                  "random, or halton: emission directions from a Halton sequence, the same in every frame")
+      ->capture_default_str()->check(CLI::IsMember(names_of(kPhotonSequenceNames)))->group(group);
+  return o;
+}
+
+}  // namespace pm::cli

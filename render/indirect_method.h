@@ -1,0 +1,109 @@
+// The seam between the frame pipeline and the ways of computing indirect light. A frame is the
+// camera pass (S5, the renderer's), then one or more passes of a method, each adding its
+// estimate to the film's indirect and caustic sums, then the film resolve (S7, the renderer's),
+// which divides by the pass count. Photon mapping (render/photon/) is one method; every method
+// shares the scene, the camera pass, the film and the device, and owns its buffers (its group in
+// PM_BUFFER_LIST) and its stages. The renderer and the benchmarks drive a method through this
+// interface only (docs/architecture.md, "Adding a method").
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/buffer_table.h"
+#include "render/device.h"
+#include "render/scene.h"
+#include "render/stage_timer.h"
+
+namespace pm {
+
+class IndirectMethod;
+
+// Sizes of the scene every method may need, measured once per renderer.
+struct SceneMeasures {
+  double diagonal = 1;      // of the bounding box of all vertices, metres
+  double surface_area = 0;  // of all triangles, m^2
+  Float3 lo, hi;            // bounding box
+};
+SceneMeasures measure_scene(const Scene& scene);
+
+// What a method works with, for its whole life.
+struct MethodContext {
+  Device& device;
+  const Scene& scene;
+  const SceneMeasures& measures;
+  BufferTable& buffers;
+  int width, height;        // the film
+  uint32_t shading_points;  // camera-pass records: width * height * (mirror depth + 1)
+  uint32_t planned_passes;  // passes per frame the renderer will ask for (RenderSettings::passes)
+};
+
+// Named figures a method reports about the last frame: for logs, EXR headers (pmrender/NAME)
+// and benchmarks.
+struct MethodStats {
+  struct Entry {
+    std::string name;
+    double value = 0;
+  };
+  std::vector<Entry> entries;
+  void set(const std::string& name, double value);
+  bool has(const std::string& name) const;
+  double get(const std::string& name, double fallback = 0) const;
+};
+
+// What changed since the previous frame the method saw (geometry never changes).
+struct FrameChange {
+  bool first = true;   // no frame before on this renderer
+  bool lights = true;  // a light moved or changed power
+  bool camera = true;  // the camera moved (the camera pass ran again either way)
+};
+
+// The frame a method is asked to work on.
+struct FrameContext {
+  int frame = 0;
+  // The first frame of the run of consecutive frames sharing this frame's lights: work that
+  // depends on the lights only may be keyed by it and reused across the run (docs/animation.md).
+  int light_run_start = 0;
+  bool reuse_lighting = true;  // RenderSettings::reuse_lighting
+  const std::vector<LightDesc>* lights = nullptr;
+  LaunchParams params{};       // the renderer's fields: camera, film size, lights, seed, frame
+  StageTimer* timer = nullptr;
+  bool collect_stats = false;  // benchmarks: count per-stage work (costs atomics)
+};
+
+// A method's settings: validated and turned into the method.
+class MethodSettings {
+ public:
+  virtual ~MethodSettings() = default;
+  virtual const char* method_name() const = 0;
+  // Throws SettingError naming the setting that is out of range.
+  virtual void validate() const = 0;
+  virtual std::unique_ptr<IndirectMethod> create(const MethodContext& context) const = 0;
+};
+
+class IndirectMethod {
+ public:
+  virtual ~IndirectMethod() = default;
+
+  // The settings as resolved for this scene (defaults filled in), one line for headers and logs.
+  virtual std::string describe() const = 0;
+  // The most passes a frame can use; 0: any number (a progressive method).
+  virtual uint32_t max_passes() const = 0;
+
+  // Once per frame, before its passes. change says what differs from the previous frame.
+  virtual void begin_frame(const FrameContext& frame, const FrameChange& change) = 0;
+  // Pass `pass` (0, 1, ...) of the frame: adds its estimate, weighted 1, into film_indirect_sum
+  // and film_caustic_sum; the film resolve divides by the number of passes.
+  virtual void run_pass(const FrameContext& frame, uint32_t pass) = 0;
+
+  // About the last frame.
+  virtual MethodStats stats() const = 0;
+  // The method's stages in the order they run, with their work per frame for throughput.
+  virtual std::vector<StageInfo> stages(const FrameContext& frame) const = 0;
+  // The unit of a pass's work and how many per pass ("photon", 262144), for bytes per unit.
+  virtual std::pair<std::string, double> work_per_pass() const = 0;
+};
+
+}  // namespace pm

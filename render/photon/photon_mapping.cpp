@@ -1,0 +1,239 @@
+// Orchestration of the photon stages, pass by pass, over the Device interface and the buffer
+// table's photon group.
+#include "render/photon/photon_mapping.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <numeric>
+
+#include "kernels/common/photon_map.h"
+#include "render/errors.h"
+#include "render/photon/vvh_builder.h"
+
+namespace pm {
+
+std::vector<uint32_t> share_photons_by_power(const std::vector<LightDesc>& lights, uint32_t total) {
+  std::vector<double> power;
+  for (const LightDesc& l : lights) power.push_back(double(l.power.x) + l.power.y + l.power.z);
+  const double sum = std::accumulate(power.begin(), power.end(), 0.0);
+  std::vector<uint32_t> share(power.size(), 0);
+  if (sum <= 0) return share;
+  std::vector<std::pair<double, size_t>> remainders;
+  uint32_t given = 0;
+  for (size_t i = 0; i < power.size(); ++i) {
+    const double exact = total * power[i] / sum;
+    share[i] = uint32_t(std::floor(exact));
+    given += share[i];
+    remainders.push_back({exact - share[i], i});
+  }
+  std::sort(remainders.rbegin(), remainders.rend());
+  for (size_t k = 0; given < total && k < remainders.size(); ++k, ++given) share[remainders[k].second]++;
+  return share;
+}
+
+PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings& settings)
+    : device_(context.device), buffers_(context.buffers), settings_(settings.resolved(context.measures)) {
+  settings_.validate();
+  scene_area_ = context.measures.surface_area;
+  photons_per_pass_ = uint32_t(settings_.photons);
+  shading_points_ = context.shading_points;
+  // Photon i of pass k draws random stream k * photons + i, a 32-bit number.
+  if (context.planned_passes > 0 && settings_.photons * context.planned_passes > 0xffffffffull)
+    throw SettingError("passes", std::to_string(context.planned_passes) + " passes of " +
+                                     std::to_string(settings_.photons) +
+                                     " photons exceed 4294967295 (2^32 - 1) photons per frame");
+  BufferExtents extents;
+  extents.hit_slots = hit_slots();
+  extents.bounds_tiles = (extents.hit_slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
+  buffers_.allocate(BufferGroup::photon, extents);
+  share_photons(context.scene.lights);
+}
+
+void PhotonMapping::share_photons(const std::vector<LightDesc>& lights) {
+  const std::vector<uint32_t> counts = share_photons_by_power(lights, photons_per_pass_);
+  std::vector<uint4> emitters(std::max<size_t>(counts.size(), 1), uint4{0, 0, 0, 0});
+  uint32_t first = 0;
+  for (size_t i = 0; i < counts.size(); ++i) {
+    emitters[i] = uint4{first, counts[i], 0, 0};
+    first += counts[i];
+  }
+  buffers_.upload(BufferSlot::photon_emitters, emitters);
+  buffers_.bind_all();  // the upload may have reallocated the buffer
+}
+
+std::vector<StageInfo> PhotonMapping::stages(const FrameContext& frame) const {
+  const double photons = double(photons_per_pass_);
+  const char* emitted = "photons emitted per pass";
+  std::vector<StageInfo> list;
+  for (const char* stage : {"photon trace", "footprints", "map: morton", "map: sort", "map: tree"})
+    list.push_back({stage, photons, "photons/s", emitted});
+  list.push_back({"gather", stats_.get("shading_points", double(shading_points_)), "shading points/s",
+                  "shading points gathered per pass"});
+  return list;
+}
+
+LaunchParams PhotonMapping::pass_params(const FrameContext& frame, uint32_t pass) const {
+  LaunchParams params = frame.params;
+  params.photon_count = photons_per_pass_;
+  params.photon_offset = pass * photons_per_pass_;
+  params.photon_frame = uint32_t(photon_frame_);
+  params.hit_slots_per_photon = settings_.hit_slots_per_photon();
+  params.max_bounces = uint32_t(settings_.bounces);
+  params.smoothing = settings_.smoothing;
+  params.rmax = settings_.rmax;
+  params.gather_radius = settings_.radius;
+  params.knn_k = uint32_t(settings_.knn_k);
+  params.estimator = uint32_t(settings_.estimator);
+  params.kernel_shape = uint32_t(settings_.kernel_shape);
+  params.photon_sequence = uint32_t(settings_.sequence);
+  return params;
+}
+
+void PhotonMapping::begin_frame(const FrameContext& frame, const FrameChange& change) {
+  if (change.lights) {
+    map_intact_ = false;
+    share_photons(*frame.lights);
+  }
+  // Camera-only frames reuse the photons of their run's first frame; Halton photons do not
+  // depend on the frame at all (types.h).
+  if (settings_.sequence == PM_PHOTON_SEQUENCE_HALTON) photon_frame_ = 0;
+  else photon_frame_ = frame.reuse_lighting ? frame.light_run_start : frame.frame;
+  stats_ = MethodStats{};
+  stats_.set("photon_frame", photon_frame_);
+  stats_.set("photons_reused", 0);
+  stats_.set("photons_per_pass", photons_per_pass_);
+  stats_.set("hits", 0);
+}
+
+void PhotonMapping::run_pass(const FrameContext& frame, uint32_t pass) {
+  if (photons_per_pass_ == 0) return;
+  if (uint64_t(pass) * photons_per_pass_ + photons_per_pass_ > 0xffffffffull)
+    throw SettingError("passes", "pass " + std::to_string(pass) + " of " + std::to_string(photons_per_pass_) +
+                                     " photons would exceed 4294967295 (2^32 - 1) photons per frame");
+  LaunchParams params = pass_params(frame, pass);
+  const bool reuse = frame.reuse_lighting && map_intact_ && map_photon_frame_ == photon_frame_ && map_pass_ == pass;
+  uint32_t* counters = nullptr;
+  uint32_t counts[2] = {0, 0};
+  if (frame.collect_stats) {
+    device_.fill_zero(buffers_[BufferSlot::gather_stats], buffers_[BufferSlot::gather_stats].bytes());
+    counters = counts;
+  }
+  if (reuse) {
+    params.hit_bounds_lo = map_params_.hit_bounds_lo;
+    params.hit_bounds_hi = map_params_.hit_bounds_hi;
+    params.hit_count = map_params_.hit_count;
+    params.leaf_threshold = map_params_.leaf_threshold;
+    map_intact_ = false;  // until this gather has gone through
+    if (params.hit_count > 0) gather(params, frame.timer);
+    map_intact_ = true;
+    stats_.set("photons_reused", 1);
+  } else {
+    map_intact_ = false;
+    trace_and_build(params, frame.timer);
+    if (map_params_.hit_count > 0) gather(map_params_, frame.timer);
+    map_intact_ = true;
+    map_photon_frame_ = photon_frame_;
+    map_pass_ = pass;
+  }
+  stats_.set("hits", stats_.get("hits") + map_params_.hit_count);
+  stats_.set("footprint_area", map_footprint_area_);
+  stats_.set("leaf_threshold", map_params_.leaf_threshold);
+  if (counters) {
+    device_.download(buffers_[BufferSlot::gather_stats], counters, sizeof(counts));
+    stats_.set("gathered", stats_.get("gathered") + counts[0]);
+    stats_.set("shading_points", counts[1]);
+    stats_.set("photons_per_gather", counts[1] ? stats_.get("gathered") / ((pass + 1.0) * counts[1]) : 0.0);
+  }
+}
+
+void PhotonMapping::gather(const LaunchParams& params, StageTimer* timer) {
+  StageScope scope(timer, "gather");
+  device_.launch(KernelId::gather, params.width * params.height, params);
+}
+
+// The VVH alternative to the device LBVH: the valid hits' footprint boxes go to the host, the
+// tree comes back in the same node layout with its hit order as the sorted slots, so the
+// reorder kernel and the gather run unchanged.
+void PhotonMapping::build_vvh_map(const LaunchParams& params) {
+  const size_t slots = hit_slots();
+  std::vector<float4> lo(slots), hi(slots), center(slots);
+  device_.download(buffers_[BufferSlot::footprint_lo], lo.data(), slots * sizeof(float4));
+  device_.download(buffers_[BufferSlot::footprint_hi], hi.data(), slots * sizeof(float4));
+  device_.download(buffers_[BufferSlot::footprint_center], center.data(), slots * sizeof(float4));
+  std::vector<uint32_t> valid;
+  std::vector<float4> valid_lo, valid_hi;
+  for (uint32_t i = 0; i < slots; ++i) {
+    uint32_t flags;
+    std::memcpy(&flags, &center[i].w, 4);
+    if (!(flags & PM_HIT_VALID)) continue;
+    valid.push_back(i);
+    valid_lo.push_back(lo[i]);
+    valid_hi.push_back(hi[i]);
+  }
+  VvhPhotonMap map = build_vvh_photon_map(valid_lo, valid_hi, params.leaf_threshold);
+  std::vector<uint32_t> sorted_slots(valid.size());
+  std::vector<float4> sorted_lo(valid.size()), sorted_hi(valid.size());
+  for (size_t k = 0; k < valid.size(); ++k) {
+    sorted_slots[k] = valid[map.order[k]];
+    sorted_lo[k] = valid_lo[map.order[k]];
+    sorted_hi[k] = valid_hi[map.order[k]];
+  }
+  device_.upload(buffers_[BufferSlot::sorted_slots], sorted_slots.data(), sorted_slots.size() * sizeof(uint32_t));
+  device_.upload(buffers_[BufferSlot::map_lo], sorted_lo.data(), sorted_lo.size() * sizeof(float4));
+  device_.upload(buffers_[BufferSlot::map_hi], sorted_hi.data(), sorted_hi.size() * sizeof(float4));
+  device_.upload(buffers_[BufferSlot::map_nodes], map.nodes.data(), map.nodes.size() * sizeof(float4));
+}
+
+// S1-S4 for one pass: leaves the photon map and its parameters in map_params_.
+void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
+  const uint32_t slots = hit_slots();
+  {
+    StageScope scope(timer, "photon trace");
+    device_.launch(KernelId::photon_trace, photons_per_pass_, params);
+  }
+  // Bounds, count and footprint area: one small read-back per pass.
+  const uint32_t tiles = photon_map_bounds_tile_count(slots);
+  std::vector<float4> partials(2 * size_t(tiles));
+  {
+    StageScope scope(timer, "footprints");
+    device_.launch(KernelId::photon_footprint, slots, params);
+    device_.launch(KernelId::photon_reduce, tiles, params);
+  }
+  device_.download(buffers_[BufferSlot::footprint_partials], partials.data(), partials.size() * sizeof(float4));
+  const PhotonMapBounds bounds = photon_map_combine_partials(partials.data(), tiles);
+  params.leaf_threshold = settings_.leaf_threshold > 0
+                              ? uint32_t(settings_.leaf_threshold)
+                              : photon_map_auto_leaf_size(float(bounds.area), float(scene_area_), settings_.leaf_c);
+  params.hit_bounds_lo = bounds.lo;
+  params.hit_bounds_hi = bounds.hi;
+  params.hit_count = bounds.count;
+  map_footprint_area_ = bounds.area;
+  map_params_ = params;
+  if (bounds.count == 0) return;  // every photon escaped or was absorbed before a recorded hit
+
+  if (settings_.builder == kPhotonMapVvh) {
+    StageScope scope(timer, "map: tree");
+    build_vvh_map(params);
+    device_.launch(KernelId::photon_map_reorder, bounds.count, params);
+    return;
+  }
+  {
+    StageScope scope(timer, "map: morton");
+    device_.launch(KernelId::photon_morton, slots, params);
+  }
+  {
+    StageScope scope(timer, "map: sort");
+    device_.sort_pairs(buffers_[BufferSlot::morton_keys], buffers_[BufferSlot::morton_slots],
+                       buffers_[BufferSlot::sorted_keys], buffers_[BufferSlot::sorted_slots], slots,
+                       PM_MORTON_SORT_BITS);
+  }
+  {
+    StageScope scope(timer, "map: tree");
+    if (bounds.count >= 2) device_.launch(KernelId::photon_map_nodes, bounds.count - 1, params);
+    device_.launch(KernelId::photon_map_bottom_up, bounds.count, params);
+    device_.launch(KernelId::photon_map_reorder, bounds.count, params);
+  }
+}
+
+}  // namespace pm

@@ -1,0 +1,67 @@
+// The photon-mapping method (Fabianowski & Dingliana 2009): per pass, emit and trace a batch of
+// photons (S1, S2), build their footprint ellipsoids (S3) and the photon map over them (S4),
+// and gather at the camera pass's shading points into the film sums (S6). Memory is sized by
+// one pass, never by the pass count (the multi-pass GPU photon map paper's batches), so any
+// number of photons renders in bounded memory. The photon map of the last pass stays on the
+// device: a camera-only frame whose first pass would trace the very same photons gathers from
+// it again instead (docs/animation.md).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "render/indirect_method.h"
+#include "render/photon/photon_settings.h"
+
+namespace pm {
+
+class PhotonMapping final : public IndirectMethod {
+ public:
+  PhotonMapping(const MethodContext& context, const PhotonSettings& settings);
+
+  std::string describe() const override { return settings_.describe(); }
+  uint32_t max_passes() const override { return 0; }
+  void begin_frame(const FrameContext& frame, const FrameChange& change) override;
+  void run_pass(const FrameContext& frame, uint32_t pass) override;
+  MethodStats stats() const override { return stats_; }
+  std::vector<StageInfo> stages(const FrameContext& frame) const override;
+  std::pair<std::string, double> work_per_pass() const override { return {"photon", double(photons_per_pass_)}; }
+
+  // The settings as resolved for the scene (rmax and radius defaults filled in).
+  const PhotonSettings& settings() const { return settings_; }
+  // Valid hits of the last pass: the sorted prefix the photon map covers.
+  uint32_t last_hit_count() const { return map_params_.hit_count; }
+  // Hit records of one pass (photons per pass * records per photon).
+  uint32_t hit_slots() const { return photons_per_pass_ * settings_.hit_slots_per_photon(); }
+
+ private:
+  LaunchParams pass_params(const FrameContext& frame, uint32_t pass) const;
+  void share_photons(const std::vector<LightDesc>& lights);
+  void trace_and_build(LaunchParams params, StageTimer* timer);
+  void build_vvh_map(const LaunchParams& params);
+  void gather(const LaunchParams& params, StageTimer* timer);
+
+  Device& device_;
+  BufferTable& buffers_;
+  PhotonSettings settings_;
+  double scene_area_ = 0;
+  uint32_t photons_per_pass_ = 0;
+  uint32_t shading_points_ = 0;
+
+  int photon_frame_ = 0;  // the frame number keying this frame's photons
+  // The photon map on the device: valid after a pass went through, for the photons of
+  // (map_photon_frame_, map_pass_) and the lights it was traced for.
+  bool map_intact_ = false;
+  int map_photon_frame_ = -1;
+  uint32_t map_pass_ = 0;
+  LaunchParams map_params_{};  // its fields: hit bounds and count, T
+  double map_footprint_area_ = 0;
+  MethodStats stats_;
+};
+
+// Largest-remainder share of `total` photons by the lights' summed RGB power, in light order.
+std::vector<uint32_t> share_photons_by_power(const std::vector<LightDesc>& lights, uint32_t total);
+
+}  // namespace pm

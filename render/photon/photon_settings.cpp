@@ -1,0 +1,70 @@
+// Photon-mapping settings: name tables, validation, scene-dependent defaults and description.
+#include "render/photon/photon_settings.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "render/errors.h"
+#include "render/photon/photon_mapping.h"
+
+namespace pm {
+
+const NameTable kEstimatorNames = {{"pd", PM_ESTIMATOR_PD}, {"radius", PM_ESTIMATOR_RADIUS}, {"knn", PM_ESTIMATOR_KNN}};
+const NameTable kKernelShapeNames = {{"constant", PM_KERNEL_CONSTANT}, {"epanechnikov", PM_KERNEL_EPANECHNIKOV}};
+const NameTable kPhotonMapBuilderNames = {{"lbvh", kPhotonMapLbvh}, {"vvh", kPhotonMapVvh}};
+const NameTable kPhotonSequenceNames = {{"random", PM_PHOTON_SEQUENCE_RANDOM}, {"halton", PM_PHOTON_SEQUENCE_HALTON}};
+
+namespace {
+
+void require_named(const NameTable& table, int value, const char* setting) {
+  if (std::string(name_of(table, value)) == "?")
+    throw SettingError(setting, "expected " + names_list(table) + ", got value " + std::to_string(value));
+}
+
+// Hit records of one pass are indexed with 32-bit integers in the photon map (photon_map.h).
+constexpr uint64_t kMaxHitSlots = uint64_t(1) << 29;
+
+}  // namespace
+
+void PhotonSettings::validate() const {
+  if (bounces < 0 || bounces > 16) throw SettingError("bounces", "expected 0 to 16, got " + std::to_string(bounces));
+  if (!(smoothing > 0) || !std::isfinite(smoothing))
+    throw SettingError("smoothing", "must be a positive number, got " + std::to_string(smoothing));
+  if (!(rmax >= 0) || !std::isfinite(rmax)) throw SettingError("rmax", "must be a positive length in metres");
+  if (!(radius >= 0) || !std::isfinite(radius)) throw SettingError("radius", "must be a positive length in metres");
+  if (knn_k < 1 || knn_k > 256) throw SettingError("k", "expected 1 to 256, got " + std::to_string(knn_k));
+  if (leaf_threshold < 0) throw SettingError("leaf", "expected auto or a positive integer");
+  if (!(leaf_c > 0) || !std::isfinite(leaf_c)) throw SettingError("leaf-c", "must be positive");
+  require_named(kEstimatorNames, estimator, "estimator");
+  require_named(kKernelShapeNames, kernel_shape, "kernel");
+  require_named(kPhotonMapBuilderNames, builder, "photon-bvh");
+  require_named(kPhotonSequenceNames, sequence, "photon-sequence");
+  if (photons * hit_slots_per_photon() > kMaxHitSlots)
+    throw SettingError("photons", std::to_string(photons) + " photons per pass need more than 2^29 hit records; "
+                                  "use fewer photons per pass and more passes");
+}
+
+PhotonSettings PhotonSettings::resolved(const SceneMeasures& measures) const {
+  PhotonSettings s = *this;
+  if (s.rmax == 0) s.rmax = float(0.1 * measures.diagonal);
+  if (s.radius == 0) s.radius = float(0.05 * measures.diagonal);
+  return s;
+}
+
+std::string PhotonSettings::describe() const {
+  std::ostringstream s;
+  s << "photons=" << photons << " bounces=" << bounces << " estimator=" << name_of(kEstimatorNames, estimator)
+    << " kernel=" << name_of(kKernelShapeNames, kernel_shape) << " smoothing=" << smoothing << " rmax=" << rmax;
+  if (estimator == PM_ESTIMATOR_RADIUS) s << " radius=" << radius;
+  if (estimator == PM_ESTIMATOR_KNN) s << " k=" << knn_k;
+  s << " photon_bvh=" << name_of(kPhotonMapBuilderNames, builder)
+    << " leaf=" << (leaf_threshold > 0 ? std::to_string(leaf_threshold) : "auto")
+    << " photon_sequence=" << name_of(kPhotonSequenceNames, sequence);
+  return s.str();
+}
+
+std::unique_ptr<IndirectMethod> PhotonSettings::create(const MethodContext& context) const {
+  return std::make_unique<PhotonMapping>(context, *this);
+}
+
+}  // namespace pm

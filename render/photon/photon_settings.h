@@ -1,0 +1,51 @@
+// Settings of the photon-mapping method (Fabianowski & Dingliana 2009), their name tables and
+// their validation. Each setting's name in messages is its command-line option's without the
+// dashes (docs/algorithm.md explains each one).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "render/indirect_method.h"
+#include "render/kernel_abi.h"
+#include "render/named_values.h"
+
+namespace pm {
+
+extern const NameTable kEstimatorNames;         // pd, radius, knn (PM_ESTIMATOR_*)
+extern const NameTable kKernelShapeNames;       // constant, epanechnikov (PM_KERNEL_*)
+extern const NameTable kPhotonMapBuilderNames;  // lbvh, vvh
+extern const NameTable kPhotonSequenceNames;    // random, halton (PM_PHOTON_SEQUENCE_*)
+
+enum PhotonMapBuilder { kPhotonMapLbvh = 0, kPhotonMapVvh = 1 };
+
+class PhotonSettings final : public MethodSettings {
+ public:
+  uint64_t photons = 262144;  // emitted per pass, all lights together; 0: no indirect light
+  int bounces = 2;            // diffuse bounces of indirect light
+  float smoothing = 8.0f;     // s of section 4.3, diffusely reflected photons
+  float rmax = 0.0f;          // footprint semiaxis clamp (knn: search radius), metres; 0: 10 % of the scene diagonal
+  int estimator = PM_ESTIMATOR_PD;
+  int kernel_shape = PM_KERNEL_CONSTANT;
+  float radius = 0.0f;        // radius estimator, metres; 0: 5 % of the scene diagonal
+  int knn_k = 64;             // knn estimator
+  int leaf_threshold = 0;     // T; 0: T_auto
+  float leaf_c = 0.5f;        // c of T_auto = c * footprint area / scene area, calibrated on the H200 (docs/algorithm.md)
+  int sequence = PM_PHOTON_SEQUENCE_RANDOM;  // emission: random, or Halton (the same every frame)
+  int builder = kPhotonMapLbvh;  // the device LBVH, or the voxel volume heuristic on the host
+                                 // (section 5.1, for the paper's Table 1 comparison)
+
+  const char* method_name() const override { return "photon"; }
+  void validate() const override;
+  std::unique_ptr<IndirectMethod> create(const MethodContext& context) const override;
+
+  // Hit records reserved per photon: one per diffuse bounce, one for the caustic path, one spare.
+  uint32_t hit_slots_per_photon() const { return uint32_t(bounces + 2); }
+  // The defaults that depend on the scene (rmax, radius) filled in.
+  PhotonSettings resolved(const SceneMeasures& measures) const;
+  // One line: every setting, as resolved.
+  std::string describe() const;
+};
+
+}  // namespace pm
