@@ -145,7 +145,8 @@ for backend in ${backends//,/ }; do
         extra=(--leaf-sweep "1,2,4,8,16,32,64,128,256,512" --radius-histogram)
       run "$backend-$p-$s" "${common[@]}" ${extra[@]+"${extra[@]}"}
       if [ "$p" = paper ] && [ "$knn" = 1 ] && [ -s "$out/$backend-$p-$s.txt" ]; then
-        k=$(awk '/^photons per gather \(k_PD\):/ {printf "%d", $5 + 0.5}' "$out/$backend-$p-$s.txt")
+        k=$(awk '/^counted in frame/ { for (i = 1; i <= NF; ++i) if ($i ~ /^photons_per_gather=/) {
+                   split($i, kv, "="); printf "%d", kv[2] + 0.5 } }' "$out/$backend-$p-$s.txt")
         if [ -n "$k" ] && [ "$k" -ge 1 ]; then
           [ "$k" -le 256 ] || k=256
           run "$backend-$p-$s-knn" "${common[@]}" --estimator knn --k "$k"
@@ -179,8 +180,8 @@ summary=$out/summary.md
       /^frame \(sum of stages\)/ { stages = $5 }
       /^frame \(host wall\)/ { wall = $4 }
       /^frames per second:/ { fps = $4 }
-      /^photons emitted: [0-9]/ { hits = $12 }
-      /^photons per gather \(k_PD\):/ { kpd = $5 }
+      /^  hits / { hits = $2 }
+      /^counted in frame/ { for (i = 1; i <= NF; ++i) if ($i ~ /^photons_per_gather=/) { split($i, kv, "="); kpd = kv[2] } }
       /^peak device memory:/ { peak = $4; bpp = ($6 ~ /^[0-9]/) ? $6 : "-" }
       END {
         printf "| %s | %s | %s | %s | %s | %s | %s | %s | %.3f | %s | %s | %s | %s | %s |\n", name, res, photons, fps,

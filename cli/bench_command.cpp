@@ -178,10 +178,17 @@ int run_bench(const BenchOptions& o) {
   std::printf("%-22s %10.3f %10.3f %10.3f\n", "frame (sum of stages)", total.median, total.min, total.max);
   std::printf("%-22s %10.3f %10.3f %10.3f\n", "frame (host wall)", wall.median, wall.min, wall.max);
   std::printf("frames per second: %.2f (host wall), %.2f (sum of stages)\n", base.fps(), base.fps_stages());
-  std::printf("throughput counts:");
-  for (const StageRow& r : rows)
-    if (!r.info.counts.empty()) std::printf(" %s = %s;", r.info.name.c_str(), r.info.counts.c_str());
-  std::printf("\n");
+  // What each throughput counts, stages with the same meaning on one line.
+  for (size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i].info.counts.empty()) continue;
+    bool seen = false;
+    for (size_t k = 0; k < i; ++k) seen |= rows[k].info.counts == rows[i].info.counts;
+    if (seen) continue;
+    std::string names;
+    for (size_t k = i; k < rows.size(); ++k)
+      if (rows[k].info.counts == rows[i].info.counts) names += (names.empty() ? "" : ", ") + rows[k].info.name;
+    std::printf("throughput of %s: %s\n", names.c_str(), rows[i].info.counts.c_str());
+  }
 
   const uint32_t passes = base.stats.back().passes;
   std::pair<std::string, double> work{"", 0};

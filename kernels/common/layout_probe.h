@@ -1,6 +1,6 @@
 /* Reports the device compiler's view of the shared structs and echoes the launch parameters it
    received, so a test can prove host and device agree on every size, offset and the by-value
-   argument passing (portable-kernels rule 4). Slots are listed in render/device_layout.h. */
+   argument passing (portable-kernels rule 4); tests/support/device_checks.h reads the slots. */
 #ifndef PM_LAYOUT_PROBE_H
 #define PM_LAYOUT_PROBE_H
 
