@@ -19,6 +19,7 @@ class PhotonOptions final : public MethodOptions {
   std::string leaf = "auto";
   std::string photon_bvh = "lbvh";
   std::string sequence = "random";
+  std::string progressive = "average";
 
   std::shared_ptr<const MethodSettings> settings() const override {
     auto s = std::make_shared<PhotonSettings>(settings_);
@@ -26,6 +27,7 @@ class PhotonOptions final : public MethodOptions {
     value_of(kKernelShapeNames, kernel, &s->kernel_shape);
     value_of(kPhotonMapBuilderNames, photon_bvh, &s->builder);
     value_of(kPhotonSequenceNames, sequence, &s->sequence);
+    value_of(kProgressiveNames, progressive, &s->progressive);
     if (leaf == "auto") {
       s->leaf_threshold = 0;
     } else {
@@ -71,6 +73,13 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
   cmd->add_option("--photon-sequence", o->sequence,
                   "random, or halton: emission directions from a Halton sequence, the same in every frame")
       ->capture_default_str()->check(CLI::IsMember(names_of(kPhotonSequenceNames)))->group(group);
+  cmd->add_option("--progressive", o->progressive,
+                  "How passes combine: average (the same footprints every pass; noise falls, bias stays) or "
+                  "shrink (footprints and radii shrink from pass to pass: bias and noise both vanish; "
+                  "docs/progressive.md)")
+      ->capture_default_str()->check(CLI::IsMember(names_of(kProgressiveNames)))->group(group);
+  cmd->add_option("--alpha", ph.alpha, "shrink: r_i^2 = r_(i-1)^2 (i + alpha) / (i + 1), 0 < alpha < 1")
+      ->capture_default_str()->group(group);
   return o;
 }
 

@@ -34,6 +34,9 @@
 #include "render/errors.h"
 
 namespace pm {
+
+const char* const kCheckpointAttribute = "pmrender/checkpoint";
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -253,6 +256,8 @@ bool exr_is_complete(const std::string& path) {
   try {
     Imf::InputFile file(path.c_str());
     if (!file.isComplete()) return false;
+    // A checkpoint of a frame still being rendered is a readable image but not a finished frame.
+    if (file.header().findTypedAttribute<Imf::StringAttribute>(kCheckpointAttribute)) return false;
     // isComplete() only checks the line offset table, which sits near the start of the file,
     // so a copy cut short after the table passes it. Decoding one channel reads every chunk.
     const Imf::Header& header = file.header();

@@ -34,9 +34,14 @@ void write_exr(const std::string& path, const FrameImage& image, bool full_float
 // RGB layer at all is a pm::InputError naming the file.
 FrameImage read_exr(const std::string& path);
 
-// True when the file opens as an EXR and every scanline chunk of it can be read, i.e. it was
-// written to the end (used by --resume to skip finished frames). Decodes the pixels of one
-// channel to be sure, so it costs about one image read. Never throws; any problem is "false".
+// The header attribute that marks a checkpoint: the image of a frame whose passes are not all
+// done yet (render --checkpoint-every; docs/progressive.md).
+extern const char* const kCheckpointAttribute;
+
+// True when the file opens as an EXR, every scanline chunk of it can be read, i.e. it was
+// written to the end, and it is not a checkpoint (used by --resume to skip finished frames).
+// Decodes the pixels of one channel to be sure, so it costs about one image read. Never throws;
+// any problem is "false".
 bool exr_is_complete(const std::string& path);
 
 }  // namespace pm

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <sstream>
 
+#include "kernels/common/film.h"
 #include "render/errors.h"
 #include "render/scene_bvh.h"
 #include "render/scene_frame.h"
@@ -92,6 +93,7 @@ Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& set
   BufferExtents extents;
   extents.pixels = uint64_t(width_) * uint64_t(height_);
   extents.shading_points = extents.pixels * uint64_t(settings_.mirror_depth + 1);
+  extents.error_tiles = (extents.pixels + PM_FILM_ERROR_TILE - 1) / PM_FILM_ERROR_TILE;
   buffers_.allocate(BufferGroup::frame, extents);
   if (settings_.method) {
     MethodContext context{device_,  scene_,  measures_, buffers_, width_, height_, uint32_t(extents.shading_points),
@@ -191,17 +193,82 @@ void Renderer::begin_frame(int frame) {
     StageScope scope(frame_.timer, "camera");
     device_.launch(KernelId::camera_pass, pixels, p);
   }
-  device_.fill_zero(buffers_[BufferSlot::film_indirect_sum], buffers_[BufferSlot::film_indirect_sum].bytes());
-  device_.fill_zero(buffers_[BufferSlot::film_caustic_sum], buffers_[BufferSlot::film_caustic_sum].bytes());
+  for (BufferSlot sum : {BufferSlot::film_indirect_sum, BufferSlot::film_caustic_sum, BufferSlot::film_odd_sum})
+    device_.fill_zero(buffers_[sum], buffers_[sum].bytes());
   passes_done_ = 0;
+  next_pass_ = 0;
   if (method_) method_->begin_frame(frame_, change);
 }
 
-void Renderer::run_pass() {
+void Renderer::run_pass() { run_pass(next_pass_); }
+
+void Renderer::run_pass(uint32_t pass) {
   if (!method_) throw DeviceError("renderer: no indirect-light method to run a pass of");
-  frame_.params.pass_index = passes_done_;
-  method_->run_pass(frame_, passes_done_);
+  frame_.params.pass_index = pass;
+  method_->run_pass(frame_, pass);
   ++passes_done_;
+  next_pass_ = pass + 1;
+}
+
+double Renderer::estimate_error() {
+  if (passes_done_ < 2) return -1.0;
+  LaunchParams p = frame_.params;
+  p.film_passes = passes_done_;
+  const uint32_t tiles = uint32_t(buffers_[BufferSlot::film_error_partials].bytes() / sizeof(float4));
+  device_.launch(KernelId::film_error_tiles, tiles, p);
+  std::vector<float4> partials(tiles);
+  device_.download(buffers_[BufferSlot::film_error_partials], partials.data(), tiles * sizeof(float4));
+  double difference = 0, level = 0;
+  for (const float4& t : partials) {
+    difference += t.x;
+    level += t.y;
+  }
+  if (!(level > 0)) return -1.0;
+  // Var(even mean - odd mean) = s^2 (1/n_even + 1/n_odd) and Var(mean of all) = s^2 / K, so the
+  // mean of all deviates by |even - odd| / sqrt(K (1/n_even + 1/n_odd)) (2 for n_even = n_odd);
+  // the mean absolute deviations scale alike for any symmetric noise.
+  const double k = passes_done_, odd = passes_done_ / 2, even = k - odd;
+  return difference / std::sqrt(k * (1.0 / even + 1.0 / odd)) / level;
+}
+
+FilmSums Renderer::film_sums() {
+  const size_t pixels = size_t(width_) * height_;
+  FilmSums sums;
+  sums.passes = passes_done_;
+  auto read = [&](BufferSlot slot, std::vector<float4>& out) {
+    out.resize(pixels);
+    device_.download(buffers_[slot], out.data(), pixels * sizeof(float4));
+  };
+  read(BufferSlot::film_indirect_sum, sums.indirect);
+  read(BufferSlot::film_caustic_sum, sums.caustic);
+  read(BufferSlot::film_odd_sum, sums.odd);
+  return sums;
+}
+
+void Renderer::set_film_sums(const FilmSums& sums) {
+  const size_t pixels = size_t(width_) * height_;
+  if (sums.indirect.size() != pixels || sums.caustic.size() != pixels || sums.odd.size() != pixels)
+    throw DeviceError("renderer: film sums of another size than the film");
+  device_.upload(buffers_[BufferSlot::film_indirect_sum], sums.indirect.data(), pixels * sizeof(float4));
+  device_.upload(buffers_[BufferSlot::film_caustic_sum], sums.caustic.data(), pixels * sizeof(float4));
+  device_.upload(buffers_[BufferSlot::film_odd_sum], sums.odd.data(), pixels * sizeof(float4));
+  passes_done_ = sums.passes;
+  next_pass_ = sums.passes;
+}
+
+void Renderer::add_film_sums(const FilmSums& other) {
+  FilmSums sums = film_sums();
+  if (other.indirect.size() != sums.indirect.size()) throw DeviceError("renderer: film sums of another size than the film");
+  auto add = [](std::vector<float4>& a, const std::vector<float4>& b) {
+    for (size_t i = 0; i < a.size(); ++i) a[i] = float4{a[i].x + b[i].x, a[i].y + b[i].y, a[i].z + b[i].z, 0.0f};
+  };
+  add(sums.indirect, other.indirect);
+  add(sums.caustic, other.caustic);
+  add(sums.odd, other.odd);
+  const uint32_t next = next_pass_;
+  sums.passes += other.passes;
+  set_film_sums(sums);
+  next_pass_ = next;
 }
 
 void Renderer::resolve() {

@@ -43,6 +43,13 @@ struct FrameStats {
   MethodStats method;       // the method's figures about this frame
 };
 
+// The film's sums as they stand after some passes: what a checkpoint stores and what several
+// devices add up. One float4 per pixel each.
+struct FilmSums {
+  uint32_t passes = 0;
+  std::vector<float4> indirect, caustic, odd;
+};
+
 class Renderer {
  public:
   Renderer(Device& device, const Scene& scene, const RenderSettings& settings);
@@ -62,6 +69,23 @@ class Renderer {
   void run_pass();
   void resolve();
   uint32_t passes_done() const { return passes_done_; }
+  // Waits until the device has finished everything launched so far.
+  void wait() { device_.synchronize(); }
+  // Pass `pass` of the frame, whichever passes ran before: several renderers (devices) share one
+  // frame's passes, each running its own subset; their sums add up to the frame's.
+  void run_pass(uint32_t pass);
+
+  // Expected relative error of the indirect light (indirect + caustic) of the passes so far: the
+  // mean absolute difference between the even and the odd passes' means, scaled to the mean of
+  // all passes, over the mean indirect light (docs/progressive.md). Needs the passes 0..K-1 of
+  // the frame in the film, K >= 2; negative otherwise. Waits for the device.
+  double estimate_error();
+
+  // The film sums (waits for the device), and sums put back or added in: a checkpoint's resume,
+  // or another device's passes. set_film_sums also sets the pass count; add_film_sums adds it.
+  FilmSums film_sums();
+  void set_film_sums(const FilmSums& sums);
+  void add_film_sums(const FilmSums& sums);
   // The film of the last resolve: layers combined, direct, indirect and caustic.
   FrameImage read_image(FrameStats* stats = nullptr);
 
@@ -96,7 +120,8 @@ class Renderer {
   std::unique_ptr<IndirectMethod> method_;
 
   FrameContext frame_;            // the frame being rendered (timer and stats switch persist)
-  uint32_t passes_done_ = 0;
+  uint32_t passes_done_ = 0;      // passes summed in the film
+  uint32_t next_pass_ = 0;        // the pass run_pass() runs
   bool rendered_before_ = false;  // a frame was begun on this renderer
   CameraDesc last_camera_;
   std::vector<LightDesc> device_lights_;  // the lights in the lights buffer

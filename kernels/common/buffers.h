@@ -28,6 +28,8 @@
   X(frame, float4, film_direct, pixels, 1)                                                                  \
   X(frame, float4, film_indirect_sum, pixels, 1)                                                            \
   X(frame, float4, film_caustic_sum, pixels, 1)                                                             \
+  X(frame, float4, film_odd_sum, pixels, 1)   /* indirect + caustic of the odd passes: the error estimate */\
+  X(frame, float4, film_error_partials, error_tiles, 1) /* per tile: (sum |even - odd|, sum |all|, 0, 0) */ \
   X(frame, float4, film_indirect, pixels, 1)  /* resolved: sum / passes */                                  \
   X(frame, float4, film_caustic, pixels, 1)                                                                 \
   X(frame, float4, film_combined, pixels, 1)  /* direct + indirect + caustic; w = 1: repaired pixel */      \

@@ -4,7 +4,12 @@
    of passes, combined = direct + indirect + caustic. It is also the last guard of the "no NaN or
    Inf in an image" rule: a non-finite pixel becomes black in every output layer and is counted,
    so the host can report it instead of writing a corrupt image. The sums stay untouched, so more
-   passes can follow a resolve. */
+   passes can follow a resolve.
+
+   The error estimate: odd passes also go into film_odd_sum, so the mean of the even passes and
+   the mean of the odd passes are two independent estimates of the same image. Their difference
+   is noise only; film_error_tiles sums it per tile of PM_FILM_ERROR_TILE pixels, and the host turns
+   it into the expected relative error of the mean of all passes (render/progressive.h). */
 #ifndef PM_FILM_H
 #define PM_FILM_H
 
@@ -35,10 +40,41 @@ PM_DEVICE void kernel_film_resolve(const KernelGlobals* kg, const LaunchParams* 
 }
 
 /* A pass's estimate at a pixel added to the film sums (one work item per pixel: no atomics). */
-PM_DEVICE void film_add(const KernelGlobals* kg, uint pixel, Vec3 indirect, Vec3 caustic)
+PM_DEVICE void film_add(const KernelGlobals* kg, const LaunchParams* p, uint pixel, Vec3 indirect, Vec3 caustic)
 {
   kg->film_indirect_sum[pixel] = vec3_to_float4(vec3_add(vec3_from_float4(kg->film_indirect_sum[pixel]), indirect), 0.0f);
   kg->film_caustic_sum[pixel] = vec3_to_float4(vec3_add(vec3_from_float4(kg->film_caustic_sum[pixel]), caustic), 0.0f);
+  if (p->pass_index & 1u)
+    kg->film_odd_sum[pixel] =
+        vec3_to_float4(vec3_add(vec3_from_float4(kg->film_odd_sum[pixel]), vec3_add(indirect, caustic)), 0.0f);
+}
+
+#define PM_FILM_ERROR_TILE 256
+
+/* Work item = tile of PM_FILM_ERROR_TILE pixels, after film_passes >= 2 passes: the sums over its
+   pixels and channels of |mean of even passes - mean of odd passes| and of |mean of all passes|,
+   for the indirect + caustic light. */
+PM_DEVICE void kernel_film_error_tiles(const KernelGlobals* kg, const LaunchParams* p, uint tile)
+{
+  uint pixels = p->width * p->height;
+  uint begin = tile * PM_FILM_ERROR_TILE;
+  uint end = pm_min_u(begin + PM_FILM_ERROR_TILE, pixels);
+  float odd_passes = (float)(p->film_passes / 2u), even_passes = (float)(p->film_passes - p->film_passes / 2u);
+  float difference = 0.0f, level = 0.0f;
+  for (uint i = begin; i < end; ++i) {
+    Vec3 all = vec3_add(vec3_from_float4(kg->film_indirect_sum[i]), vec3_from_float4(kg->film_caustic_sum[i]));
+    Vec3 odd = vec3_from_float4(kg->film_odd_sum[i]);
+    Vec3 even_mean = vec3_scale(vec3_sub(all, odd), 1.0f / even_passes);
+    Vec3 odd_mean = vec3_scale(odd, 1.0f / odd_passes);
+    Vec3 d = vec3_sub(even_mean, odd_mean);
+    float diff = pm_fabsf(d.x) + pm_fabsf(d.y) + pm_fabsf(d.z);
+    float lvl = (pm_fabsf(all.x) + pm_fabsf(all.y) + pm_fabsf(all.z)) / (even_passes + odd_passes);
+    if (pm_isfinite(diff) && pm_isfinite(lvl)) {
+      difference += diff;
+      level += lvl;
+    }
+  }
+  kg->film_error_partials[tile] = PM_MAKE_FLOAT4(difference, level, 0.0f, 0.0f);
 }
 
 #endif

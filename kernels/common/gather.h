@@ -67,7 +67,7 @@ PM_DEVICE void kernel_gather(const KernelGlobals* kg, const LaunchParams* p, uin
     caustic = vec3_add(caustic, vec3_mul(weight, point_caustic));
     ++points;
   }
-  film_add(kg, pixel, indirect, caustic);
+  film_add(kg, p, pixel, indirect, caustic);
   if (p->collect_stats) {
     pm_atomic_add_u32(&kg->gather_stats[0], accepted);
     pm_atomic_add_u32(&kg->gather_stats[1], points);

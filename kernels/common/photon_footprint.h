@@ -52,6 +52,10 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     return;
   }
   Footprint f = hit_footprint(kg, p, slot);
+  /* Progressive shrink (docs/progressive.md): every footprint of this pass scaled alike. */
+  f.axis_u = vec3_scale(f.axis_u, p->footprint_scale);
+  f.axis_v = vec3_scale(f.axis_v, p->footprint_scale);
+  f.axis_n = vec3_scale(f.axis_n, p->footprint_scale);
   Vec3 lo, hi;
   footprint_bounds(f, center, &lo, &hi);
   float area = footprint_area(f);

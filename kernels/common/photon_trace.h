@@ -71,7 +71,9 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
     /* Random numbers: RANDOM keys them by (seed, photon_frame) and the photon's index in the
        frame; HALTON by the seed, the light and the photon's number within that light only, so
        the same lights give the same photons in every frame (types.h). */
-    uint rng_frame = p->photon_frame, rng_index = p->photon_offset + photon, rng_extra = 0u;
+    uint rng_frame = p->photon_frame, rng_index = p->photon_offset + photon;
+    /* The photon's 64-bit index within the frame: its high word keys the counter's spare word. */
+    uint rng_extra = p->photon_offset_hi + (rng_index < p->photon_offset ? 1u : 0u);
     Uniform4 u;
     if (p->photon_sequence == PM_PHOTON_SEQUENCE_HALTON) {
       uint pass = p->photon_count > 0u ? p->photon_offset / p->photon_count : 0u;

@@ -88,6 +88,10 @@ typedef struct LaunchParams {
   uint photon_frame;    /* the frame whose random numbers the photons draw (animations: camera-only
                            runs share the photons of their first frame; docs/animation.md) */
   uint photon_sequence; /* PM_PHOTON_SEQUENCE_*: how emission directions are drawn */
+
+  float footprint_scale; /* progressive shrink: this pass's footprint semiaxis / gather radius factor (1: none) */
+  uint photon_offset_hi; /* high 32 bits of the pass's first photon index (frames of 2^32 photons and more) */
+  uint pad0, pad1;       /* (a whole 16-byte row) */
 } LaunchParams;
 
 /* Photon emission sequences (--photon-sequence). RANDOM: Philox keyed by (seed, photon_frame).

@@ -38,11 +38,6 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
   scene_area_ = context.measures.surface_area;
   photons_per_pass_ = uint32_t(settings_.photons);
   shading_points_ = context.shading_points;
-  // Photon i of pass k draws random stream k * photons + i, a 32-bit number.
-  if (context.planned_passes > 0 && settings_.photons * context.planned_passes > 0xffffffffull)
-    throw SettingError("passes", std::to_string(context.planned_passes) + " passes of " +
-                                     std::to_string(settings_.photons) +
-                                     " photons exceed 4294967295 (2^32 - 1) photons per frame");
   BufferExtents extents;
   extents.hit_slots = hit_slots();
   extents.bounds_tiles = (extents.hit_slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
@@ -75,13 +70,18 @@ std::vector<StageInfo> PhotonMapping::stages(const FrameContext& frame) const {
 
 LaunchParams PhotonMapping::pass_params(const FrameContext& frame, uint32_t pass) const {
   LaunchParams params = frame.params;
+  // Photon i of pass k is photon k N + i of the frame: its random stream (a 64-bit index).
+  const uint64_t first = uint64_t(pass) * photons_per_pass_;
   params.photon_count = photons_per_pass_;
-  params.photon_offset = pass * photons_per_pass_;
+  params.photon_offset = uint32_t(first);
+  params.photon_offset_hi = uint32_t(first >> 32);
+  params.footprint_scale = float(settings_.footprint_scale(pass));
   params.photon_frame = uint32_t(photon_frame_);
   params.hit_slots_per_photon = settings_.hit_slots_per_photon();
   params.max_bounces = uint32_t(settings_.bounces);
   params.smoothing = settings_.smoothing;
-  params.rmax = settings_.rmax;
+  // k-NN has no footprints: the shrink bounds its search radius instead.
+  params.rmax = settings_.estimator == PM_ESTIMATOR_KNN ? float(settings_.rmax * params.footprint_scale) : settings_.rmax;
   params.gather_radius = settings_.radius;
   params.knn_k = uint32_t(settings_.knn_k);
   params.estimator = uint32_t(settings_.estimator);
@@ -108,9 +108,6 @@ void PhotonMapping::begin_frame(const FrameContext& frame, const FrameChange& ch
 
 void PhotonMapping::run_pass(const FrameContext& frame, uint32_t pass) {
   if (photons_per_pass_ == 0) return;
-  if (uint64_t(pass) * photons_per_pass_ + photons_per_pass_ > 0xffffffffull)
-    throw SettingError("passes", "pass " + std::to_string(pass) + " of " + std::to_string(photons_per_pass_) +
-                                     " photons would exceed 4294967295 (2^32 - 1) photons per frame");
   LaunchParams params = pass_params(frame, pass);
   const bool reuse = frame.reuse_lighting && map_intact_ && map_photon_frame_ == photon_frame_ && map_pass_ == pass;
   uint32_t* counters = nullptr;

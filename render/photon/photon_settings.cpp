@@ -13,6 +13,7 @@ const NameTable kEstimatorNames = {{"pd", PM_ESTIMATOR_PD}, {"radius", PM_ESTIMA
 const NameTable kKernelShapeNames = {{"constant", PM_KERNEL_CONSTANT}, {"epanechnikov", PM_KERNEL_EPANECHNIKOV}};
 const NameTable kPhotonMapBuilderNames = {{"lbvh", kPhotonMapLbvh}, {"vvh", kPhotonMapVvh}};
 const NameTable kPhotonSequenceNames = {{"random", PM_PHOTON_SEQUENCE_RANDOM}, {"halton", PM_PHOTON_SEQUENCE_HALTON}};
+const NameTable kProgressiveNames = {{"average", kProgressiveAverage}, {"shrink", kProgressiveShrink}};
 
 namespace {
 
@@ -39,6 +40,8 @@ void PhotonSettings::validate() const {
   require_named(kKernelShapeNames, kernel_shape, "kernel");
   require_named(kPhotonMapBuilderNames, builder, "photon-bvh");
   require_named(kPhotonSequenceNames, sequence, "photon-sequence");
+  require_named(kProgressiveNames, progressive, "progressive");
+  if (!(alpha > 0 && alpha < 1)) throw SettingError("alpha", "expected a number between 0 and 1 (exclusive), got " + std::to_string(alpha));
   if (photons * hit_slots_per_photon() > kMaxHitSlots)
     throw SettingError("photons", std::to_string(photons) + " photons per pass need more than 2^29 hit records; "
                                   "use fewer photons per pass and more passes");
@@ -59,8 +62,18 @@ std::string PhotonSettings::describe() const {
   if (estimator == PM_ESTIMATOR_KNN) s << " k=" << knn_k;
   s << " photon_bvh=" << name_of(kPhotonMapBuilderNames, builder)
     << " leaf=" << (leaf_threshold > 0 ? std::to_string(leaf_threshold) : "auto")
-    << " photon_sequence=" << name_of(kPhotonSequenceNames, sequence);
+    << " photon_sequence=" << name_of(kPhotonSequenceNames, sequence)
+    << " progressive=" << name_of(kProgressiveNames, progressive);
+  if (progressive == kProgressiveShrink) s << " alpha=" << alpha;
   return s.str();
+}
+
+double PhotonSettings::footprint_scale(uint32_t pass) const {
+  if (progressive != kProgressiveShrink) return 1.0;
+  // In logarithms: a product of a million factors stays exact enough and never underflows early.
+  double log_area = 0;
+  for (uint32_t j = 1; j <= pass; ++j) log_area += std::log((j + double(alpha)) / (j + 1.0));
+  return std::exp(0.5 * log_area);
 }
 
 std::unique_ptr<IndirectMethod> PhotonSettings::create(const MethodContext& context) const {

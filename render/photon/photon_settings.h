@@ -17,8 +17,12 @@ extern const NameTable kEstimatorNames;         // pd, radius, knn (PM_ESTIMATOR
 extern const NameTable kKernelShapeNames;       // constant, epanechnikov (PM_KERNEL_*)
 extern const NameTable kPhotonMapBuilderNames;  // lbvh, vvh
 extern const NameTable kPhotonSequenceNames;    // random, halton (PM_PHOTON_SEQUENCE_*)
+extern const NameTable kProgressiveNames;       // average, shrink
 
 enum PhotonMapBuilder { kPhotonMapLbvh = 0, kPhotonMapVvh = 1 };
+// How passes combine (docs/progressive.md): every pass at the same footprint sizes, or footprints
+// shrinking from pass to pass (progressive photon mapping, consistent).
+enum ProgressiveMode { kProgressiveAverage = 0, kProgressiveShrink = 1 };
 
 class PhotonSettings final : public MethodSettings {
  public:
@@ -35,6 +39,8 @@ class PhotonSettings final : public MethodSettings {
   int sequence = PM_PHOTON_SEQUENCE_RANDOM;  // emission: random, or Halton (the same every frame)
   int builder = kPhotonMapLbvh;  // the device LBVH, or the voxel volume heuristic on the host
                                  // (section 5.1, for the paper's Table 1 comparison)
+  int progressive = kProgressiveAverage;
+  float alpha = 2.0f / 3.0f;  // shrink: r_i^2 = r_{i-1}^2 (i + alpha) / (i + 1) (Knaus & Zwicker 2011)
 
   const char* method_name() const override { return "photon"; }
   void validate() const override;
@@ -46,6 +52,9 @@ class PhotonSettings final : public MethodSettings {
   PhotonSettings resolved(const SceneMeasures& measures) const;
   // One line: every setting, as resolved.
   std::string describe() const;
+  // Footprint semiaxis (and gather radius) factor of pass `pass`: 1 when averaging; when
+  // shrinking sqrt(prod_{j=1..pass} (j + alpha) / (j + 1)), so areas shrink like r^2.
+  double footprint_scale(uint32_t pass) const;
 };
 
 }  // namespace pm

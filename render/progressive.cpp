@@ -1,0 +1,55 @@
+// The budgeted pass loop.
+#include "render/progressive.h"
+
+#include <chrono>
+
+namespace pm {
+
+ProgressiveResult render_progressive(Renderer& renderer, int frame, const PassBudget& budget,
+                                     const FilmSums* resume, double resumed_seconds,
+                                     const ProgressiveCallbacks& callbacks) {
+  const auto start = std::chrono::steady_clock::now();
+  auto seconds = [&] {
+    return resumed_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  renderer.begin_frame(frame);
+  if (resume) renderer.set_film_sums(*resume);
+  ProgressiveResult result;
+  result.stopped_by = "passes";
+  uint32_t cap = budget.max_passes;
+  if (renderer.method() && renderer.method()->max_passes() > 0 && renderer.method()->max_passes() < cap)
+    cap = renderer.method()->max_passes();
+  if (!renderer.method()) cap = 0;
+
+  while (renderer.passes_done() < cap) {
+    renderer.run_pass();
+    PassReport report;
+    report.passes = renderer.passes_done();
+    if (budget.target_error > 0 && report.passes >= 2) report.error = renderer.estimate_error();
+    if (budget.open_ended()) renderer.wait();  // a budget counts finished passes, not launched ones
+    report.seconds = seconds();
+    if (callbacks.after_pass) callbacks.after_pass(report);
+    result.PassReport::operator=(report);
+    if (budget.target_error > 0 && report.passes >= kMinPassesForError && report.error >= 0 &&
+        report.error <= budget.target_error) {
+      result.stopped_by = "error";
+      break;
+    }
+    if (budget.seconds > 0 && report.seconds >= budget.seconds) {
+      result.stopped_by = "time";
+      break;
+    }
+    if (budget.checkpoint_every > 0 && report.passes % budget.checkpoint_every == 0 && report.passes < cap &&
+        callbacks.checkpoint) {
+      renderer.resolve();
+      callbacks.checkpoint(report);
+    }
+  }
+  renderer.resolve();
+  result.passes = renderer.passes_done();
+  if (result.error < 0) result.error = renderer.estimate_error();
+  result.seconds = seconds();
+  return result;
+}
+
+}  // namespace pm
