@@ -18,6 +18,7 @@
 #include <sstream>
 
 #include "cli/commands.h"
+#include "cli/frame_job.h"
 #include "cli/progress_line.h"
 #include "cli/render_options.h"
 #include "render/device.h"
@@ -39,6 +40,8 @@ namespace fs = std::filesystem;
 
 // Largest frame number --frames can name (frame_spec.cpp reads at most 9 digits).
 const int kMaxFrameNumber = 999999999;
+// The pass cap of a --time or --target-error budget given without --passes.
+const uint32_t kBudgetPassCap = 1000000;
 
 struct RenderCommandOptions {
   RenderOptions render;
@@ -50,17 +53,12 @@ struct RenderCommandOptions {
   bool resume = false;
   bool quiet = false;
   bool verbose = false;
+  double seconds = 0;
+  double target_error = 0;
+  uint32_t checkpoint_every = 0;
   CLI::Option* frame_option = nullptr;
   CLI::Option* frames_option = nullptr;
 };
-
-// A statistic for an EXR header: integers without a fraction, others with full precision.
-std::string number_text(double v) {
-  char text[32];
-  if (v == double(int64_t(v)) && std::fabs(v) < 1e15) std::snprintf(text, sizeof(text), "%lld", (long long)v);
-  else std::snprintf(text, sizeof(text), "%.9g", v);
-  return text;
-}
 
 std::string frame_list(const std::vector<int>& frames) {
   std::string list;
@@ -134,6 +132,8 @@ int run_render(const RenderCommandOptions& o) {
   SceneLoadReport report;
   Scene scene = o.render.scene_path.empty() ? builtin_cornell_box() : load_scene_file(o.render.scene_path, &report);
   const RenderSettings settings = render_settings(o.render);
+  if (!(o.seconds >= 0) || !std::isfinite(o.seconds)) throw InputError("--time: expected seconds >= 0");
+  if (!(o.target_error >= 0) || !(o.target_error < 1)) throw InputError("--target-error: expected a fraction from 0 to 1, e.g. 0.01");
   if (!o.preview.empty() && !preview_available())
     throw InputError("--preview needs OpenImageIO, which this build does not have");
   const std::string pattern = o.output.empty() ? default_output_pattern(scene.name) : o.output;
@@ -152,17 +152,31 @@ int run_render(const RenderCommandOptions& o) {
 
   std::vector<int> todo, skipped;
   for (int f : frames) {
+    // A checkpoint image is not complete (exr_is_complete): its frame continues.
     if (o.resume && exr_is_complete(expand_output_pattern(pattern, f))) skipped.push_back(f);
     else todo.push_back(f);
   }
   if (o.verbose)
     for (int f : skipped) std::printf("skipped %s (complete)\n", expand_output_pattern(pattern, f).c_str());
 
+  FrameJobOptions job_options;
+  job_options.budget.max_passes = settings.passes;
+  job_options.budget.seconds = o.seconds;
+  job_options.budget.target_error = o.target_error;
+  job_options.budget.checkpoint_every = o.checkpoint_every;
+  // A budget with no --passes of its own runs until the budget stops it.
+  if (job_options.budget.open_ended() && o.render.passes_option->count() == 0) job_options.budget.max_passes = kBudgetPassCap;
+  job_options.full_float = o.full_float;
+  job_options.resume = o.resume;
+  job_options.quiet = o.quiet;
+
   std::unique_ptr<Device> device;
   std::unique_ptr<Renderer> renderer;
+  std::unique_ptr<FrameJob> job;
   if (!todo.empty()) {
     device = create_device(o.render.backend, o.render.device);
     renderer = std::make_unique<Renderer>(*device, scene, settings);
+    job = std::make_unique<FrameJob>(*renderer, scene, device->info(), job_options);
     std::vector<std::string> targets;
     for (int f : todo) targets.push_back(expand_output_pattern(pattern, f));
     remove_stale_temporaries(targets, o.verbose);
@@ -172,7 +186,7 @@ int run_render(const RenderCommandOptions& o) {
     for (const std::string& warning : report.warnings) std::fprintf(stderr, "pmrender: warning: %s\n", warning.c_str());
 
   const bool sequence = frames.size() > 1;
-  ProgressLine progress(sequence && !o.quiet);
+  ProgressLine progress(!o.quiet);
   std::vector<int> failed;
   size_t rendered = 0, reused = 0;
   const auto start = std::chrono::steady_clock::now();
@@ -180,32 +194,23 @@ int run_render(const RenderCommandOptions& o) {
     const int f = todo[i];
     const std::string path = expand_output_pattern(pattern, f);
     try {
-      FrameStats stats;
-      FrameImage image = renderer->render_frame(f, &stats);
+      const FrameOutcome outcome = job->run(f, path, o.preview.empty() ? "" : expand_output_pattern(o.preview, f), progress);
       progress.clear();
-      if (stats.repaired_pixels > 0)
+      if (outcome.repaired_pixels > 0)
         std::fprintf(stderr, "pmrender: warning: frame %d: %d pixel(s) were not finite and were written as black\n", f,
-                     stats.repaired_pixels);
-      const DeviceInfo& info = device->info();
-      image.attributes = {{"pmrender/version", PMRENDER_VERSION},
-                          {"pmrender/scene", scene.name + " (" + scene.source + ")"},
-                          {"pmrender/frame", std::to_string(f)},
-                          {"pmrender/time", std::to_string(frame_time(scene, f))},
-                          {"pmrender/backend", info.backend},
-                          {"pmrender/device", info.name},
-                          {"pmrender/settings", renderer->describe()},
-                          {"pmrender/passes", std::to_string(stats.passes)},
-                          {"pmrender/render_ms", std::to_string(stats.render_ms)}};
-      for (const MethodStats::Entry& e : stats.method.entries)
-        image.attributes.push_back({"pmrender/" + e.name, number_text(e.value)});
-      const bool photons_reused = stats.method.get("photons_reused") != 0;
-      write_exr(path, image, o.full_float);
-      if (!o.preview.empty()) write_preview_png(expand_output_pattern(o.preview, f), image);
+                     outcome.repaired_pixels);
       ++rendered;
-      reused += photons_reused ? 1 : 0;
+      reused += outcome.photons_reused ? 1 : 0;
       if (!o.quiet) {
-        std::printf("wrote %s (frame %d, %dx%d, %s: %s, %.2f ms%s)\n", path.c_str(), f, image.width, image.height,
-                    info.backend.c_str(), info.name.c_str(), stats.render_ms, photons_reused ? ", photons reused" : "");
+        const DeviceInfo& info = device->info();
+        std::printf("wrote %s (frame %d, %dx%d, %s: %s, %.2f ms", path.c_str(), f, renderer->width(), renderer->height(),
+                    info.backend.c_str(), info.name.c_str(), outcome.render_ms);
+        if (outcome.result.passes > 1 || job_options.budget.open_ended())
+          std::printf(", %u passes (%s)", outcome.result.passes, outcome.result.stopped_by.c_str());
+        if (outcome.result.error >= 0 && (outcome.result.passes > 1)) std::printf(", error ~%.2f%%", 100.0 * outcome.result.error);
+        if (outcome.resumed) std::printf(", continued from its checkpoint");
+        if (outcome.photons_reused) std::printf(", photons reused");
+        std::printf(")\n");
         std::fflush(stdout);
       }
     } catch (const std::exception& e) {
@@ -264,7 +269,15 @@ Run add_render_command(CLI::App& app) {
                       "Frames to render, e.g. 1-30,47,100-200:2 (default: the scene's whole sequence)");
   options->frame_option =
       cmd->add_option("--frame", options->frame, "One frame to render (the same as --frames N)")->check(CLI::NonNegativeNumber);
-  cmd->add_flag("--resume", options->resume, "Skip frames whose output file is already complete");
+  cmd->add_flag("--resume", options->resume,
+                "Skip frames whose output file is already complete; continue checkpointed frames from their checkpoint");
+  cmd->add_option("--time", options->seconds,
+                  "Per frame: stop after the pass that reaches this many seconds (--passes, if given, stays a cap)");
+  cmd->add_option("--target-error", options->target_error,
+                  "Per frame: stop when the estimated relative error of the indirect light falls to this, e.g. 0.01 "
+                  "(from 4 passes on; docs/progressive.md)");
+  cmd->add_option("--checkpoint-every", options->checkpoint_every,
+                  "Write the frame so far every N passes (a normal EXR plus <file>.pmstate); --resume continues it");
   cmd->add_flag("-q,--quiet", options->quiet, "Print nothing on success (no progress, no summary)");
   cmd->add_flag("-v,--verbose", options->verbose, "Also list skipped frames and removed stale temporaries");
   return [options] { return run_render(*options); };

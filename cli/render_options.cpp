@@ -16,7 +16,7 @@ void add_render_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("--resolution", o.resolution, "WIDTHxHEIGHT, overrides the scene camera's");
   cmd->add_option("--mirror-depth", o.mirror_depth, "Perfect-mirror bounces followed from the eye")->capture_default_str();
   cmd->add_option("--seed", o.seed, "Random seed")->capture_default_str();
-  cmd->add_option("--passes", o.passes, "Passes of the indirect-light method per frame, summed in the film "
+  o.passes_option = cmd->add_option("--passes", o.passes, "Passes of the indirect-light method per frame, summed in the film "
                                         "(photon mapping: independent photon batches; memory is one pass's)")
       ->capture_default_str();
   std::string method_help = "Indirect-light method:";

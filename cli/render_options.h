@@ -24,6 +24,7 @@ struct RenderOptions {
   uint32_t passes = 1;
   std::string method = "photon";
   bool no_reuse = false;
+  CLI::Option* passes_option = nullptr;  // given on the command line (a budget's cap then)
   std::map<std::string, std::shared_ptr<MethodOptions>> method_options;  // by method name
 };
 

@@ -124,8 +124,8 @@ void Renderer::set_lights(const std::vector<LightDesc>& lights) {
 
 std::string Renderer::describe() const {
   std::ostringstream s;
-  s << width_ << "x" << height_ << " mirror_depth=" << settings_.mirror_depth << " seed=" << settings_.seed
-    << " passes=" << settings_.passes;
+  // The estimator's settings; the pass count is the budget's (pmrender/passes in EXR headers).
+  s << width_ << "x" << height_ << " mirror_depth=" << settings_.mirror_depth << " seed=" << settings_.seed;
   if (!settings_.reuse_lighting) s << " reuse=off";
   if (method_) s << " method=" << settings_.method->method_name() << " " << method_->describe();
   else s << " method=none";

@@ -1,0 +1,128 @@
+// A frame's passes, checkpoints, progress and file.
+#include "cli/frame_job.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "render/checkpoint.h"
+#include "render/exr_io.h"
+#include "render/preview_png.h"
+#include "render/scene_frame.h"
+
+namespace pm::cli {
+
+namespace {
+
+// A statistic for an EXR header: integers without a fraction, others with full precision.
+std::string number_text(double v) {
+  char text[32];
+  if (v == double(int64_t(v)) && std::fabs(v) < 1e15) std::snprintf(text, sizeof(text), "%lld", (long long)v);
+  else std::snprintf(text, sizeof(text), "%.9g", v);
+  return text;
+}
+
+std::string percent_text(double error) {
+  if (error < 0) return "-";
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.2f%%", 100.0 * error);
+  return text;
+}
+
+}  // namespace
+
+FrameJob::FrameJob(Renderer& renderer, const Scene& scene, const DeviceInfo& device, const FrameJobOptions& options)
+    : renderer_(renderer), scene_(scene), device_(device), options_(options) {
+  fingerprint_ = scene.name + " (" + scene.source + ") " + renderer.describe();
+}
+
+std::vector<std::pair<std::string, std::string>> FrameJob::attributes(int frame, const PassReport& report,
+                                                                      const std::string& stopped_by) const {
+  std::vector<std::pair<std::string, std::string>> a = {
+      {"pmrender/version", PMRENDER_VERSION},
+      {"pmrender/scene", scene_.name + " (" + scene_.source + ")"},
+      {"pmrender/frame", std::to_string(frame)},
+      {"pmrender/time", std::to_string(frame_time(scene_, frame))},
+      {"pmrender/backend", device_.backend},
+      {"pmrender/device", device_.name},
+      {"pmrender/settings", renderer_.describe()},
+      {"pmrender/passes", std::to_string(report.passes)},
+      {"pmrender/render_seconds", number_text(report.seconds)}};
+  if (!stopped_by.empty()) a.push_back({"pmrender/stopped_by", stopped_by});
+  if (report.error >= 0) a.push_back({"pmrender/error_estimate", number_text(report.error)});
+  if (const IndirectMethod* method = renderer_.method()) {
+    const auto [unit, per_pass] = method->work_per_pass();
+    a.push_back({"pmrender/" + unit + "s_total", number_text(per_pass * report.passes)});
+    for (const MethodStats::Entry& e : method->stats().entries) a.push_back({"pmrender/" + e.name, number_text(e.value)});
+  }
+  return a;
+}
+
+FrameOutcome FrameJob::run(int frame, const std::string& path, const std::string& preview, ProgressLine& progress) {
+  FrameOutcome outcome;
+  const std::string state_path = checkpoint_state_path(path);
+  std::optional<FrameCheckpoint> checkpoint;
+  if (options_.resume && std::filesystem::exists(state_path)) {
+    std::string why;
+    checkpoint = read_checkpoint(state_path, frame, renderer_.width(), renderer_.height(), fingerprint_, &why);
+    if (!checkpoint && !options_.quiet)
+      std::fprintf(stderr, "pmrender: warning: frame %d: not continuing from %s (%s); starting over\n", frame,
+                   state_path.c_str(), why.c_str());
+  }
+  outcome.resumed = checkpoint.has_value();
+
+  const uint32_t cap = options_.budget.max_passes;
+  const IndirectMethod* method = renderer_.method();
+  const auto [unit, per_pass] = method ? method->work_per_pass() : std::pair<std::string, double>{"", 0.0};
+  auto last_draw = std::chrono::steady_clock::time_point{};
+  ProgressiveCallbacks callbacks;
+  callbacks.after_pass = [&](const PassReport& r) {
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_draw < std::chrono::milliseconds(100)) return;
+    last_draw = now;
+    // What is left: the time budget's rest, the passes the error needs at 1/sqrt(passes), or the cap's.
+    const double per_pass_s = r.seconds / double(r.passes);
+    double eta = per_pass_s * double(cap - std::min(cap, r.passes));
+    if (options_.budget.target_error > 0 && r.error > 0)
+      eta = std::min(eta, per_pass_s * std::max(0.0, r.passes * std::pow(r.error / options_.budget.target_error, 2) - r.passes));
+    if (options_.budget.seconds > 0) eta = std::min(eta, std::max(0.0, options_.budget.seconds - r.seconds));
+    char text[256];
+    std::snprintf(text, sizeof(text), "frame %d  pass %u%s  %.3g %ss  error %s  ETA %s", frame, r.passes,
+                  options_.budget.open_ended() ? "" : ("/" + std::to_string(cap)).c_str(), per_pass * r.passes,
+                  unit.c_str(), percent_text(r.error).c_str(), seconds_text(eta).c_str());
+    progress.show(text);
+  };
+  callbacks.checkpoint = [&](const PassReport& r) {
+    FrameCheckpoint c;
+    c.frame = frame;
+    c.width = renderer_.width();
+    c.height = renderer_.height();
+    c.seconds = r.seconds;
+    c.fingerprint = fingerprint_;
+    c.sums = renderer_.film_sums();
+    write_checkpoint(state_path, c);
+    FrameImage image = renderer_.read_image();
+    image.attributes = attributes(frame, r, "");
+    image.attributes.push_back({kCheckpointAttribute, std::to_string(r.passes)});
+    write_exr(path, image, options_.full_float);
+  };
+
+  const auto start = std::chrono::steady_clock::now();
+  outcome.result = render_progressive(renderer_, frame, options_.budget, checkpoint ? &checkpoint->sums : nullptr,
+                                      checkpoint ? checkpoint->seconds : 0.0, callbacks);
+  FrameStats stats;
+  FrameImage image = renderer_.read_image(&stats);
+  outcome.render_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  outcome.repaired_pixels = stats.repaired_pixels;
+  outcome.photons_reused = method && method->stats().get("photons_reused") != 0;
+  image.attributes = attributes(frame, outcome.result, outcome.result.stopped_by);
+  image.attributes.push_back({"pmrender/render_ms", number_text(outcome.render_ms)});
+  write_exr(path, image, options_.full_float);
+  std::error_code ignored;
+  std::filesystem::remove(state_path, ignored);  // the frame is finished: its checkpoint is spent
+  if (!preview.empty()) write_preview_png(preview, image);
+  return outcome;
+}
+
+}  // namespace pm::cli

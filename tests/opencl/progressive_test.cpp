@@ -1,0 +1,238 @@
+// Progressive rendering (docs/progressive.md) on the OpenCL backend: passes that average or
+// shrink, convergence on the closed diffuse sphere (exact answer known), the error estimate
+// against the true error, time and error budgets, memory bounded by one pass, and checkpoints
+// that continue exactly where an uninterrupted run would.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+#include <vector>
+#include <thread>
+
+#include "render/exr_io.h"
+#include "render/progressive.h"
+#include "render/renderer.h"
+#include "support/analytic_scenes.h"
+#include "support/device_checks.h"
+#include "support/pmrender_process.h"
+#include "support/render_settings.h"
+
+namespace pm {
+namespace {
+
+namespace fs = std::filesystem;
+
+Device& device() {
+  static std::unique_ptr<Device> d = test::open_first_device("opencl");
+  if (!d) throw std::runtime_error("no OpenCL device");
+  return *d;
+}
+
+// The closed diffuse sphere with the light at its centre: every point's indirect radiance is
+// rho/pi * Phi/A * (rho + rho^2) after two bounces.
+struct Sphere {
+  static constexpr float kRho = 0.5f, kRadius = 2.0f, kPower = 100.0f;
+  Scene scene = test::diffuse_sphere(kRadius, kRho, 4, {kPower, kPower, kPower});
+  double expected = kRho / double(PM_PI) * kPower / measure_scene(scene).surface_area * (kRho + kRho * kRho);
+};
+
+const Sphere& sphere() {
+  static const Sphere s;
+  return s;
+}
+
+// Errors of a render of the sphere's indirect light against the exact answer.
+struct SphereError {
+  double bias = 0;      // relative error of the image mean: what remains once noise averages out
+  double mean_abs = 0;  // mean relative absolute error per pixel and channel: bias and noise
+  double estimate = -1; // the renderer's own estimate of the relative error
+  ProgressiveResult result;
+};
+
+SphereError render_sphere(PhotonSettings photons, const PassBudget& budget, uint32_t seed = 1) {
+  const Sphere& s = sphere();
+  RenderSettings settings = test::photon_render_settings(photons, budget.max_passes);
+  settings.seed = seed;
+  Renderer renderer(device(), s.scene, settings);
+  SphereError e;
+  e.result = render_progressive(renderer, 0, budget, nullptr, 0);
+  const std::vector<float> indirect = renderer.read_image().find("indirect")->rgb;
+  double sum = 0;
+  for (float v : indirect) {
+    sum += v;
+    e.mean_abs += std::fabs(v - s.expected);
+  }
+  e.bias = sum / double(indirect.size()) / s.expected - 1.0;
+  e.mean_abs /= double(indirect.size()) * s.expected;
+  e.estimate = e.result.error;
+  return e;
+}
+
+SphereError render_sphere(int estimator, int mode, uint32_t passes, float alpha = 2.0f / 3.0f, float rmax = 0) {
+  PhotonSettings p;
+  p.photons = 20000;
+  p.estimator = estimator;
+  p.progressive = mode;
+  p.alpha = alpha;
+  p.rmax = rmax;
+  PassBudget budget;
+  budget.max_passes = passes;
+  SphereError e = render_sphere(p, budget);
+  std::printf("%s %s, %3u passes: bias %+.4f, mean |error| %.4f, estimate %.4f\n", name_of(kEstimatorNames, estimator),
+              name_of(kProgressiveNames, mode), passes, e.bias, e.mean_abs, e.estimate);
+  return e;
+}
+
+TEST(ProgressiveSettings, ShrinkFollowsKnausZwicker) {
+  PhotonSettings p;
+  EXPECT_EQ(p.footprint_scale(0), 1.0);
+  EXPECT_EQ(p.footprint_scale(5), 1.0) << "average: every pass alike";
+  p.progressive = kProgressiveShrink;
+  p.alpha = 0.5f;
+  // r_i^2 = r_(i-1)^2 (i + alpha) / (i + 1): areas scale by the product, semiaxes by its root.
+  double area = 1;
+  for (uint32_t i = 1; i <= 1000; ++i) {
+    area *= (i + 0.5) / (i + 1.0);
+    if (i == 1 || i == 10 || i == 1000) EXPECT_NEAR(p.footprint_scale(i), std::sqrt(area), 1e-12 * std::sqrt(area)) << i;
+  }
+  EXPECT_GT(p.footprint_scale(1000000), 0.0);
+}
+
+// Average: every pass has the same footprints, so the noise falls as 1/sqrt(passes) while the
+// bias stays; the estimate from even and odd passes tracks the true error where noise dominates.
+TEST(Progressive, AverageLowersNoiseButKeepsTheBias) {
+  const SphereError r4 = render_sphere(PM_ESTIMATOR_RADIUS, kProgressiveAverage, 4);
+  const SphereError r64 = render_sphere(PM_ESTIMATOR_RADIUS, kProgressiveAverage, 64);
+  // 16x the passes: the noise (nearly all of the radius estimator's error here) falls 4x.
+  EXPECT_NEAR(r4.mean_abs / r64.mean_abs, 4.0, 1.2);
+  for (const SphereError* e : {&r4, &r64}) {
+    EXPECT_GT(e->estimate, e->mean_abs / 2) << "the estimate is within a factor of 2 of the true error";
+    EXPECT_LT(e->estimate, e->mean_abs * 2);
+  }
+  // pd's bias on the curved sphere (footprints are flat discs) does not average away.
+  const SphereError p1 = render_sphere(PM_ESTIMATOR_PD, kProgressiveAverage, 1);
+  const SphereError p64 = render_sphere(PM_ESTIMATOR_PD, kProgressiveAverage, 64);
+  EXPECT_LT(p64.bias, -0.03);
+  EXPECT_NEAR(p64.bias, p1.bias, 0.04);
+  EXPECT_LT(p64.estimate, std::fabs(p64.bias) / 2) << "the estimate sees the noise, not the bias";
+}
+
+// Shrink: footprints (pd), radii (radius) and the k-NN bound shrink from pass to pass, so the
+// bias falls as passes grow. alpha = 0.2 shrinks fast enough to show it in 64 passes.
+TEST(Progressive, ShrinkLowersTheBiasOfEveryEstimator) {
+  const SphereError pd1 = render_sphere(PM_ESTIMATOR_PD, kProgressiveShrink, 1, 0.2f);
+  const SphereError pd64 = render_sphere(PM_ESTIMATOR_PD, kProgressiveShrink, 64, 0.2f);
+  EXPECT_LT(std::fabs(pd64.bias), 0.5 * std::fabs(pd1.bias));
+  // k-NN's bias (k photons counted inside the radius of the k-th: +1/(k-1)) goes once the
+  // shrinking bound, here started at about the 64th neighbour's distance, cuts below it.
+  const SphereError knn1 = render_sphere(PM_ESTIMATOR_KNN, kProgressiveShrink, 1, 0.2f, 0.15f);
+  const SphereError knn64 = render_sphere(PM_ESTIMATOR_KNN, kProgressiveShrink, 64, 0.2f, 0.15f);
+  EXPECT_LT(std::fabs(knn64.bias), std::fabs(knn1.bias));
+  EXPECT_LT(std::fabs(knn64.bias), 0.01);
+  const SphereError radius64 = render_sphere(PM_ESTIMATOR_RADIUS, kProgressiveShrink, 64, 0.2f);
+  EXPECT_LT(std::fabs(radius64.bias), 0.01);
+  EXPECT_GT(radius64.estimate, radius64.mean_abs / 2);
+  EXPECT_LT(radius64.estimate, radius64.mean_abs * 2);
+}
+
+TEST(Progressive, TimeBudgetStopsWithinOnePass) {
+  PhotonSettings p;
+  p.photons = 20000;
+  p.estimator = PM_ESTIMATOR_RADIUS;
+  RenderSettings settings = test::photon_render_settings(p, 1000);
+  Renderer renderer(device(), sphere().scene, settings);
+  PassBudget budget;
+  budget.max_passes = 1000;
+  budget.seconds = 0.5;
+  double longest_pass = 0, previous = 0;
+  ProgressiveCallbacks callbacks;
+  callbacks.after_pass = [&](const PassReport& r) {
+    longest_pass = std::max(longest_pass, r.seconds - previous);
+    previous = r.seconds;
+  };
+  const ProgressiveResult r = render_progressive(renderer, 0, budget, nullptr, 0, callbacks);
+  EXPECT_EQ(r.stopped_by, "time");
+  EXPECT_GE(r.seconds, budget.seconds);
+  EXPECT_LT(previous - longest_pass, budget.seconds) << "one pass fewer would not have reached the budget";
+  EXPECT_GT(r.passes, 1u);
+}
+
+TEST(Progressive, TargetErrorStopsAtTheTarget) {
+  PhotonSettings p;
+  p.photons = 20000;
+  p.estimator = PM_ESTIMATOR_RADIUS;
+  PassBudget budget;
+  budget.max_passes = 1000;
+  budget.target_error = 0.03;
+  const SphereError e = render_sphere(p, budget);
+  std::printf("target 0.03: %u passes, estimate %.4f, true mean |error| %.4f\n", e.result.passes, e.estimate, e.mean_abs);
+  EXPECT_EQ(e.result.stopped_by, "error");
+  EXPECT_LE(e.estimate, budget.target_error);
+  EXPECT_GE(e.result.passes, kMinPassesForError);
+  // The true error against the exact answer: at the target, up to the estimate's own noise.
+  EXPECT_LE(e.mean_abs, budget.target_error * 1.1);
+}
+
+TEST(Progressive, DeviceMemoryDoesNotGrowWithPasses) {
+  PhotonSettings p;
+  p.photons = 20000;
+  uint64_t peak[2];
+  for (uint32_t passes : {1u, 32u}) {
+    device().reset_peak();
+    const uint64_t before = device().allocated_bytes();
+    Renderer renderer(device(), sphere().scene, test::photon_render_settings(p, passes));
+    renderer.render(0);
+    peak[passes > 1] = device().peak_allocated_bytes() - before;
+  }
+  EXPECT_EQ(peak[0], peak[1]);
+}
+
+// A checkpointed frame killed with SIGKILL and resumed ends bit for bit as an uninterrupted run.
+class ProgressiveCli : public test::PmrenderProcessTest {};
+
+TEST_F(ProgressiveCli, KilledCheckpointedFrameResumesToTheSameImage) {
+  const std::string common = "render --backend opencl --resolution 32x32 --photons 4000 --passes 40 "
+                             "--progressive shrink --float --checkpoint-every 4 -o ";
+  const std::string full = (dir_ / "full.exr").string(), killed = (dir_ / "killed.exr").string();
+  ASSERT_EQ(pmrender(common + full).exit_code, 0);
+  // The same command as its own process, killed once its first checkpoint is on disk.
+  std::vector<std::string> words;
+  std::istringstream split(common + killed);
+  for (std::string w; split >> w;) words.push_back(w);
+  const std::string binary = test::pmrender_binary();
+  const pid_t pid = fork();
+  ASSERT_GE(pid, 0);
+  if (pid == 0) {
+    std::vector<char*> argv{const_cast<char*>(binary.c_str())};
+    for (std::string& w : words) argv.push_back(w.data());
+    argv.push_back(nullptr);
+    freopen("/dev/null", "w", stdout);
+    freopen("/dev/null", "w", stderr);
+    execv(binary.c_str(), argv.data());
+    _exit(127);
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (!fs::exists(killed + ".pmstate") && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  ASSERT_TRUE(fs::exists(killed + ".pmstate")) << "no checkpoint was written";
+  ASSERT_FALSE(exr_is_complete(killed)) << "the frame finished before it could be killed";
+  const test::ProcessResult resumed = pmrender(common + killed + " --resume");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_NE(resumed.out.find("continued from its checkpoint"), std::string::npos) << resumed.out;
+  EXPECT_FALSE(fs::exists(killed + ".pmstate")) << "a finished frame leaves no checkpoint";
+  const FrameImage a = read_exr(full), b = read_exr(killed);
+  for (const ImageLayer& layer : a.layers) EXPECT_EQ(layer.rgb, b.find(layer.name)->rgb) << "layer " << layer.name;
+}
+
+}  // namespace
+}  // namespace pm
