@@ -32,9 +32,12 @@ std::string percent_text(double error) {
 
 }  // namespace
 
-FrameJob::FrameJob(Renderer& renderer, const Scene& scene, const DeviceInfo& device, const FrameJobOptions& options)
-    : renderer_(renderer), scene_(scene), device_(device), options_(options) {
-  fingerprint_ = scene.name + " (" + scene.source + ") " + renderer.describe();
+FrameJob::FrameJob(RendererPool& pool, const Scene& scene, const FrameJobOptions& options)
+    : pool_(pool), renderer_(pool.first()), scene_(scene), options_(options) {
+  fingerprint_ = scene.name + " (" + scene.source + ") " + renderer_.describe();
+  backend_ = renderer_.device().info().backend;
+  for (size_t i = 0; i < pool.size(); ++i)
+    device_names_ += (i ? ", " : "") + pool.renderer(i).device().info().name;
 }
 
 std::vector<std::pair<std::string, std::string>> FrameJob::attributes(int frame, const PassReport& report,
@@ -44,8 +47,8 @@ std::vector<std::pair<std::string, std::string>> FrameJob::attributes(int frame,
       {"pmrender/scene", scene_.name + " (" + scene_.source + ")"},
       {"pmrender/frame", std::to_string(frame)},
       {"pmrender/time", std::to_string(frame_time(scene_, frame))},
-      {"pmrender/backend", device_.backend},
-      {"pmrender/device", device_.name},
+      {"pmrender/backend", backend_},
+      {"pmrender/device", device_names_},
       {"pmrender/settings", renderer_.describe()},
       {"pmrender/passes", std::to_string(report.passes)},
       {"pmrender/render_seconds", number_text(report.seconds)}};
@@ -77,7 +80,7 @@ FrameOutcome FrameJob::run(int frame, const std::string& path, const std::string
   const auto [unit, per_pass] = method ? method->work_per_pass() : std::pair<std::string, double>{"", 0.0};
   auto last_draw = std::chrono::steady_clock::time_point{};
   ProgressiveCallbacks callbacks;
-  callbacks.after_pass = [&](const PassReport& r) {
+  if (pass_progress_) callbacks.after_pass = [&](const PassReport& r) {
     const auto now = std::chrono::steady_clock::now();
     if (now - last_draw < std::chrono::milliseconds(100)) return;
     last_draw = now;
@@ -109,8 +112,8 @@ FrameOutcome FrameJob::run(int frame, const std::string& path, const std::string
   };
 
   const auto start = std::chrono::steady_clock::now();
-  outcome.result = render_progressive(renderer_, frame, options_.budget, checkpoint ? &checkpoint->sums : nullptr,
-                                      checkpoint ? checkpoint->seconds : 0.0, callbacks);
+  outcome.result = pool_.render_progressive(frame, options_.budget, checkpoint ? &checkpoint->sums : nullptr,
+                                            checkpoint ? checkpoint->seconds : 0.0, callbacks);
   FrameStats stats;
   FrameImage image = renderer_.read_image(&stats);
   outcome.render_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -8,6 +8,7 @@
 #include "cli/progress_line.h"
 #include "render/progressive.h"
 #include "render/renderer.h"
+#include "render/renderer_pool.h"
 
 namespace pm::cli {
 
@@ -28,20 +29,30 @@ struct FrameOutcome {
 
 class FrameJob {
  public:
-  FrameJob(Renderer& renderer, const Scene& scene, const DeviceInfo& device, const FrameJobOptions& options);
+  // The pool's devices share each frame's passes (one device: the plain pass loop, checkpoints).
+  FrameJob(RendererPool& pool, const Scene& scene, const FrameJobOptions& options);
 
   // Renders frame into path (and preview, when not empty) and returns what happened.
   FrameOutcome run(int frame, const std::string& path, const std::string& preview, ProgressLine& progress);
+  // Whether run() draws the pass progress inside a frame (only where one frame renders at a time).
+  void set_pass_progress(bool on) { pass_progress_ = on; }
+
+  int width() const { return renderer_.width(); }
+  int height() const { return renderer_.height(); }
+  // "opencl: <device name>[, <name>...]".
+  std::string devices() const { return backend_ + ": " + device_names_; }
 
  private:
   std::vector<std::pair<std::string, std::string>> attributes(int frame, const PassReport& report,
                                                                const std::string& stopped_by) const;
 
-  Renderer& renderer_;
+  RendererPool& pool_;
+  Renderer& renderer_;  // the pool's first: its film holds the frame
   const Scene& scene_;
-  DeviceInfo device_;
+  std::string backend_, device_names_;
   FrameJobOptions options_;
   std::string fingerprint_;
+  bool pass_progress_ = false;
 };
 
 }  // namespace pm::cli

@@ -6,6 +6,7 @@
 // (docs/animation.md, "Batch rendering").
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -14,8 +15,10 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "cli/commands.h"
 #include "cli/frame_job.h"
@@ -55,10 +58,35 @@ struct RenderCommandOptions {
   bool verbose = false;
   double seconds = 0;
   double target_error = 0;
+  std::string devices;
   uint32_t checkpoint_every = 0;
   CLI::Option* frame_option = nullptr;
   CLI::Option* frames_option = nullptr;
 };
+
+// "--devices 0,2" -> {0, 2}; "all" -> {} (every device of the backend).
+std::vector<int> parse_device_list(const std::string& text) {
+  std::vector<int> indices;
+  if (text.empty() || text == "all") return indices;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    size_t used = 0;
+    int index = -1;
+    try {
+      index = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (item.empty() || used != item.size() || index < 0 || item[0] == '+')
+      throw InputError("--devices: expected 'all' or device indices like 0,1 (see 'pmrender devices'), got '" + text + "'");
+    if (std::find(indices.begin(), indices.end(), index) != indices.end())
+      throw InputError("--devices: device " + item + " is listed twice");
+    indices.push_back(index);
+  }
+  if (text.back() == ',') throw InputError("--devices: empty item after the last comma in '" + text + "'");
+  return indices;
+}
 
 std::string frame_list(const std::vector<int>& frames) {
   std::string list;
@@ -170,13 +198,25 @@ int run_render(const RenderCommandOptions& o) {
   job_options.resume = o.resume;
   job_options.quiet = o.quiet;
 
-  std::unique_ptr<Device> device;
-  std::unique_ptr<Renderer> renderer;
-  std::unique_ptr<FrameJob> job;
+  // Devices: with several, a single frame shares its passes between them; a sequence gives each
+  // device its own contiguous run of frames (camera-only runs keep their reuse on one device).
+  const std::vector<int> device_list = parse_device_list(o.devices);
+  const bool share_frames = todo.size() > 1;
+  std::vector<std::unique_ptr<Device>> devices;
+  std::vector<std::unique_ptr<RendererPool>> pools;
+  std::vector<std::unique_ptr<FrameJob>> jobs;
   if (!todo.empty()) {
-    device = create_device(o.render.backend, o.render.device);
-    renderer = std::make_unique<Renderer>(*device, scene, settings);
-    job = std::make_unique<FrameJob>(*renderer, scene, device->info(), job_options);
+    if (o.devices.empty()) devices.push_back(create_device(o.render.backend, o.render.device));
+    else devices = create_devices(o.render.backend, device_list);
+    if (devices.size() > 1 && !share_frames && o.checkpoint_every > 0)
+      throw InputError("--checkpoint-every: a single frame on several --devices cannot be checkpointed");
+    std::vector<Device*> all;
+    for (auto& d : devices) all.push_back(d.get());
+    if (share_frames)
+      for (Device* d : all) pools.push_back(std::make_unique<RendererPool>(std::vector<Device*>{d}, scene, settings));
+    else
+      pools.push_back(std::make_unique<RendererPool>(all, scene, settings));
+    for (auto& pool : pools) jobs.push_back(std::make_unique<FrameJob>(*pool, scene, job_options));
     std::vector<std::string> targets;
     for (int f : todo) targets.push_back(expand_output_pattern(pattern, f));
     remove_stale_temporaries(targets, o.verbose);
@@ -187,14 +227,16 @@ int run_render(const RenderCommandOptions& o) {
 
   const bool sequence = frames.size() > 1;
   ProgressLine progress(!o.quiet);
+  std::mutex output;  // progress, messages and the counts below, across device threads
   std::vector<int> failed;
-  size_t rendered = 0, reused = 0;
+  size_t rendered = 0, reused = 0, done = 0;
   const auto start = std::chrono::steady_clock::now();
-  for (size_t i = 0; i < todo.size(); ++i) {
-    const int f = todo[i];
+  auto render_frame = [&](FrameJob& job, int f) {
     const std::string path = expand_output_pattern(pattern, f);
     try {
-      const FrameOutcome outcome = job->run(f, path, o.preview.empty() ? "" : expand_output_pattern(o.preview, f), progress);
+      const FrameOutcome outcome =
+          job.run(f, path, o.preview.empty() ? "" : expand_output_pattern(o.preview, f), progress);
+      std::lock_guard<std::mutex> lock(output);
       progress.clear();
       if (outcome.repaired_pixels > 0)
         std::fprintf(stderr, "pmrender: warning: frame %d: %d pixel(s) were not finite and were written as black\n", f,
@@ -202,12 +244,11 @@ int run_render(const RenderCommandOptions& o) {
       ++rendered;
       reused += outcome.photons_reused ? 1 : 0;
       if (!o.quiet) {
-        const DeviceInfo& info = device->info();
-        std::printf("wrote %s (frame %d, %dx%d, %s: %s, %.2f ms", path.c_str(), f, renderer->width(), renderer->height(),
-                    info.backend.c_str(), info.name.c_str(), outcome.render_ms);
+        std::printf("wrote %s (frame %d, %dx%d, %s, %.2f ms", path.c_str(), f, job.width(), job.height(),
+                    job.devices().c_str(), outcome.render_ms);
         if (outcome.result.passes > 1 || job_options.budget.open_ended())
           std::printf(", %u passes (%s)", outcome.result.passes, outcome.result.stopped_by.c_str());
-        if (outcome.result.error >= 0 && (outcome.result.passes > 1)) std::printf(", error ~%.2f%%", 100.0 * outcome.result.error);
+        if (outcome.result.error >= 0 && outcome.result.passes > 1) std::printf(", error ~%.2f%%", 100.0 * outcome.result.error);
         if (outcome.resumed) std::printf(", continued from its checkpoint");
         if (outcome.photons_reused) std::printf(", photons reused");
         std::printf(")\n");
@@ -215,12 +256,28 @@ int run_render(const RenderCommandOptions& o) {
       }
     } catch (const std::exception& e) {
       if (todo.size() == 1 && frames.size() == 1) throw;  // a single frame: main() reports it as before
+      std::lock_guard<std::mutex> lock(output);
       progress.clear();
       std::fprintf(stderr, "pmrender: frame %d: %s\n", f, e.what());
       failed.push_back(f);
     }
-    progress.show_count("frame " + std::to_string(f), i + 1, todo.size(),
+    std::lock_guard<std::mutex> lock(output);
+    progress.show_count("frame " + std::to_string(f), ++done, todo.size(),
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), "frame");
+  };
+  if (jobs.size() <= 1) {
+    if (!jobs.empty()) jobs.front()->set_pass_progress(true);  // one frame at a time: its passes may show
+    for (int f : todo) render_frame(*jobs.front(), f);
+  } else {
+    // Contiguous runs of frames, one per device, each on its own thread.
+    std::vector<std::thread> threads;
+    const size_t per_device = (todo.size() + jobs.size() - 1) / jobs.size();
+    for (size_t d = 0; d < jobs.size(); ++d)
+      threads.emplace_back([&, d] {
+        for (size_t i = d * per_device; i < std::min(todo.size(), (d + 1) * per_device); ++i) render_frame(*jobs[d], todo[i]);
+      });
+    for (std::thread& t : threads) t.join();
+    std::sort(failed.begin(), failed.end());
   }
   progress.clear();
   const double total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -276,6 +333,9 @@ Run add_render_command(CLI::App& app) {
   cmd->add_option("--target-error", options->target_error,
                   "Per frame: stop when the estimated relative error of the indirect light falls to this, e.g. 0.01 "
                   "(from 4 passes on; docs/progressive.md)");
+  cmd->add_option("--devices", options->devices,
+                  "Render on several devices of the backend: 'all' or indices like 0,1. A sequence's frames are "
+                  "shared out; a single frame's passes are");
   cmd->add_option("--checkpoint-every", options->checkpoint_every,
                   "Write the frame so far every N passes (a normal EXR plus <file>.pmstate); --resume continues it");
   cmd->add_flag("-q,--quiet", options->quiet, "Print nothing on success (no progress, no summary)");

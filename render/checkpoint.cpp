@@ -24,7 +24,7 @@ void write_checkpoint(const std::string& path, const FrameCheckpoint& c) {
   header << kMagic << "\n"
          << "frame " << c.frame << "\n"
          << "size " << c.width << " " << c.height << "\n"
-         << "passes " << c.sums.passes << "\n"
+         << "passes " << c.sums.passes << " " << c.sums.odd_passes << "\n"
          << "seconds " << c.seconds << "\n"
          << "fingerprint " << c.fingerprint << "\n"
          << "end\n";
@@ -54,7 +54,7 @@ std::optional<FrameCheckpoint> read_checkpoint(const std::string& path, int fram
     words >> key;
     if (key == "frame") words >> c.frame;
     else if (key == "size") words >> c.width >> c.height;
-    else if (key == "passes") words >> c.sums.passes;
+    else if (key == "passes") words >> c.sums.passes >> c.sums.odd_passes;
     else if (key == "seconds") words >> c.seconds;
     else if (key == "fingerprint") c.fingerprint = line.size() > 12 ? line.substr(12) : "";
     else if (key == "end") ended = true;

@@ -72,6 +72,26 @@ std::vector<DeviceInfo> list_devices() {
   return all;
 }
 
+std::string resolve_backend(const std::string& backend) {
+  if (backend != "auto") return backend;
+#if PMRENDER_HAVE_CUDA
+  if (!list_cuda_devices().empty()) return "cuda";
+#endif
+  return "opencl";
+}
+
+std::vector<std::unique_ptr<Device>> create_devices(const std::string& backend, const std::vector<int>& indices) {
+  const std::string resolved = resolve_backend(backend);
+  std::vector<int> chosen = indices;
+  if (chosen.empty())
+    for (const DeviceInfo& info : list_devices())
+      if (info.backend == resolved) chosen.push_back(info.index);
+  if (chosen.empty()) throw DeviceError(resolved + ": no device found");
+  std::vector<std::unique_ptr<Device>> devices;
+  for (int index : chosen) devices.push_back(create_device(resolved, index));
+  return devices;
+}
+
 std::unique_ptr<Device> create_device(const std::string& backend, int index) {
   if (backend == "auto") {
 #if PMRENDER_HAVE_CUDA

@@ -124,5 +124,9 @@ std::vector<DeviceInfo> list_devices();
 std::vector<std::string> compiled_backends();
 // backend: "auto" (CUDA when a CUDA device exists, else OpenCL), "cuda" or "opencl".
 std::unique_ptr<Device> create_device(const std::string& backend, int index);
+// The backend "auto" means on this machine: "cuda" when a CUDA device exists, else "opencl".
+std::string resolve_backend(const std::string& backend);
+// Several devices of one backend; an empty index list means every device of the backend.
+std::vector<std::unique_ptr<Device>> create_devices(const std::string& backend, const std::vector<int>& indices);
 
 }  // namespace pm

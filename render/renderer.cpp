@@ -196,6 +196,7 @@ void Renderer::begin_frame(int frame) {
   for (BufferSlot sum : {BufferSlot::film_indirect_sum, BufferSlot::film_caustic_sum, BufferSlot::film_odd_sum})
     device_.fill_zero(buffers_[sum], buffers_[sum].bytes());
   passes_done_ = 0;
+  odd_passes_ = 0;
   next_pass_ = 0;
   if (method_) method_->begin_frame(frame_, change);
 }
@@ -207,13 +208,15 @@ void Renderer::run_pass(uint32_t pass) {
   frame_.params.pass_index = pass;
   method_->run_pass(frame_, pass);
   ++passes_done_;
+  odd_passes_ += pass & 1u;
   next_pass_ = pass + 1;
 }
 
 double Renderer::estimate_error() {
-  if (passes_done_ < 2) return -1.0;
+  if (odd_passes_ == 0 || odd_passes_ == passes_done_) return -1.0;
   LaunchParams p = frame_.params;
   p.film_passes = passes_done_;
+  p.film_odd_passes = odd_passes_;
   const uint32_t tiles = uint32_t(buffers_[BufferSlot::film_error_partials].bytes() / sizeof(float4));
   device_.launch(KernelId::film_error_tiles, tiles, p);
   std::vector<float4> partials(tiles);
@@ -227,7 +230,7 @@ double Renderer::estimate_error() {
   // Var(even mean - odd mean) = s^2 (1/n_even + 1/n_odd) and Var(mean of all) = s^2 / K, so the
   // mean of all deviates by |even - odd| / sqrt(K (1/n_even + 1/n_odd)) (2 for n_even = n_odd);
   // the mean absolute deviations scale alike for any symmetric noise.
-  const double k = passes_done_, odd = passes_done_ / 2, even = k - odd;
+  const double k = passes_done_, odd = odd_passes_, even = k - odd;
   return difference / std::sqrt(k * (1.0 / even + 1.0 / odd)) / level;
 }
 
@@ -235,6 +238,7 @@ FilmSums Renderer::film_sums() {
   const size_t pixels = size_t(width_) * height_;
   FilmSums sums;
   sums.passes = passes_done_;
+  sums.odd_passes = odd_passes_;
   auto read = [&](BufferSlot slot, std::vector<float4>& out) {
     out.resize(pixels);
     device_.download(buffers_[slot], out.data(), pixels * sizeof(float4));
@@ -253,6 +257,7 @@ void Renderer::set_film_sums(const FilmSums& sums) {
   device_.upload(buffers_[BufferSlot::film_caustic_sum], sums.caustic.data(), pixels * sizeof(float4));
   device_.upload(buffers_[BufferSlot::film_odd_sum], sums.odd.data(), pixels * sizeof(float4));
   passes_done_ = sums.passes;
+  odd_passes_ = sums.odd_passes;
   next_pass_ = sums.passes;
 }
 
@@ -267,6 +272,7 @@ void Renderer::add_film_sums(const FilmSums& other) {
   add(sums.odd, other.odd);
   const uint32_t next = next_pass_;
   sums.passes += other.passes;
+  sums.odd_passes += other.odd_passes;
   set_film_sums(sums);
   next_pass_ = next;
 }

@@ -47,6 +47,7 @@ struct FrameStats {
 // devices add up. One float4 per pixel each.
 struct FilmSums {
   uint32_t passes = 0;
+  uint32_t odd_passes = 0;  // of passes, those with an odd pass number
   std::vector<float4> indirect, caustic, odd;
 };
 
@@ -77,8 +78,8 @@ class Renderer {
 
   // Expected relative error of the indirect light (indirect + caustic) of the passes so far: the
   // mean absolute difference between the even and the odd passes' means, scaled to the mean of
-  // all passes, over the mean indirect light (docs/progressive.md). Needs the passes 0..K-1 of
-  // the frame in the film, K >= 2; negative otherwise. Waits for the device.
+  // all passes, over the mean indirect light (docs/progressive.md). Needs at least one even and
+  // one odd pass in the film; negative otherwise. Waits for the device.
   double estimate_error();
 
   // The film sums (waits for the device), and sums put back or added in: a checkpoint's resume,
@@ -96,6 +97,7 @@ class Renderer {
 
   int width() const { return width_; }
   int height() const { return height_; }
+  Device& device() const { return device_; }
   // Every device buffer of the pipeline, for tests and tools that inspect intermediate results.
   const BufferTable& buffers() const { return buffers_; }
   // The method of this renderer, or null (direct light only).
@@ -121,6 +123,7 @@ class Renderer {
 
   FrameContext frame_;            // the frame being rendered (timer and stats switch persist)
   uint32_t passes_done_ = 0;      // passes summed in the film
+  uint32_t odd_passes_ = 0;       // of those, the ones with an odd pass number
   uint32_t next_pass_ = 0;        // the pass run_pass() runs
   bool rendered_before_ = false;  // a frame was begun on this renderer
   CameraDesc last_camera_;

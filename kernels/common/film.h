@@ -51,15 +51,16 @@ PM_DEVICE void film_add(const KernelGlobals* kg, const LaunchParams* p, uint pix
 
 #define PM_FILM_ERROR_TILE 256
 
-/* Work item = tile of PM_FILM_ERROR_TILE pixels, after film_passes >= 2 passes: the sums over its
-   pixels and channels of |mean of even passes - mean of odd passes| and of |mean of all passes|,
-   for the indirect + caustic light. */
+/* Work item = tile of PM_FILM_ERROR_TILE pixels, with film_passes passes in the film of which
+   film_odd_passes odd, both kinds at least one: the sums over its pixels and channels of
+   |mean of even passes - mean of odd passes| and of |mean of all passes|, for the indirect +
+   caustic light. */
 PM_DEVICE void kernel_film_error_tiles(const KernelGlobals* kg, const LaunchParams* p, uint tile)
 {
   uint pixels = p->width * p->height;
   uint begin = tile * PM_FILM_ERROR_TILE;
   uint end = pm_min_u(begin + PM_FILM_ERROR_TILE, pixels);
-  float odd_passes = (float)(p->film_passes / 2u), even_passes = (float)(p->film_passes - p->film_passes / 2u);
+  float odd_passes = (float)p->film_odd_passes, even_passes = (float)(p->film_passes - p->film_odd_passes);
   float difference = 0.0f, level = 0.0f;
   for (uint i = begin; i < end; ++i) {
     Vec3 all = vec3_add(vec3_from_float4(kg->film_indirect_sum[i]), vec3_from_float4(kg->film_caustic_sum[i]));

@@ -91,7 +91,8 @@ typedef struct LaunchParams {
 
   float footprint_scale; /* progressive shrink: this pass's footprint semiaxis / gather radius factor (1: none) */
   uint photon_offset_hi; /* high 32 bits of the pass's first photon index (frames of 2^32 photons and more) */
-  uint pad0, pad1;       /* (a whole 16-byte row) */
+  uint film_odd_passes;  /* of film_passes, those with an odd pass number (film_odd_sum's) */
+  uint pad0;             /* (a whole 16-byte row) */
 } LaunchParams;
 
 /* Photon emission sequences (--photon-sequence). RANDOM: Philox keyed by (seed, photon_frame).
