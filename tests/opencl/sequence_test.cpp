@@ -31,6 +31,7 @@
 #include "support/image_stats.h"
 #include "support/paths.h"
 #include "support/pmrender_process.h"
+#include "support/same_image.h"
 
 namespace pm {
 namespace {
@@ -47,15 +48,7 @@ RenderSettings small_settings(int width = 48, int height = 36, uint64_t photons 
   return settings;
 }
 
-// Every layer of two images, bit for bit.
-void expect_same_image(const FrameImage& a, const FrameImage& b, const std::string& what) {
-  ASSERT_EQ(a.layers.size(), b.layers.size()) << what;
-  for (size_t i = 0; i < a.layers.size(); ++i) {
-    const ImageLayer* other = b.find(a.layers[i].name);
-    ASSERT_NE(other, nullptr) << what;
-    EXPECT_TRUE(a.layers[i].rgb == other->rgb) << what << ": layer '" << a.layers[i].name << "' differs";
-  }
-}
+using test::expect_same_image;
 
 class Sequence : public ::testing::Test {
  protected:
