@@ -239,7 +239,8 @@ int run_farm_slurm(const FarmSlurmOptions& o, CLI::App* farm) {
   job.sbatch_options = o.sbatch;
   job.max_running = o.max_running;
   job.description = "pmrender " PMRENDER_VERSION " farm slurm: " + std::to_string(frames.size()) + " frame" +
-                    (frames.size() == 1 ? "" : "s") + " of " + scene.source + " in " + std::to_string(job.chunks.size()) +
+                    (frames.size() == 1 ? "" : "s") + " of " +
+                    (scene_path.empty() ? scene.source : fs::absolute(scene_path).string()) + " in " + std::to_string(job.chunks.size()) +
                     " task" + (job.chunks.size() == 1 ? "" : "s") + " of up to " + std::to_string(o.chunk) + " frame" +
                     (o.chunk == 1 ? "" : "s");
   const std::string script = slurm_batch_script(job);
