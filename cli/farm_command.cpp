@@ -187,7 +187,11 @@ int run_farm_slurm(const FarmSlurmOptions& o, CLI::App* farm) {
   // 2. The scene (absolute in the script), its frames, and the frame size every file must have.
   std::vector<std::string> render_args = passed;
   const std::string scene_path = option_text(render, "scene");
-  if (!scene_path.empty()) render_args[size_t(scene_argument_index(passed, scene_path))] = fs::absolute(scene_path).string();
+  if (!scene_path.empty()) {
+    const int index = scene_argument_index(passed, scene_path);
+    if (index < 0) throw std::logic_error("the scene '" + scene_path + "' is not among the render options");
+    render_args[size_t(index)] = fs::absolute(scene_path).string();
+  }
   const Scene scene = scene_path.empty() ? builtin_cornell_box() : load_scene_file(scene_path);
   const SceneAnimation& a = scene.animation;
   std::vector<int> frames;
