@@ -173,7 +173,8 @@ std::string submit_to_sbatch(const std::string& script, const std::string& file)
   return id;
 }
 
-int run_farm_slurm(const FarmSlurmOptions& o, CLI::App* farm) {
+// Everything the script needs, every input checked (InputError otherwise); writes nothing.
+SlurmArrayJob plan_slurm_job(const FarmSlurmOptions& o, CLI::App* farm) {
   // 1. The pass-through options, parsed as `render` would parse them.
   const std::vector<std::string> passed = farm->remaining();
   CLI::App holder;
@@ -247,10 +248,16 @@ int run_farm_slurm(const FarmSlurmOptions& o, CLI::App* farm) {
                     (scene_path.empty() ? scene.source : fs::absolute(scene_path).string()) + " in " + std::to_string(job.chunks.size()) +
                     " task" + (job.chunks.size() == 1 ? "" : "s") + " of up to " + std::to_string(o.chunk) + " frame" +
                     (o.chunk == 1 ? "" : "s");
+  return job;
+}
+
+int run_farm_slurm(const FarmSlurmOptions& o, CLI::App* farm) {
+  const SlurmArrayJob job = plan_slurm_job(o, farm);
   const std::string script = slurm_batch_script(job);
 
-  // 4. Input is valid: write, then submit. sbatch does not create the log folder; a task whose log
+  // Input is valid: write, then submit. sbatch does not create the log folder; a task whose log
   // cannot be opened fails without a word.
+  std::error_code ec;
   fs::create_directories(job.log_folder, ec);
   if (ec) throw DeviceError("--logs: cannot create '" + job.log_folder + "': " + ec.message());
   if (!o.script.empty()) {
