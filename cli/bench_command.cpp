@@ -51,11 +51,7 @@ FramePlan plan_frames(const BenchOptions& o) {
   if (!o.frames.empty()) {
     if (o.repeat_option && o.repeat_option->count() > 0)
       throw InputError("--repeat: cannot be combined with --frames (the frame list is the measured frames)");
-    try {
-      plan.measured = parse_frame_spec(o.frames, 0, kLastFrame);
-    } catch (const InputError& e) {
-      throw InputError(std::string("--frames: ") + e.what());
-    }
+    plan.measured = parse_frames_option(o.frames, 0, kLastFrame);
     for (int i = 0; i < o.warmup; ++i) plan.warmup.push_back(plan.measured[size_t(i) % plan.measured.size()]);
     return plan;
   }

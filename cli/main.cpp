@@ -14,6 +14,8 @@ int main(int argc, char** argv) {
   pm::cli::Run devices = pm::cli::add_devices_command(app);
   pm::cli::Run compare = pm::cli::add_compare_command(app);
   pm::cli::Run bench = pm::cli::add_bench_command(app);
+  pm::cli::Run frames = pm::cli::add_frames_command(app);
+  pm::cli::Run farm = pm::cli::add_farm_command(app);
 
   try {
     app.parse(argc, argv);
@@ -27,6 +29,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("devices")) return devices();
     if (app.got_subcommand("compare")) return compare();
     if (app.got_subcommand("bench")) return bench();
+    if (app.got_subcommand("frames")) return frames();
+    if (app.got_subcommand("farm")) return farm();
   } catch (const pm::SettingError& e) {
     // The library names the setting; on the command line it is the option of the same name.
     std::cerr << "pmrender: --" << e.what() << "\n";

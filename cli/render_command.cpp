@@ -103,13 +103,7 @@ std::vector<int> select_frames(const RenderCommandOptions& o, const Scene& scene
   const int last = a.enabled ? a.last_frame : kMaxFrameNumber;
   const bool frame_given = o.frame_option->count() > 0, frames_given = o.frames_option->count() > 0;
   if (frame_given && frames_given) throw InputError("--frame and --frames: give one of them, not both");
-  if (frames_given) {
-    try {
-      return parse_frame_spec(o.frames, first, last);
-    } catch (const InputError& e) {
-      throw InputError(std::string("--frames: ") + e.what());
-    }
-  }
+  if (frames_given) return parse_frames_option(o.frames, first, last);
   if (frame_given) {
     if (o.frame < first || o.frame > last)
       throw InputError("--frame: " + std::to_string(o.frame) + " is outside the scene's frames " + std::to_string(first) +
@@ -299,6 +293,14 @@ int run_render(const RenderCommandOptions& o) {
 }
 
 }  // namespace
+
+std::vector<int> parse_frames_option(const std::string& spec, int first, int last) {
+  try {
+    return parse_frame_spec(spec, first, last);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--frames: ") + e.what());
+  }
+}
 
 void parse_resolution(const std::string& text, int* width, int* height) {
   std::istringstream in(text);

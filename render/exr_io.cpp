@@ -1,6 +1,6 @@
 // OpenEXR output and input of FrameImage: atomic scanline writing (half or float, ZIP), reading
-// every RGB layer back, and the completeness check used by --resume. The only file that talks to
-// OpenEXR; host code only, never compiled by nvcc.
+// every RGB layer back, and the completeness check used by --resume and `frames check`. The only
+// file that talks to OpenEXR; host code only, never compiled by nvcc.
 #include "render/exr_io.h"
 
 #include <fcntl.h>
@@ -252,33 +252,73 @@ FrameImage read_exr(const std::string& path) {
   }
 }
 
-bool exr_is_complete(const std::string& path) {
+ExrFileCheck check_exr_file(const std::string& path) {
+  ExrFileCheck check;
+  auto fail = [&](ExrFileState state, const std::string& problem) {
+    check.state = state;
+    check.problem = problem;
+    return check;
+  };
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (status.type() == fs::file_type::not_found) return fail(ExrFileState::missing, "no such file");
+  if (ec) return fail(ExrFileState::unreadable, ec.message());
+  if (status.type() != fs::file_type::regular) return fail(ExrFileState::unreadable, "not a regular file");
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (ec) return fail(ExrFileState::unreadable, ec.message());
+  if (size == 0) return fail(ExrFileState::truncated, "empty file");
+
+  // The magic number tells a file cut short (it starts as an EXR) from one that never was one.
+  std::FILE* raw = std::fopen(path.c_str(), "rb");
+  if (!raw) return fail(ExrFileState::unreadable, errno_text("cannot open"));
+  unsigned char magic[4] = {};
+  const size_t got = std::fread(magic, 1, sizeof(magic), raw);
+  std::fclose(raw);
+  const unsigned char kMagic[4] = {0x76, 0x2f, 0x31, 0x01};
+  if (std::memcmp(magic, kMagic, got) != 0) return fail(ExrFileState::unreadable, "not an OpenEXR file");
+  if (got < sizeof(magic)) return fail(ExrFileState::truncated, "cut short inside the magic number");
+
   try {
     Imf::InputFile file(path.c_str());
-    if (!file.isComplete()) return false;
-    // A checkpoint of a frame still being rendered is a readable image but not a finished frame.
-    if (file.header().findTypedAttribute<Imf::StringAttribute>(kCheckpointAttribute)) return false;
-    // isComplete() only checks the line offset table, which sits near the start of the file,
-    // so a copy cut short after the table passes it. Decoding one channel reads every chunk.
     const Imf::Header& header = file.header();
     const Imath::Box2i window = header.dataWindow();
+    check.width = int(int64_t(window.max.x) - window.min.x + 1);
+    check.height = int(int64_t(window.max.y) - window.min.y + 1);
+    if (!file.isComplete()) return fail(ExrFileState::truncated, "scanline chunks are missing");
+    // isComplete() only checks the line offset table, which sits near the start of the file,
+    // so a copy cut short after the table passes it. Decoding one channel reads every chunk.
     const Imf::ChannelList& channels = header.channels();
     for (auto it = channels.begin(); it != channels.end(); ++it) {
       if (it.channel().xSampling != 1 || it.channel().ySampling != 1) continue;
-      const size_t width = size_t(int64_t(window.max.x) - window.min.x + 1);
-      const size_t height = size_t(int64_t(window.max.y) - window.min.y + 1);
-      std::vector<float> scratch(width * height);
+      std::vector<float> scratch(size_t(check.width) * size_t(check.height));
       Imf::FrameBuffer frame_buffer;
-      frame_buffer.insert(it.name(), Imf::Slice::Make(Imf::FLOAT, scratch.data(), window,
-                                                      sizeof(float), sizeof(float) * width));
+      frame_buffer.insert(it.name(), Imf::Slice::Make(Imf::FLOAT, scratch.data(), window, sizeof(float),
+                                                      sizeof(float) * size_t(check.width)));
       file.setFrameBuffer(frame_buffer);
       file.readPixels(window.min.y, window.max.y);
-      return true;
+      break;
     }
-    return true;  // only subsampled channels: the offset table is all there is to go on
-  } catch (const std::exception&) {
-    return false;
+    // (only subsampled channels: the offset table is all there is to go on)
+    if (const auto* passes = header.findTypedAttribute<Imf::StringAttribute>(kCheckpointAttribute))
+      return fail(ExrFileState::checkpoint, "a checkpoint after " + passes->value() + " passes (render --resume continues it)");
+  } catch (const std::exception& e) {
+    return fail(ExrFileState::truncated, e.what());
   }
+  check.state = ExrFileState::complete;
+  return check;
+}
+
+bool exr_is_complete(const std::string& path) { return check_exr_file(path).state == ExrFileState::complete; }
+
+const char* exr_file_state_name(ExrFileState state) {
+  switch (state) {
+    case ExrFileState::complete: return "complete";
+    case ExrFileState::missing: return "missing";
+    case ExrFileState::truncated: return "truncated";
+    case ExrFileState::unreadable: return "unreadable";
+    case ExrFileState::checkpoint: return "unfinished";
+  }
+  return "unknown";
 }
 
 }  // namespace pm

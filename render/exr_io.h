@@ -38,10 +38,27 @@ FrameImage read_exr(const std::string& path);
 // done yet (render --checkpoint-every; docs/progressive.md).
 extern const char* const kCheckpointAttribute;
 
-// True when the file opens as an EXR, every scanline chunk of it can be read, i.e. it was
-// written to the end, and it is not a checkpoint (used by --resume to skip finished frames).
-// Decodes the pixels of one channel to be sure, so it costs about one image read. Never throws;
-// any problem is "false".
+// What check_exr_file found: complete, absent, cut short (a file that starts as an EXR but whose
+// header or scanline chunks do not all read), or unreadable (not a regular file, no read
+// permission, not an EXR at all), or a checkpoint of a frame still being rendered (a readable
+// image, kCheckpointAttribute set: render --resume continues it).
+enum class ExrFileState { complete, missing, truncated, unreadable, checkpoint };
+
+struct ExrFileCheck {
+  ExrFileState state = ExrFileState::missing;
+  std::string problem;     // why it is not complete, for messages; empty when complete
+  int width = 0, height = 0;  // the data window, when the header could be read
+};
+
+// Opens the file as an EXR and decodes the pixels of one channel, so every scanline chunk is read:
+// about the cost of one image read. Never throws.
+ExrFileCheck check_exr_file(const std::string& path);
+
+// check_exr_file(path).state == complete: the file was written to the end and is no checkpoint
+// (used by --resume to skip finished frames).
 bool exr_is_complete(const std::string& path);
+
+// "complete", "missing", "truncated" or "unreadable".
+const char* exr_file_state_name(ExrFileState state);
 
 }  // namespace pm

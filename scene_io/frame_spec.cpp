@@ -1,4 +1,4 @@
-// Parser of frame specifications: comma-separated items, each N, A-B or A-B:STEP.
+// Parser and writer of frame specifications: comma-separated items, each N, A-B or A-B:STEP.
 #include "scene_io/frame_spec.h"
 
 #include <cctype>
@@ -61,6 +61,31 @@ std::vector<int> parse_frame_spec(const std::string& spec, int first, int last) 
     }
   }
   return frames;
+}
+
+std::string format_frame_spec(const std::vector<int>& frames) {
+  std::string spec;
+  auto item = [&](const std::string& text) { spec += (spec.empty() ? "" : ",") + text; };
+  size_t i = 0;
+  while (i < frames.size()) {
+    // The longest run from i with one positive step; two frames with a step above 1 read more
+    // simply as two items ("4,9" rather than "4-9:5").
+    size_t end = i + 1;
+    const long long step = end < frames.size() ? (long long)frames[end] - frames[i] : 0;
+    if (step > 0)
+      while (end < frames.size() && (long long)frames[end] - frames[end - 1] == step) ++end;
+    const size_t length = end - i;
+    if (length == 1 || (length == 2 && step > 1)) {
+      item(std::to_string(frames[i]));
+      i += 1;
+      continue;
+    }
+    std::string run = std::to_string(frames[i]) + "-" + std::to_string(frames[end - 1]);
+    if (step > 1) run += ":" + std::to_string(step);
+    item(run);
+    i = end;
+  }
+  return spec;
 }
 
 }  // namespace pm

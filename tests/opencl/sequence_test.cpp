@@ -33,6 +33,7 @@
 #include "support/render_settings.h"
 #include "support/paths.h"
 #include "support/pmrender_process.h"
+#include "support/same_image.h"
 
 namespace pm {
 namespace {
@@ -62,15 +63,7 @@ double stage_ms(const std::vector<StageTime>& times, const std::string& stage) {
   return ms;
 }
 
-// Every layer of two images, bit for bit.
-void expect_same_image(const FrameImage& a, const FrameImage& b, const std::string& what) {
-  ASSERT_EQ(a.layers.size(), b.layers.size()) << what;
-  for (size_t i = 0; i < a.layers.size(); ++i) {
-    const ImageLayer* other = b.find(a.layers[i].name);
-    ASSERT_NE(other, nullptr) << what;
-    EXPECT_TRUE(a.layers[i].rgb == other->rgb) << what << ": layer '" << a.layers[i].name << "' differs";
-  }
-}
+using test::expect_same_image;
 
 class Sequence : public ::testing::Test {
  protected:

@@ -28,10 +28,14 @@ inline std::string read_text(const std::filesystem::path& path) {
   return s.str();
 }
 
-// stdout and stderr go through dir/stdout.txt and dir/stderr.txt.
-inline ProcessResult run_pmrender(const std::string& args, const std::filesystem::path& dir) {
+// stdout and stderr go through dir/stdout.txt and dir/stderr.txt; with a workdir, pmrender runs
+// there (relative paths in args resolve against it).
+inline ProcessResult run_pmrender(const std::string& args, const std::filesystem::path& dir,
+                                  const std::filesystem::path& workdir = {}) {
   const std::filesystem::path out = dir / "stdout.txt", err = dir / "stderr.txt";
-  const std::string cmd = pmrender_binary() + " " + args + " </dev/null >" + out.string() + " 2>" + err.string();
+  const std::string binary = std::filesystem::absolute(pmrender_binary()).string();
+  const std::string cd = workdir.empty() ? "" : "cd '" + workdir.string() + "' && ";
+  const std::string cmd = cd + binary + " " + args + " </dev/null >'" + out.string() + "' 2>'" + err.string() + "'";
   const int status = std::system(cmd.c_str());
   ProcessResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

@@ -361,5 +361,34 @@ TEST_F(ExrIoTest, IsCompleteIsFalseForMissingAndNonExrFiles) {
   EXPECT_FALSE(exr_is_complete(path("text.exr")));
 }
 
+TEST_F(ExrIoTest, CheckTellsMissingTruncatedAndUnreadableApart) {
+  const std::string file = path("whole.exr");
+  write_exr(file, random_image(128, 96, {""}, 1.0f), true);
+  ExrFileCheck whole = check_exr_file(file);
+  EXPECT_EQ(whole.state, ExrFileState::complete);
+  EXPECT_EQ(whole.width, 128);
+  EXPECT_EQ(whole.height, 96);
+  EXPECT_TRUE(whole.problem.empty());
+
+  EXPECT_EQ(check_exr_file(path("missing.exr")).state, ExrFileState::missing);
+
+  std::vector<char> bytes = read_bytes(file);
+  const std::string cut = path("cut.exr");
+  for (size_t keep : {bytes.size() / 2, size_t(20), size_t(2)}) {
+    write_bytes(cut, std::vector<char>(bytes.begin(), bytes.begin() + std::ptrdiff_t(keep)));
+    const ExrFileCheck check = check_exr_file(cut);
+    EXPECT_EQ(check.state, ExrFileState::truncated) << keep << " bytes";
+    EXPECT_FALSE(check.problem.empty());
+  }
+  write_bytes(cut, {});
+  EXPECT_EQ(check_exr_file(cut).state, ExrFileState::truncated);
+  EXPECT_EQ(check_exr_file(cut).problem, "empty file");
+
+  write_bytes(folder_ / "text.exr", {'h', 'e', 'l', 'l', 'o'});
+  EXPECT_EQ(check_exr_file(path("text.exr")).state, ExrFileState::unreadable);
+  EXPECT_EQ(check_exr_file(path("text.exr")).problem, "not an OpenEXR file");
+  EXPECT_EQ(check_exr_file(folder_.string()).state, ExrFileState::unreadable);
+}
+
 }  // namespace
 }  // namespace pm
