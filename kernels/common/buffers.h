@@ -65,8 +65,9 @@
   X(photon, float4, map_power, hit_slots, 1)                                                                \
   X(photon, float4, map_incident, hit_slots, 1)                                                             \
   X(photon, uint, gather_stats, counters, 2)   /* [0] hits accepted, [1] shading points (collect_stats) */ \
-  X(photon, uint, morton_keys, hit_slots, 1)   /* S4 input of the sort: Morton key per slot */           \
-  X(photon, uint, morton_slots, hit_slots, 1)  /* and the slot it belongs to */                          \
+  X(photon, uint, map_tile_offsets, bounds_tiles, 1) /* S4: first compacted key of each tile's valid hits */\
+  X(photon, uint, morton_keys, hit_slots, 1)   /* S4 input of the sort: Morton keys of the valid hits */ \
+  X(photon, uint, morton_slots, hit_slots, 1)  /* and their slots */                                     \
   X(photon, uint, sorted_keys, hit_slots, 1)   /* S4 output of the sort: keys ascending */               \
   X(photon, uint, sorted_slots, hit_slots, 1)  /* and their slots */                                     \
   /* portable radix sort (OpenCL backend; CUDA uses CUB): bound by its driver to the pairs it sorts */   \

@@ -9,9 +9,10 @@
      1. photon_map_bounds_tile     work item = tile of PM_PHOTON_MAP_BOUNDS_TILE hit slots: bounds,
                                    area and count of its valid hits; the host combines the tiles
                                    (photon_map_combine_partials).
-     2. photon_map_morton_key      per hit slot: its Morton code, empty slots last.
-     3. sort (codes, indices) ascending by code (any stable or unstable sort: ties are broken by
-        sorted position below, which is exactly "augment the key with the index").
+     2. photon_map_morton_tile     work item = tile: the Morton codes of its valid hits, written
+                                   compacted at the tile's offset (photon_map_tile_offsets).
+     3. sort the n (code, slot) pairs ascending by code (any stable or unstable sort: ties are
+        broken by sorted position below, which is exactly "augment the key with the index").
      4. photon_map_build_node      i < n - 1: Karras's range + split of inner node i; parent links;
                                    zeroes the visit counter of node i.
      5. photon_map_bottom_up       k < n: sorted leaf boxes, child boxes, counts and leaf fusion.
@@ -108,20 +109,46 @@ PM_DEVICE PhotonMapBounds photon_map_combine_partials(const float4* partials, ui
   b.hi = vec3_to_float4(hi, 0.0f);
   return b;
 }
+
+/* Where each tile's valid hits start in the compacted key array (step 2): the exclusive prefix
+   sum of the tiles' counts. */
+PM_DEVICE void photon_map_tile_offsets(const float4* partials, uint tiles, uint* first_out)
+{
+  uint sum = 0u;
+  for (uint t = 0; t < tiles; ++t) {
+    first_out[t] = sum;
+    sum += PM_AS_UINT(partials[2 * t + 1].w);
+  }
+}
 #endif
 
-/* ---- 2. Morton codes (sections 5.2, 6.2: 30-bit codes in the overall bounds) ---- */
+/* ---- 2. Morton codes of the valid hits, compacted (sections 5.2, 6.2: 30-bit codes in the
+   overall bounds) ---- */
 
-/* Sort key of a hit slot: the 30-bit Morton code of its position within the overall bounds, or
-   PM_MORTON_EMPTY_KEY, above every code, for an empty slot, so the valid hits form the prefix of
-   the sorted order. */
-#define PM_MORTON_EMPTY_KEY 0x7FFFFFFFu
-#define PM_MORTON_SORT_BITS 31
+#define PM_MORTON_SORT_BITS 30
 
 PM_DEVICE uint photon_map_morton_key(float4 center, float4 bounds_lo, float4 bounds_hi)
 {
-  if ((PM_AS_UINT(center.w) & PM_HIT_VALID) == 0u) return PM_MORTON_EMPTY_KEY;
   return morton_code(vec3_from_float4(center), vec3_from_float4(bounds_lo), vec3_from_float4(bounds_hi));
+}
+
+/* Work item = tile (as in step 1): the Morton key and slot of each valid hit of the tile, in slot
+   order, from position first_out[tile] on (the exclusive prefix sum of the tiles' valid counts).
+   Only valid hits reach the sort, in an order that does not depend on scheduling. */
+PM_DEVICE void photon_map_morton_tile(uint tile, uint count, PM_GLOBAL const float4* centers,
+                                      PM_GLOBAL const uint* first_out, float4 bounds_lo, float4 bounds_hi,
+                                      PM_GLOBAL uint* keys, PM_GLOBAL uint* slots)
+{
+  uint begin = tile * PM_PHOTON_MAP_BOUNDS_TILE;
+  uint end = pm_min_u(begin + PM_PHOTON_MAP_BOUNDS_TILE, count);
+  uint out = PM_LOAD(&first_out[tile]);
+  for (uint i = begin; i < end; ++i) {
+    float4 c = PM_LOAD(&centers[i]);
+    if ((PM_AS_UINT(c.w) & PM_HIT_VALID) == 0u) continue;
+    keys[out] = photon_map_morton_key(c, bounds_lo, bounds_hi);
+    slots[out] = i;
+    ++out;
+  }
 }
 
 /* ---- 4. binary radix tree over the sorted codes (Karras 2012, section 4) ---- */

@@ -1,6 +1,6 @@
 /* Stages S3 (bounds reduction) and S4 as kernels: binds the photon map steps of photon_map.h to
-   the frame's buffers. Morton keys of empty slots are above every 30-bit code, so after the sort
-   the hit_count valid hits form the prefix the tree is built over. */
+   the frame's buffers. Only the hit_count valid hits get Morton keys (compacted per tile), so the
+   sort and the tree see nothing else. */
 #ifndef PM_PHOTON_MAP_STAGE_H
 #define PM_PHOTON_MAP_STAGE_H
 
@@ -16,10 +16,11 @@ PM_DEVICE void kernel_photon_reduce(const KernelGlobals* kg, const LaunchParams*
                          kg->footprint_partials);
 }
 
-PM_DEVICE void kernel_photon_morton(const KernelGlobals* kg, const LaunchParams* p, uint slot)
+/* Work item = tile: the valid hits' Morton keys, compacted, for a sort of hit_count pairs. */
+PM_DEVICE void kernel_photon_morton(const KernelGlobals* kg, const LaunchParams* p, uint tile)
 {
-  kg->morton_keys[slot] = photon_map_morton_key(kg->footprint_center[slot], p->hit_bounds_lo, p->hit_bounds_hi);
-  kg->morton_slots[slot] = slot;
+  photon_map_morton_tile(tile, p->photon_count * p->hit_slots_per_photon, kg->footprint_center, kg->map_tile_offsets,
+                         p->hit_bounds_lo, p->hit_bounds_hi, kg->morton_keys, kg->morton_slots);
 }
 
 PM_DEVICE void kernel_photon_map_nodes(const KernelGlobals* kg, const LaunchParams* p, uint i)

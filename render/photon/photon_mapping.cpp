@@ -217,12 +217,15 @@ void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
   }
   {
     StageScope scope(timer, "map: morton");
-    device_.launch(KernelId::photon_morton, slots, params);
+    std::vector<uint32_t> first_out(tiles);
+    photon_map_tile_offsets(partials.data(), tiles, first_out.data());
+    device_.upload(buffers_[BufferSlot::map_tile_offsets], first_out.data(), tiles * sizeof(uint32_t));
+    device_.launch(KernelId::photon_morton, tiles, params);
   }
   {
     StageScope scope(timer, "map: sort");
     device_.sort_pairs(buffers_[BufferSlot::morton_keys], buffers_[BufferSlot::morton_slots],
-                       buffers_[BufferSlot::sorted_keys], buffers_[BufferSlot::sorted_slots], slots,
+                       buffers_[BufferSlot::sorted_keys], buffers_[BufferSlot::sorted_slots], bounds.count,
                        PM_MORTON_SORT_BITS);
   }
   {

@@ -50,7 +50,8 @@ constexpr uint kPoison = 0x7FBADBADu;
 inline float4 valid_center(float4 p) { return PM_MAKE_FLOAT4(p.x, p.y, p.z, PM_UINT_AS_FLOAT(PM_HIT_VALID)); }
 
 // Step 1 as the pipeline runs it: one tile per work item, the partials combined on the host.
-inline PhotonMapBounds reduce_bounds(const std::vector<float4>& centers, const std::vector<float4>& areas)
+inline PhotonMapBounds reduce_bounds(const std::vector<float4>& centers, const std::vector<float4>& areas,
+                                     std::vector<float4>* partials_out = nullptr)
 {
   uint count = (uint)centers.size();
   uint tiles = photon_map_bounds_tile_count(count);
@@ -58,7 +59,26 @@ inline PhotonMapBounds reduce_bounds(const std::vector<float4>& centers, const s
   run_items(tiles, Order::kReverse, 0, [&](uint t) {
     photon_map_bounds_tile(t, count, centers.data(), areas.data(), partials.data());
   });
+  if (partials_out) *partials_out = partials;
   return photon_map_combine_partials(partials.data(), tiles);
+}
+
+// Step 2 as the pipeline runs it: the valid slots' keys, compacted per tile at the host-computed
+// offsets, in any order of the tiles.
+inline void morton_keys(const std::vector<float4>& centers, const std::vector<float4>& areas, Order order,
+                        std::vector<uint>* codes, std::vector<uint>* slots)
+{
+  std::vector<float4> partials;
+  PhotonMapBounds b = reduce_bounds(centers, areas, &partials);
+  uint count = (uint)centers.size();
+  uint tiles = photon_map_bounds_tile_count(count);
+  std::vector<uint> first_out(tiles);
+  photon_map_tile_offsets(partials.data(), tiles, first_out.data());
+  codes->assign(b.count, kPoison);
+  slots->assign(b.count, kPoison);
+  run_items(tiles, order, 5, [&](uint t) {
+    photon_map_morton_tile(t, count, centers.data(), first_out.data(), b.lo, b.hi, codes->data(), slots->data());
+  });
 }
 
 inline void sort_pairs(std::vector<uint>* codes, std::vector<uint>* indices)
@@ -108,12 +128,8 @@ inline HostPhotonMap build(const std::vector<float4>& positions, const std::vect
   uint n = (uint)positions.size();
   std::vector<float4> centers(n);
   for (uint i = 0; i < n; ++i) centers[i] = valid_center(positions[i]);
-  PhotonMapBounds bounds = reduce_bounds(centers, lo);
-  std::vector<uint> codes(n), indices(n);
-  run_items(n, order, seed, [&](uint i) {
-    codes[i] = photon_map_morton_key(centers[i], bounds.lo, bounds.hi);
-    indices[i] = i;
-  });
+  std::vector<uint> codes, indices;
+  morton_keys(centers, lo, order, &codes, &indices);
   sort_pairs(&codes, &indices);
   return build_from_sorted(std::move(codes), std::move(indices), lo, hi, threshold, order, seed + 2);
 }

@@ -219,14 +219,29 @@ TEST(PhotonMapBounds, TilesGiveBoundsCountAndAreaOfValidHitsOnly)
   }
 }
 
-TEST(PhotonMapMorton, EmptySlotsSortAfterEveryHit)
+TEST(PhotonMapMorton, OnlyValidHitsGetKeysInSlotOrder)
 {
-  float4 lo = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, 0.0f), hi = PM_MAKE_FLOAT4(1.0f, 1.0f, 1.0f, 0.0f);
-  uint corner = photon_map_morton_key(valid_center(hi), lo, hi);
-  EXPECT_LT(corner, PM_MORTON_EMPTY_KEY);
-  EXPECT_EQ(corner, (1u << 30) - 1u);  // the far corner is the largest 30-bit code
-  EXPECT_EQ(photon_map_morton_key(PM_MAKE_FLOAT4(0.5f, 0.5f, 0.5f, PM_UINT_AS_FLOAT(0u)), lo, hi), PM_MORTON_EMPTY_KEY);
-  EXPECT_LT(PM_MORTON_EMPTY_KEY, 1u << PM_MORTON_SORT_BITS);  // within the bits the sort compares
+  // Valid and empty slots mixed across tile edges: the keys of the valid ones, compacted, in slot
+  // order whatever order the tiles run in.
+  const uint n = 1000;
+  Hits h = make_hits(n, 77, 0, 0.1f);
+  std::vector<float4> centers(n), areas(n, PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, 1.0f));
+  std::vector<uint> expected_slots;
+  for (uint i = 0; i < n; ++i) {
+    const bool valid = (i * 7919u) % 5u != 0u && !(i >= 250 && i < 270);
+    centers[i] = valid ? valid_center(h.pos[i]) : PM_MAKE_FLOAT4(9.0f, 9.0f, 9.0f, PM_UINT_AS_FLOAT(0u));
+    if (valid) expected_slots.push_back(i);
+  }
+  for (Order order : {Order::kForward, Order::kReverse, Order::kRandom}) {
+    std::vector<uint> codes, slots;
+    morton_keys(centers, areas, order, &codes, &slots);
+    EXPECT_EQ(slots, expected_slots);
+    PhotonMapBounds b = reduce_bounds(centers, areas);
+    for (size_t k = 0; k < slots.size(); ++k) {
+      EXPECT_EQ(codes[k], photon_map_morton_key(centers[slots[k]], b.lo, b.hi));
+      EXPECT_LT(codes[k], 1u << PM_MORTON_SORT_BITS);
+    }
+  }
 }
 
 // Step 4 alone: every hit and every inner node but the root has one parent, every inner node
@@ -236,14 +251,10 @@ TEST(PhotonMapTree, BuildLinksEveryChildOnce)
 {
   for (uint n : {2u, 3u, 1000u, 50000u}) {
     Hits h = make_hits(n, 200 + n, n == 1000 ? 4 : 0, 0.05f);
-    std::vector<uint> codes(n), index(n);
+    std::vector<uint> codes, index;
     std::vector<float4> centers(n);
     for (uint i = 0; i < n; ++i) centers[i] = valid_center(h.pos[i]);
-    PhotonMapBounds b = reduce_bounds(centers, h.pos);
-    for (uint i = 0; i < n; ++i) {
-      codes[i] = photon_map_morton_key(centers[i], b.lo, b.hi);
-      index[i] = i;
-    }
+    morton_keys(centers, h.pos, Order::kForward, &codes, &index);
     sort_pairs(&codes, &index);
     std::vector<uint> node_parent(n - 1, kPoison), leaf_parent(n, kPoison), visits(n - 1, 7u);
     run_items(n - 1, Order::kRandom, n, [&](uint i) {

@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# One call on the GPU machine, from the repository root with the bundle of bench/pack_for_gpu.sh in
+# .gpu/: runs the named steps and leaves their logs and results in OUT (one tarball per step keeps
+# what comes back within the device tool's limits).
+#
+#   bench/gpu_check.sh OUT STEP...
+#
+# Steps:
+#   tests       pm_gpu_tests (CUDA), pm_opencl_tests (first OpenCL device: NVIDIA's)
+#   paper       the suite's paper profile, CUDA and OpenCL, with pd vs knn (--knn)
+#   production  the suite's production profile (1920x1080, 1M photons), CUDA and OpenCL
+#   ncu         Nsight Compute on Sponza's production frame: the hot kernels' SIMT efficiency,
+#               occupancy, throughput (--clock-control none: the clocks stay as they are)
+#   sanitizer   compute-sanitizer memcheck and racecheck over pm_gpu_tests
+set -uo pipefail
+out=$1; shift
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+bundle=$here/.gpu
+# shellcheck disable=SC1091
+source "$bundle/env.sh"
+export PM_TEST_DATA_DIR=$bundle/data PM_PMRENDER_BINARY=$bundle/bin/pmrender
+mkdir -p "$out"
+log() { echo "[$(date -u +%H:%M:%S)] $*"; }
+{ nvidia-smi; pmrender devices; cat "$bundle/COMMIT"; } >"$out/machine.txt" 2>&1
+
+ncu_bin=$(command -v ncu || ls /opt/nvidia/nsight-compute/*/ncu 2>/dev/null | head -n 1)
+sanitizer=$(command -v compute-sanitizer || ls /usr/local/cuda/bin/compute-sanitizer 2>/dev/null | head -n 1)
+
+for step in "$@"; do
+  log "step $step"
+  case $step in
+    tests)
+      pm_gpu_tests >"$out/gpu_tests.txt" 2>&1; echo "pm_gpu_tests exit $?" | tee -a "$out/summary.txt"
+      pm_opencl_tests >"$out/opencl_tests.txt" 2>&1; echo "pm_opencl_tests exit $?" | tee -a "$out/summary.txt"
+      grep -E "^\[  (PASSED|FAILED)|tests? ran|SKIPPED \]" "$out"/gpu_tests.txt "$out"/opencl_tests.txt | tee -a "$out/summary.txt"
+      ;;
+    paper)
+      "$bundle/bench/run_suite.sh" --backend cuda,opencl --profile paper --knn --out "$out/paper" >"$out/paper.log" 2>&1
+      echo "paper suite exit $?" | tee -a "$out/summary.txt"; cat "$out/paper/summary.md" >>"$out/summary.txt"
+      ;;
+    production)
+      "$bundle/bench/run_suite.sh" --backend cuda,opencl --profile production --out "$out/production" \
+        >"$out/production.log" 2>&1
+      echo "production suite exit $?" | tee -a "$out/summary.txt"; cat "$out/production/summary.md" >>"$out/summary.txt"
+      ;;
+    ncu)
+      "$ncu_bin" --clock-control none -k 'regex:pm_(gather|photon_trace|camera_pass|photon_map_bottom_up|photon_footprint)$' \
+        --launch-skip 6 --launch-count 5 --section SpeedOfLight --section Occupancy --section LaunchStats \
+        --section WarpStateStats --section MemoryWorkloadAnalysis \
+        --metrics smsp__thread_inst_executed_per_inst_executed.ratio,l1tex__t_sector_hit_rate.pct,lts__t_sector_hit_rate.pct \
+        pmrender bench "$bundle/bench/scenes/sponza.json" --backend cuda --resolution 1920x1080 --photons 1048576 \
+        --smoothing 40 --rmax 0.7 --warmup 1 --repeat 1 >"$out/ncu.txt" 2>&1
+      echo "ncu exit $?" | tee -a "$out/summary.txt"
+      ;;
+    sanitizer)
+      for tool in memcheck racecheck; do
+        "$sanitizer" --tool $tool --error-exitcode 99 pm_gpu_tests >"$out/sanitizer_$tool.txt" 2>&1
+        echo "compute-sanitizer $tool exit $?: $(grep -E 'ERROR SUMMARY|RACECHECK SUMMARY' "$out/sanitizer_$tool.txt" | tail -n 1)" \
+          | tee -a "$out/summary.txt"
+      done
+      ;;
+    *) echo "unknown step $step" | tee -a "$out/summary.txt" ;;
+  esac
+done
+log done
+tar czf "$out.tgz" -C "$(dirname "$out")" "$(basename "$out")"
