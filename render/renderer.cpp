@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "kernels/common/film.h"
+#include "kernels/common/pixel_order.h"
 #include "render/errors.h"
 #include "render/scene_bvh.h"
 #include "render/scene_frame.h"
@@ -188,10 +189,9 @@ void Renderer::begin_frame(int frame) {
   frame_.lights = &device_lights_;
 
   buffers_.bind_all();
-  const uint32_t pixels = p.width * p.height;
   {
     StageScope scope(frame_.timer, "camera");
-    device_.launch(KernelId::camera_pass, pixels, p);
+    device_.launch(KernelId::camera_pass, pixel_work_items(p.width, p.height), p);
   }
   for (BufferSlot sum : {BufferSlot::film_indirect_sum, BufferSlot::film_caustic_sum, BufferSlot::film_odd_sum})
     device_.fill_zero(buffers_[sum], buffers_[sum].bytes());

@@ -6,6 +6,7 @@
 
 #include "brdf.h"
 #include "kernel_globals.h"
+#include "pixel_order.h"
 #include "scene_traverse.h"
 
 PM_DEVICE Ray camera_primary_ray(const CameraParams* cam, uint x, uint y, uint width, uint height)
@@ -50,8 +51,11 @@ PM_DEVICE void shading_point_clear(const KernelGlobals* kg, uint record)
   kg->shade_position[record] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_AS_FLOAT(-1));
 }
 
-PM_DEVICE void kernel_camera_pass(const KernelGlobals* kg, const LaunchParams* p, uint pixel)
+/* Work item = pixel in tile order (pixel_order.h). */
+PM_DEVICE void kernel_camera_pass(const KernelGlobals* kg, const LaunchParams* p, uint item)
 {
+  uint pixel;
+  if (!pixel_of_work_item(item, p->width, p->height, &pixel)) return;
   uint pixels = p->width * p->height;
   Ray ray = camera_primary_ray(&p->camera, pixel % p->width, pixel / p->width, p->width, p->height);
   Vec3 throughput = vec3_splat(1.0f);

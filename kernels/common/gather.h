@@ -10,6 +10,7 @@
 #include "film.h"
 #include "footprint.h"
 #include "kernel_globals.h"
+#include "pixel_order.h"
 #include "knn_gather.h"
 #include "photon_map.h"
 #include "photon_trace.h"
@@ -45,8 +46,11 @@ PM_DEVICE void gather_at(const KernelGlobals* kg, const LaunchParams* p, const M
   }
 }
 
-PM_DEVICE void kernel_gather(const KernelGlobals* kg, const LaunchParams* p, uint pixel)
+/* Work item = pixel in tile order (pixel_order.h). */
+PM_DEVICE void kernel_gather(const KernelGlobals* kg, const LaunchParams* p, uint item)
 {
+  uint pixel;
+  if (!pixel_of_work_item(item, p->width, p->height, &pixel)) return;
   uint pixels = p->width * p->height;
   Vec3 indirect = vec3_splat(0.0f), caustic = vec3_splat(0.0f);
   uint accepted = 0, points = 0;

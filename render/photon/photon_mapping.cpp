@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "kernels/common/photon_map.h"
+#include "kernels/common/pixel_order.h"
 #include "render/errors.h"
 #include "render/photon/vvh_builder.h"
 
@@ -146,7 +147,7 @@ void PhotonMapping::run_pass(const FrameContext& frame, uint32_t pass) {
 
 void PhotonMapping::gather(const LaunchParams& params, StageTimer* timer) {
   StageScope scope(timer, "gather");
-  device_.launch(KernelId::gather, params.width * params.height, params);
+  device_.launch(KernelId::gather, pixel_work_items(params.width, params.height), params);
 }
 
 // The VVH alternative to the device LBVH: the valid hits' footprint boxes go to the host, the

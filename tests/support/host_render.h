@@ -36,7 +36,7 @@ inline std::vector<float4> render_direct_on_host(const Scene& scene, int width, 
   p.height = uint32_t(height);
   p.light_count = uint32_t(lights.size());
   p.mirror_depth = uint32_t(mirror_depth);
-  for (uint32_t i = 0; i < pixels; ++i) kernel_camera_pass(&kg, &p, i);
+  for (uint32_t i = 0; i < pixel_work_items(p.width, p.height); ++i) kernel_camera_pass(&kg, &p, i);
   return direct;
 }
 
