@@ -8,6 +8,7 @@
 #define PM_PHOTON_TRACE_H
 
 #include "brdf.h"
+#include "emission_order.h"
 #include "kernel_globals.h"
 #include "photon_differentials.h"
 #include "rng.h"
@@ -88,7 +89,12 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
       u.u2 = 0.0f;
       u.u3 = 0.0f;
     } else {
-      u = rng_uniform4_bits(rng_bits4(p->seed, rng_frame, rng_index, 0u, PM_STREAM_PHOTON, rng_extra));
+      /* Stratified and coherent (emission_order.h): the light's photons of this pass each own a
+         stratum, consecutive photons neighbouring ones. */
+      Bits4 b = rng_bits4(p->seed, rng_frame, rng_index, 0u, PM_STREAM_PHOTON, rng_extra);
+      stratified_emission(photon - emitter.x, emitted, b.b0, b.b1, b.b2, &u.u0, &u.u1);
+      u.u2 = 0.0f;
+      u.u3 = 0.0f;
     }
     PhotonRay ray;
     photon_emit_point(vec3_from_float4(light.position), u.u0, u.u1, &ray);
