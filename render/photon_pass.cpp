@@ -10,36 +10,12 @@
 #include "kernels/common/photon_map.h"
 #include "kernels/common/photon_map_stage.h"
 #include "render/errors.h"
+#include "render/scene_scale.h"
 #include "render/vvh_builder.h"
 
 namespace pm {
 
 namespace {
-
-double scene_surface_area(const Scene& scene) {
-  double area = 0;
-  for (size_t t = 0; t < scene.triangle_count(); ++t) {
-    const Float3& a = scene.positions[scene.indices[3 * t]];
-    const Float3& b = scene.positions[scene.indices[3 * t + 1]];
-    const Float3& c = scene.positions[scene.indices[3 * t + 2]];
-    double e1[3] = {double(b.x) - a.x, double(b.y) - a.y, double(b.z) - a.z};
-    double e2[3] = {double(c.x) - a.x, double(c.y) - a.y, double(c.z) - a.z};
-    double cx = e1[1] * e2[2] - e1[2] * e2[1], cy = e1[2] * e2[0] - e1[0] * e2[2], cz = e1[0] * e2[1] - e1[1] * e2[0];
-    area += 0.5 * std::sqrt(cx * cx + cy * cy + cz * cz);
-  }
-  return area;
-}
-
-double scene_diagonal(const Scene& scene) {
-  if (scene.positions.empty()) return 1.0;
-  Float3 lo = scene.positions[0], hi = scene.positions[0];
-  for (const Float3& p : scene.positions) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-  }
-  double dx = hi.x - lo.x, dy = hi.y - lo.y, dz = hi.z - lo.z;
-  return std::sqrt(dx * dx + dy * dy + dz * dz);
-}
 
 // Largest-remainder share of `total` photons by the lights' summed RGB power.
 std::vector<uint32_t> share_by_power(const std::vector<LightDesc>& lights, uint32_t total) {

@@ -11,6 +11,7 @@
 #include "animations/scene_animation.h"
 #include "render/errors.h"
 #include "render/scene_bvh.h"
+#include "render/scene_scale.h"
 
 namespace pm {
 
@@ -100,6 +101,7 @@ Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& set
   if (settings.mirror_depth < 0 || settings.mirror_depth > 16)
     throw InputError("--mirror-depth: expected 0 to 16, got " + std::to_string(settings.mirror_depth));
   if (settings.photons.photons > 0) photon_pass_ = std::make_unique<PhotonPass>(device, scene, settings.photons);
+  ray_epsilon_ = scene_ray_epsilon(scene);
   upload_scene();
   allocate_frame_buffers();
 }
@@ -193,6 +195,7 @@ LaunchParams Renderer::frame_params(int frame, const CameraDesc& camera) const {
   p.height = uint32_t(height_);
   p.triangle_count = uint32_t(scene_.triangle_count());
   p.light_count = uint32_t(scene_.lights.size());
+  p.ray_epsilon = ray_epsilon_;
   p.mirror_depth = uint32_t(settings_.mirror_depth);
   p.seed = settings_.seed;
   p.frame = uint32_t(frame);

@@ -81,6 +81,7 @@ class Renderer {
   RenderSettings settings_;
   int width_ = 0;
   int height_ = 0;
+  float ray_epsilon_ = 0;  // LaunchParams::ray_epsilon of this scene (render/scene_scale.h)
 
   DeviceBuffer scene_nodes_, triangles_, materials_, lights_;
   DeviceBuffer shade_position_, shade_normal_, shade_outgoing_, shade_weight_;
