@@ -418,6 +418,8 @@ int run_bench(const BenchOptions& o) {
                 base.frames.back());
     std::printf("leaf threshold T: %s, %.0f median\n", effective.photons.leaf_threshold > 0 ? "fixed" : "auto",
                 leaf.median);
+    std::printf("smoothing s: %s, %.4g in the last batch of frame %d\n", effective.photons.smoothing > 0 ? "fixed" : "auto",
+                counted.photons.smoothing, base.frames.back());
   } else {
     std::printf("photons emitted: 0 (direct light only)\n");
   }
@@ -492,7 +494,7 @@ int run_bench(const BenchOptions& o) {
                      {"bounces", ph.bounces},
                      {"estimator", estimator_name(ph.estimator)},
                      {"kernel", ph.kernel_shape == PM_KERNEL_EPANECHNIKOV ? "epanechnikov" : "constant"},
-                     {"smoothing", ph.smoothing},
+                     {"smoothing", ph.smoothing > 0 ? Json(ph.smoothing) : Json("auto")},
                      {"rmax_m", ph.rmax},
                      {"radius_m", ph.radius},
                      {"knn_k", ph.knn_k},

@@ -1,6 +1,8 @@
 // Registration and interpretation of the shared rendering options.
 #include "cli/render_options.h"
 
+#include <cmath>
+
 #include "cli/commands.h"
 #include "render/errors.h"
 #include "scene_io/cornell_box.h"
@@ -26,7 +28,10 @@ void add_render_options(CLI::App* cmd, RenderOptions& o) {
       ->capture_default_str()->check(CLI::IsMember({"pd", "knn", "radius"}));
   cmd->add_option("--kernel", o.kernel, "Density estimation kernel: constant or epanechnikov")
       ->capture_default_str()->check(CLI::IsMember({"constant", "epanechnikov"}));
-  cmd->add_option("--smoothing", ph.smoothing, "Footprint smoothing factor s (section 4.3)")->capture_default_str();
+  cmd->add_option("--smoothing", o.smoothing,
+                  "Diffuse footprint smoothing: auto (per batch, footprints cover the scene's surface a fixed number "
+                  "of times on average; any scene size) or a number, the paper's factor s (section 4.3)")
+      ->capture_default_str();
   cmd->add_option("--rmax", ph.rmax, "Largest footprint semiaxis and k-NN search radius, metres "
                                      "(default: 10% of the scene diagonal)");
   cmd->add_option("--radius", ph.radius, "Gather radius of --estimator radius, metres (default: 5% of the scene diagonal)");
@@ -51,6 +56,18 @@ RenderSettings render_settings(const RenderOptions& o) {
   ph.estimator = o.estimator == "knn" ? PM_ESTIMATOR_KNN : o.estimator == "radius" ? PM_ESTIMATOR_RADIUS : PM_ESTIMATOR_PD;
   ph.kernel_shape = o.kernel == "epanechnikov" ? PM_KERNEL_EPANECHNIKOV : PM_KERNEL_CONSTANT;
   ph.vvh_map = o.photon_bvh == "vvh";
+  if (o.smoothing == "auto") {
+    ph.smoothing = 0;
+  } else {
+    try {
+      size_t used = 0;
+      const float s = std::stof(o.smoothing, &used);
+      if (used != o.smoothing.size() || !(s > 0) || !std::isfinite(s)) throw std::invalid_argument("");
+      ph.smoothing = s;
+    } catch (const std::exception&) {
+      throw InputError("--smoothing: expected 'auto' or a positive number, got '" + o.smoothing + "'");
+    }
+  }
   if (o.leaf == "auto") {
     ph.leaf_threshold = 0;
   } else {

@@ -21,6 +21,7 @@ struct RenderOptions {
   std::string estimator = "pd";
   std::string kernel = "constant";
   std::string leaf = "auto";
+  std::string smoothing = "auto";
   std::string photon_bvh = "lbvh";
 };
 

@@ -10,6 +10,7 @@
 #include "kernels/common/photon_map.h"
 #include "kernels/common/photon_map_stage.h"
 #include "render/errors.h"
+#include "render/footprint_scale.h"
 #include "render/scene_scale.h"
 #include "render/vvh_builder.h"
 
@@ -54,8 +55,10 @@ std::string PhotonSettings::describe() const {
   static const char* estimators[] = {"pd", "radius", "knn"};
   std::ostringstream s;
   s << "photons=" << photons << " batch=" << batch << " bounces=" << bounces << " estimator=" << estimators[estimator]
-    << " kernel=" << (kernel_shape == PM_KERNEL_EPANECHNIKOV ? "epanechnikov" : "constant") << " smoothing=" << smoothing
-    << " rmax=" << rmax << " radius=" << radius << " photon_bvh=" << (vvh_map ? "vvh" : "lbvh") << " leaf=" << (leaf_threshold > 0 ? std::to_string(leaf_threshold) : "auto");
+    << " kernel=" << (kernel_shape == PM_KERNEL_EPANECHNIKOV ? "epanechnikov" : "constant") << " smoothing=";
+  if (smoothing > 0) s << smoothing;
+  else s << "auto";
+  s << " rmax=" << rmax << " radius=" << radius << " photon_bvh=" << (vvh_map ? "vvh" : "lbvh") << " leaf=" << (leaf_threshold > 0 ? std::to_string(leaf_threshold) : "auto");
   if (sequence == PM_PHOTON_SEQUENCE_HALTON) s << " sequence=halton";
   return s.str();
 }
@@ -64,7 +67,8 @@ PhotonPass::PhotonPass(Device& device, const Scene& scene, const PhotonSettings&
     : device_(device), settings_(settings) {
   if (settings_.bounces < 0 || settings_.bounces > 16) throw InputError("--bounces: expected 0 to 16");
   if (settings_.batch == 0) throw InputError("--batch: must be at least 1");
-  if (!(settings_.smoothing > 0) || !std::isfinite(settings_.smoothing)) throw InputError("--smoothing: must be positive");
+  if (!(settings_.smoothing >= 0) || !std::isfinite(settings_.smoothing))
+    throw InputError("--smoothing: must be positive (or auto)");
   if (settings_.rmax < 0 || !std::isfinite(settings_.rmax)) throw InputError("--rmax: must be positive");
   if (settings_.radius < 0 || !std::isfinite(settings_.radius)) throw InputError("--radius: must be positive");
   if (settings_.sequence != PM_PHOTON_SEQUENCE_RANDOM && settings_.sequence != PM_PHOTON_SEQUENCE_HALTON)
@@ -243,6 +247,8 @@ void PhotonPass::run_batch(LaunchParams params, PhotonStats* stats, StageTimer* 
   std::vector<float4> partials(2 * size_t(tiles));
   {
     StageScope scope(timer, Stage::footprints);
+    if (!(settings_.smoothing > 0))
+      params.smoothing = batch_auto_smoothing(device_, owned(BufferSlot::footprint_partials), params, tiles, scene_area_);
     device_.launch(KernelId::photon_footprint, slots, params);
     device_.launch(KernelId::photon_reduce, tiles, params);
   }
@@ -267,6 +273,7 @@ void PhotonPass::run_batch(LaunchParams params, PhotonStats* stats, StageTimer* 
     stats->hits += count;
     stats->footprint_area = area;
     stats->leaf_threshold = threshold;
+    stats->smoothing = params.smoothing;
   }
   last_hit_count_ = uint32_t(count);
   map_params_.hit_count = 0;

@@ -18,7 +18,8 @@ struct PhotonSettings {
   uint64_t photons = 262144;  // emitted per frame, all lights and batches together; 0: no photons
   uint32_t batch = 1u << 20;  // photons per pass (bounded memory); more passes = more photons
   int bounces = 2;            // diffuse bounces of indirect light
-  float smoothing = 8.0f;     // s of section 4.3, diffusely reflected photons
+  float smoothing = 0.0f;     // s of section 4.3, diffusely reflected photons; 0: automatic per batch
+                              // (render/footprint_scale.h)
   float rmax = 0.0f;          // footprint semiaxis clamp (knn: search radius), metres; 0: 10 % of the scene diagonal
   int estimator = PM_ESTIMATOR_PD;
   int kernel_shape = PM_KERNEL_CONSTANT;
@@ -39,6 +40,7 @@ struct PhotonStats {
   uint64_t hits = 0;                  // recorded hits, all batches
   double footprint_area = 0;          // total footprint area of the last batch, m^2
   uint32_t leaf_threshold = 0;        // T used for the last batch
+  float smoothing = 0;                // s of the last batch's diffuse footprints (automatic or set)
   uint64_t gathered = 0;              // hits accepted by the gather (with collect_stats)
   uint64_t shading_points = 0;
 };
