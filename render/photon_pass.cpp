@@ -45,9 +45,10 @@ const BufferSlot kOwnedSlots[] = {
     BufferSlot::footprint_center, BufferSlot::footprint_row_u, BufferSlot::footprint_row_v, BufferSlot::footprint_row_n,
     BufferSlot::footprint_power,  BufferSlot::map_nodes,       BufferSlot::map_lo,          BufferSlot::map_hi,
     BufferSlot::map_center,       BufferSlot::map_row_u,       BufferSlot::map_row_v,       BufferSlot::map_row_n,
-    BufferSlot::map_power,        BufferSlot::map_incident,    BufferSlot::footprint_partials,
+    BufferSlot::map_power,        BufferSlot::map_incident,    BufferSlot::footprint_cut,
+    BufferSlot::map_cut,          BufferSlot::footprint_partials,
     BufferSlot::map_node_parent,  BufferSlot::map_leaf_parent, BufferSlot::map_visits};
-constexpr size_t kFloat4Slots = 22;  // the first 22 hold one float4 per hit slot (or tile pair)
+constexpr size_t kFloat4Slots = 24;  // the first 24 hold one float4 per hit slot (or tile pair)
 
 }  // namespace
 

@@ -30,6 +30,7 @@
   X(float4, footprint_row_v)                                                                   \
   X(float4, footprint_row_n)                                                                   \
   X(float4, footprint_power)  /* rgb flux / footprint area (irradiance of a uniform kernel) */ \
+  X(float4, footprint_cut)    /* second cut (mu, mv, t) of a clipped footprint, footprint_clip.h */\
   X(float4, footprint_partials) /* per tile: (bounds lo, area sum), (bounds hi, valid count) */\
   /* S4 photon map, sorted order */                                                            \
   X(float4, map_nodes)      /* 4 float4 per inner node, photon_map.h */                       \
@@ -44,6 +45,7 @@
   X(float4, map_row_n)                                                                         \
   X(float4, map_power)                                                                         \
   X(float4, map_incident)                                                                      \
+  X(float4, map_cut)                                                                           \
   X(uint, gather_stats)     /* [0] hits accepted, [1] shading points, when collect_stats */   \
   /* S7 film layers, one float4 per pixel (rgb, w unused) */                                  \
   X(float4, film_direct)                                                                       \

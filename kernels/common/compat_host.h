@@ -43,6 +43,7 @@ PM_DEVICE uint32_t pm_float_as_uint_bits(float f) { uint32_t i; memcpy(&i, &f, 4
 #define pm_tanf tanf
 #define pm_asinf asinf
 #define pm_acosf acosf
+#define pm_atan2f atan2f
 #define pm_powf powf
 #define pm_expf expf
 #define pm_logf logf

@@ -5,25 +5,29 @@
    The footprint is tested against the scene's triangles in a plane lifted a little above it
    (PM_FOOTPRINT_CLIP_HEIGHT of its normal half-axis, on the photon's side): a triangle that
    crosses that plane inside the ellipse is a blocker standing on or rising from the footprint's
-   surface, such as a wall. Its crossing segment, seen in the footprint's plane, lies on a line
-   w . y = d (w unit and in the plane, pointing away from the hit, y measured from the hit), at
-   t = d / s of the ellipse's support s along w (0 <= t < 1). The candidates come from one query
-   of the scene BVH with the lifted ellipse's box, so every triangle inside the footprint is seen
-   (sampling it with probe rays misses a box corner that pokes in between two rays); the surface
-   the photon hit and its coplanar neighbours never cross the lifted plane.
-   - The nearest line (smallest t) cuts the ellipse: the gather accepts only points on the hit's
-     side of it, and the flux is divided by the kernel mass left inside the cut ellipse
-     (footprint_kept_fraction), so no energy is lost or created. Uniform photons on a floor then
-     give 69 % of the open-floor estimate at a wall's foot (constant kernel), against 50 % for
-     footprints that spill behind the wall; compressing each ellipse against the wall instead
-     would leave its rim touching the wall at one point, and the wall's foot dark (0 %).
-   - Any further line (a corner, a narrow gap) shrinks the whole ellipse about the hit to its t.
+   surface, such as a wall. The candidates come from one query of the scene BVH with the lifted
+   ellipse's box, so every triangle inside the footprint is seen (probe rays miss a box corner
+   that pokes in between two of them); the surface the photon hit and its coplanar neighbours
+   never cross the lifted plane. Everything below is in the ellipse's unit-disc coordinates q
+   (x - hit = q_u a_u + q_v a_v + ...), where the footprint is the unit disc.
+   - A blocker's crossing segment, from the hit, hides what lies behind it. Its point nearest the
+     hit, at distance t < 1 in direction m, gives the cut m . q <= t: the half-disc beyond the
+     tangent line there is dropped. The cut grows continuously as a segment's end enters the disc
+     (t falls from 1), so footprints do not jump as photons move.
+   - Up to PM_FOOTPRINT_CUTS cuts are kept, the nearest ones. Cuts within 25 degrees of each other
+     are one wall (the facets of a curved wall, such as a ring of 64 segments, or the triangles
+     of one wall): they merge into one cut whose cap (the part of the disc beyond it) holds both
+     caps. Further blockers (a third wall) shrink the whole disc about the hit to their t.
+   - The flux is divided by the kernel mass left inside the cut disc (footprint_kept_fraction),
+     so no energy is lost or created. Uniform photons on a floor then give 69 % of the open-floor
+     estimate at a wall's foot (constant kernel), against 50 % for footprints that spill behind
+     the wall; compressing each ellipse against the wall instead leaves the foot dark (0 %).
    Cost: one small box query per hit, O(photons), not O(gathers).
    Not seen: blockers lower than the lifted plane, and convex edges, where the surface simply
    ends; there the gather's normal test stops photons reaching the other side (gather_reach.h).
    Concave curved surfaces rise into the lifted plane too, at sqrt(2 R height) from the hit for a
    curvature radius R: with the pd footprints' height |a| / 8 only surfaces curved tighter than
-   R = 4 |a| clip them. */
+   R = 4 |a| cut them. */
 #ifndef PM_FOOTPRINT_CLIP_H
 #define PM_FOOTPRINT_CLIP_H
 
@@ -33,59 +37,183 @@
 
 /* Height of the lifted plane, as a fraction of the normal half-axis |a_n|. */
 #define PM_FOOTPRINT_CLIP_HEIGHT 0.5f
+/* Cuts kept per footprint (the gather tests each). */
+#define PM_FOOTPRINT_CUTS 2
+/* Cuts closer in direction than this cosine (25 degrees) count as one wall. */
+#define PM_FOOTPRINT_SAME_WALL_COS 0.906f
 
-typedef struct FootprintClip {
-  Footprint f;   /* the unclipped ellipse (a_u, a_v in the plane) */
-  Vec3 center;   /* the hit */
-  Vec3 n;        /* unit normal on the photon's side */
-  float height;  /* of the lifted plane above the hit */
-  Vec3 cut_w;    /* the nearest line found: w . y <= cut_d, at cut_t of the support */
-  float cut_d, cut_t;
-  float shrink;  /* the smallest t of the other lines found (1: none) */
-} FootprintClip;
-
-/* The cut of a clipped footprint in its unit-disc coordinates (lu, lv) = (row_u . y, row_v . y):
-   points with alpha lu + beta lv > gamma lie behind it. No cut: (0, 0, 1). kept: the fraction of
-   the kernel's mass on the hit's side. */
+/* The cuts of a footprint: the gather accepts a point whose disc coordinates q satisfy
+   m_k . q <= t_k for every cut k; no cut: m = 0, t = 1. kept: the fraction of the kernel's mass
+   left inside the disc. */
 typedef struct FootprintCut {
-  float alpha, beta, gamma, kept;
+  float mu[PM_FOOTPRINT_CUTS], mv[PM_FOOTPRINT_CUTS], t[PM_FOOTPRINT_CUTS];
+  int count;
+  float shrink; /* the disc was scaled about the hit by this (1: not) */
+  float kept;
 } FootprintCut;
 
-/* Kernel mass of the unit disc on the near side of a line at distance t from its centre
-   (0 <= t <= 1), as a fraction of the whole. Constant kernel: 1 - (acos t - t sqrt(1 - t^2)) / pi
-   (a circular segment). Epanechnikov, 2 (1 - r^2): the mass beyond t is
-   int_t^1 (8/3) (1 - x^2)^(3/2) dx = (8/3) (3 pi / 16 - F(t)),
-   F(x) = x (5 - 2 x^2) sqrt(1 - x^2) / 8 + 3 asin(x) / 8. */
-PM_DEVICE float footprint_kept_fraction(float t, uint kernel_shape)
+typedef struct FootprintClip {
+  Vec3 a_u, a_v; /* the unclipped ellipse's in-plane semiaxes */
+  Vec3 row_u, row_v; /* their reciprocal rows: q = (row_u . y, row_v . y) */
+  Vec3 center, n;
+  float height;
+  FootprintCut cut;
+} FootprintClip;
+
+/* Green's theorem: the kernel mass of a region is the integral of Q dy around its boundary
+   (counter-clockwise), with dQ/dx = K. Constant kernel K = 1: Q = x. Epanechnikov
+   K = 2 (1 - x^2 - y^2): Q = 2 (x - x^3 / 3 - x y^2), which is (4/3) x^3 on the unit circle. */
+PM_DEVICE float footprint_green_q(float x, float y, uint shape)
 {
-  t = pm_fminf(pm_fmaxf(t, 0.0f), 1.0f);
-  float root = pm_sqrtf(pm_fmaxf(1.0f - t * t, 0.0f));
-  float beyond;
-  if (kernel_shape == PM_KERNEL_EPANECHNIKOV)
-    beyond = (8.0f / 3.0f) * (3.0f * PM_FP_PI / 16.0f - (t * (5.0f - 2.0f * t * t) * root / 8.0f + 3.0f * pm_asinf(t) / 8.0f));
-  else
-    beyond = pm_acosf(t) - t * root;
-  return 1.0f - pm_fmaxf(beyond, 0.0f) / PM_FP_PI;
+  return shape == PM_KERNEL_EPANECHNIKOV ? 2.0f * (x - x * x * x / 3.0f - x * y * y) : x;
 }
 
-/* The in-plane point y (relative to the hit) in the unclipped ellipse's unit-disc coordinates. */
-PM_DEVICE void footprint_disc_coordinates(const FootprintClip* c, Vec3 y, float* qu, float* qv)
+/* Integral of Q dy along the segment a -> b (Q is at most cubic along it: two-point Gauss). */
+PM_DEVICE float footprint_green_segment(float ax, float ay, float bx, float by, uint shape)
 {
-  Vec3 a_u = c->f.axis_u, a_v = c->f.axis_v;
-  float area = vec3_dot(vec3_cross(a_u, a_v), c->n); /* rows of the inverse in-plane basis */
-  *qu = area != 0.0f ? vec3_dot(vec3_cross(a_v, c->n), y) / area : PM_FOOTPRINT_FAR;
-  *qv = area != 0.0f ? vec3_dot(vec3_cross(c->n, a_u), y) / area : PM_FOOTPRINT_FAR;
+  const float g0 = 0.2113248654f, g1 = 0.7886751346f; /* (1 -+ 1/sqrt(3)) / 2 */
+  float q0 = footprint_green_q(ax + g0 * (bx - ax), ay + g0 * (by - ay), shape);
+  float q1 = footprint_green_q(ax + g1 * (bx - ax), ay + g1 * (by - ay), shape);
+  return 0.5f * (q0 + q1) * (by - ay);
 }
 
-/* Whether the segment between two disc-coordinate points comes inside the unit circle. */
-PM_DEVICE int footprint_segment_enters_disc(float ax, float ay, float bx, float by)
+/* Antiderivative of Q dy along the unit circle at angle phi: int cos^2 = phi/2 + sin(2 phi)/4;
+   Epanechnikov (4/3) int cos^4 = (4/3) (3 phi / 8 + sin(2 phi) / 4 + sin(4 phi) / 32). */
+PM_DEVICE float footprint_green_arc(float phi, uint shape)
 {
-  float dx = bx - ax, dy = by - ay;
-  float len2 = dx * dx + dy * dy;
-  float t = len2 > 0.0f ? -(ax * dx + ay * dy) / len2 : 0.0f;
-  t = pm_fminf(pm_fmaxf(t, 0.0f), 1.0f);
-  float cx = ax + t * dx, cy = ay + t * dy;
-  return cx * cx + cy * cy < 1.0f;
+  if (shape == PM_KERNEL_EPANECHNIKOV)
+    return (4.0f / 3.0f) * (0.375f * phi + 0.25f * pm_sinf(2.0f * phi) + pm_sinf(4.0f * phi) / 32.0f);
+  return 0.5f * phi + 0.25f * pm_sinf(2.0f * phi);
+}
+
+/* Fraction of the kernel's mass in the unit disc that satisfies every cut m_k . q <= t_k
+   (m_k unit, 0 <= t_k): the region's boundary is the part of each cut's chord inside the other
+   cuts, and the arcs of the circle inside all of them. */
+PM_DEVICE float footprint_kept_fraction(const float* mu, const float* mv, const float* t, int count, uint shape)
+{
+  float mass = 0.0f;
+  /* Chords, traversed along m rotated by +90 degrees (the kept side on the left). */
+  for (int k = 0; k < count; ++k) {
+    if (!(t[k] < 1.0f)) continue;
+    float s = pm_sqrtf(pm_fmaxf(1.0f - t[k] * t[k], 0.0f));
+    float ax = t[k] * mu[k] + s * mv[k], ay = t[k] * mv[k] - s * mu[k];
+    float bx = t[k] * mu[k] - s * mv[k], by = t[k] * mv[k] + s * mu[k];
+    float lo = 0.0f, hi = 1.0f;
+    for (int j = 0; j < count; ++j) {
+      if (j == k) continue;
+      float fa = mu[j] * ax + mv[j] * ay - t[j], fb = mu[j] * bx + mv[j] * by - t[j];
+      if (fa > 0.0f && fb > 0.0f) hi = -1.0f;
+      else if (fa > 0.0f) lo = pm_fmaxf(lo, fa / (fa - fb));
+      else if (fb > 0.0f) hi = pm_fminf(hi, fa / (fa - fb));
+    }
+    if (!(hi > lo)) continue;
+    mass += footprint_green_segment(ax + lo * (bx - ax), ay + lo * (by - ay), ax + hi * (bx - ax), ay + hi * (by - ay),
+                                    shape);
+  }
+  /* Arcs: each cut forbids the angles within acos(t) of its direction; the allowed arc of the
+     first runs from theta + a for 2 pi - 2 a, and the others clip it. */
+  float start = 0.0f, length = 2.0f * PM_FP_PI;
+  int first = -1;
+  for (int k = 0; k < count; ++k)
+    if (t[k] < 1.0f) {
+      first = k;
+      break;
+    }
+  if (first < 0) return 1.0f;
+  float a0 = pm_acosf(pm_fminf(pm_fmaxf(t[first], -1.0f), 1.0f));
+  start = pm_atan2f(mv[first], mu[first]) + a0;
+  length = 2.0f * PM_FP_PI - 2.0f * a0;
+  /* Up to two pieces [begin, end) relative to start, clipped by the other cuts in turn. */
+  float piece_begin[2], piece_end[2];
+  int pieces = 1;
+  piece_begin[0] = 0.0f;
+  piece_end[0] = length;
+  for (int k = 0; k < count; ++k) {
+    if (k == first || !(t[k] < 1.0f)) continue;
+    float a = pm_acosf(pm_fminf(pm_fmaxf(t[k], -1.0f), 1.0f));
+    /* Cut k's allowed arc, relative to start, as [b, b + 2 pi - 2 a) taken modulo 2 pi. */
+    float b = pm_atan2f(mv[k], mu[k]) + a - start;
+    b = b - 2.0f * PM_FP_PI * pm_floorf(b / (2.0f * PM_FP_PI));
+    float e = b + 2.0f * PM_FP_PI - 2.0f * a;
+    float out_begin[2], out_end[2];
+    int out = 0;
+    for (int p = 0; p < pieces; ++p) {
+      /* The allowed arc covers [b, e) and, when e wraps past 2 pi, [0, e - 2 pi). */
+      float lo1 = pm_fmaxf(piece_begin[p], b), hi1 = pm_fminf(piece_end[p], e);
+      if (hi1 > lo1 && out < 2) { out_begin[out] = lo1; out_end[out] = hi1; ++out; }
+      float lo2 = piece_begin[p], hi2 = pm_fminf(piece_end[p], e - 2.0f * PM_FP_PI);
+      if (hi2 > lo2 && out < 2) { out_begin[out] = lo2; out_end[out] = hi2; ++out; }
+    }
+    pieces = out;
+    for (int p = 0; p < pieces; ++p) {
+      piece_begin[p] = out_begin[p];
+      piece_end[p] = out_end[p];
+    }
+  }
+  for (int p = 0; p < pieces; ++p)
+    mass += footprint_green_arc(start + piece_end[p], shape) - footprint_green_arc(start + piece_begin[p], shape);
+  return pm_fminf(pm_fmaxf(mass / PM_FP_PI, 0.0f), 1.0f);
+}
+
+/* The direction, in the footprint's plane, of the normal of the line m . q = t in disc
+   coordinates q = (row_u . y, row_v . y): angles between walls are judged there, since disc
+   coordinates distort them (two perpendicular walls can look parallel to an elongated ellipse). */
+PM_DEVICE Vec3 footprint_cut_direction(const FootprintClip* clip, float mu, float mv)
+{
+  return vec3_normalize(vec3_add(vec3_scale(clip->row_u, mu), vec3_scale(clip->row_v, mv)));
+}
+
+/* Merges cut (mu, mv, t) into cut k of c: the smallest cap of the disc (the part beyond a cut)
+   that holds both caps, whose arc spans both arcs. Returns 0, changing nothing, when that cap
+   would reach the centre (the hit). */
+PM_DEVICE int footprint_merge_cut(FootprintCut* c, int k, float mu, float mv, float t)
+{
+  float theta_k = pm_atan2f(c->mv[k], c->mu[k]), a_k = pm_acosf(pm_fminf(c->t[k], 1.0f));
+  float a = pm_acosf(pm_fminf(t, 1.0f));
+  float delta = pm_atan2f(mv, mu) - theta_k;
+  if (delta > PM_FP_PI) delta -= 2.0f * PM_FP_PI;
+  if (delta < -PM_FP_PI) delta += 2.0f * PM_FP_PI;
+  float lo = pm_fminf(-a_k, delta - a), hi = pm_fmaxf(a_k, delta + a);
+  float half_width = 0.5f * (hi - lo);
+  if (!(half_width < 0.5f * PM_FP_PI)) return 0;
+  float s, co;
+  pm_sincosf(theta_k + 0.5f * (hi + lo), &s, &co);
+  c->mu[k] = co;
+  c->mv[k] = s;
+  c->t[k] = pm_cosf(half_width);
+  return 1;
+}
+
+/* Adds the cut m . q <= t (m unit in disc coordinates, 0 <= t < 1) to the clip's cuts: merged
+   into a cut of nearly the same direction (the facets of one curved wall, or the two triangles
+   of a wall seen past the end of one of them), else kept if among the PM_FOOTPRINT_CUTS nearest;
+   a cut that is not kept shrinks the disc to its t. */
+PM_DEVICE void footprint_add_cut(FootprintClip* clip, float mu, float mv, float t)
+{
+  FootprintCut* c = &clip->cut;
+  Vec3 w = footprint_cut_direction(clip, mu, mv);
+  for (int k = 0; k < c->count; ++k)
+    if (vec3_dot(w, footprint_cut_direction(clip, c->mu[k], c->mv[k])) > PM_FOOTPRINT_SAME_WALL_COS &&
+        footprint_merge_cut(c, k, mu, mv, t))
+      return;
+  if (c->count < PM_FOOTPRINT_CUTS) {
+    c->mu[c->count] = mu;
+    c->mv[c->count] = mv;
+    c->t[c->count] = t;
+    ++c->count;
+    return;
+  }
+  int farthest = 0; /* the kept cut with the largest t, replaced when this one is nearer */
+  for (int k = 1; k < c->count; ++k)
+    if (c->t[k] > c->t[farthest]) farthest = k;
+  if (t < c->t[farthest]) {
+    c->shrink = pm_fminf(c->shrink, c->t[farthest]);
+    c->mu[farthest] = mu;
+    c->mv[farthest] = mv;
+    c->t[farthest] = t;
+  } else {
+    c->shrink = pm_fminf(c->shrink, t);
+  }
 }
 
 /* The point where edge (a, b) crosses the lifted plane, given their heights above it. */
@@ -94,7 +222,7 @@ PM_DEVICE Vec3 footprint_edge_crossing(Vec3 a, float ha, Vec3 b, float hb)
   return vec3_madd(a, vec3_sub(b, a), ha / (ha - hb));
 }
 
-/* Notes the line of triangle (v0, v1, v2) if it crosses the lifted plane inside the ellipse. */
+/* Cuts at triangle (v0, v1, v2) if it crosses the lifted plane inside the disc. */
 PM_DEVICE void footprint_clip_triangle(FootprintClip* c, Vec3 v0, Vec3 v1, Vec3 v2)
 {
   float h0 = vec3_dot(c->n, vec3_sub(v0, c->center)) - c->height;
@@ -106,33 +234,28 @@ PM_DEVICE void footprint_clip_triangle(FootprintClip* c, Vec3 v0, Vec3 v1, Vec3 
   if ((h1 < 0.0f) != (h2 < 0.0f)) p[k++] = footprint_edge_crossing(v1, h1, v2, h2);
   if (k < 2 && (h2 < 0.0f) != (h0 < 0.0f)) p[k++] = footprint_edge_crossing(v2, h2, v0, h0);
   if (k < 2) return;
-  /* The crossing segment in the footprint's plane, relative to the hit. */
+  /* The crossing segment in disc coordinates (the rows ignore the normal component). */
   Vec3 y0 = vec3_sub(p[0], c->center), y1 = vec3_sub(p[1], c->center);
-  y0 = vec3_madd(y0, c->n, -vec3_dot(c->n, y0));
-  y1 = vec3_madd(y1, c->n, -vec3_dot(c->n, y1));
-  float q0u, q0v, q1u, q1v;
-  footprint_disc_coordinates(c, y0, &q0u, &q0v);
-  footprint_disc_coordinates(c, y1, &q1u, &q1v);
-  if (!footprint_segment_enters_disc(q0u, q0v, q1u, q1v)) return;
-  Vec3 w = vec3_cross(c->n, vec3_sub(y1, y0));
-  if (!(vec3_dot(w, w) > 0.0f)) w = vec3_add(y0, y1); /* the segment is a point */
-  w = vec3_normalize(w);
-  float d = vec3_dot(w, y0);
-  if (d < 0.0f) {
-    w = vec3_neg(w);
-    d = -d;
+  float ax = vec3_dot(c->row_u, y0), ay = vec3_dot(c->row_v, y0);
+  float bx = vec3_dot(c->row_u, y1), by = vec3_dot(c->row_v, y1);
+  /* Its point nearest the hit. */
+  float dx = bx - ax, dy = by - ay, len2 = dx * dx + dy * dy;
+  float s = len2 > 0.0f ? pm_fminf(pm_fmaxf(-(ax * dx + ay * dy) / len2, 0.0f), 1.0f) : 0.0f;
+  float qx = ax + s * dx, qy = ay + s * dy;
+  float t = pm_sqrtf(qx * qx + qy * qy);
+  if (!(t < 1.0f)) return;
+  float mu, mv;
+  if (t > 1e-6f) {
+    mu = qx / t;
+    mv = qy / t;
+  } else { /* through the hit: cut along the segment, either side */
+    float len = pm_sqrtf(len2);
+    if (!(len > 0.0f)) return;
+    mu = -dy / len;
+    mv = dx / len;
+    t = 0.0f;
   }
-  float su = vec3_dot(c->f.axis_u, w), sv = vec3_dot(c->f.axis_v, w);
-  float t = d / pm_sqrtf(su * su + sv * sv);
-  if (!pm_isfinite(t) || !(vec3_dot(w, w) > 0.5f) || !(t < 1.0f)) return;
-  if (t < c->cut_t) {
-    c->shrink = pm_fminf(c->shrink, c->cut_t);
-    c->cut_w = w;
-    c->cut_d = d;
-    c->cut_t = t;
-  } else {
-    c->shrink = pm_fminf(c->shrink, t);
-  }
+  footprint_add_cut(c, mu, mv, t);
 }
 
 /* Whether the child box (stored in its parent's node, scene_bvh.h) overlaps [lo, hi]. */
@@ -144,7 +267,7 @@ PM_DEVICE int footprint_box_overlaps(float4 xy, float z_min, float z_max, Vec3 l
 /* Every triangle whose BVH leaf overlaps the lifted ellipse's box. */
 PM_DEVICE void footprint_clip_scan(const KernelGlobals* kg, FootprintClip* c)
 {
-  Vec3 a_u = c->f.axis_u, a_v = c->f.axis_v;
+  Vec3 a_u = c->a_u, a_v = c->a_v;
   Vec3 ext = vec3(pm_sqrtf(a_u.x * a_u.x + a_v.x * a_v.x), pm_sqrtf(a_u.y * a_u.y + a_v.y * a_v.y),
                   pm_sqrtf(a_u.z * a_u.z + a_v.z * a_v.z));
   Vec3 mid = vec3_madd(c->center, c->n, c->height);
@@ -183,38 +306,38 @@ PM_DEVICE void footprint_clip_scan(const KernelGlobals* kg, FootprintClip* c)
 }
 
 /* Clips f (in the plane of the unit normal n, which faces the photon's side) against the
-   triangles around its hit at `center`: shrinks it in place and returns its cut, in the shrunk
-   ellipse's disc coordinates, with the kept fraction of the kernel `kernel_shape`.
-   offset: the ray offset of the hit (ray.h), the least height of the lifted plane. */
+   triangles around its hit at `center`: shrinks f in place when a third wall asks for it and
+   returns the cuts in the disc coordinates of the result, with the kept fraction of the kernel
+   `shape`. offset: the ray offset of the hit (ray.h), the least height of the lifted plane. */
 PM_DEVICE FootprintCut footprint_clip(const KernelGlobals* kg, Footprint* f, Vec3 center, Vec3 n, float offset,
-                                      uint kernel_shape)
+                                      uint shape)
 {
   FootprintClip c;
-  c.f = *f;
+  c.a_u = f->axis_u;
+  c.a_v = f->axis_v;
   c.center = center;
   c.n = n;
   c.height = pm_fmaxf(PM_FOOTPRINT_CLIP_HEIGHT * vec3_length(f->axis_n), offset);
-  c.cut_w = vec3_splat(0.0f);
-  c.cut_d = 0.0f;
-  c.cut_t = 1.0f;
-  c.shrink = 1.0f;
+  c.cut.count = 0;
+  c.cut.shrink = 1.0f;
+  c.cut.kept = 1.0f;
+  float area = vec3_dot(vec3_cross(c.a_u, c.a_v), n);
+  if (!(pm_fabsf(area) > 0.0f) || !pm_isfinite(area)) return c.cut;
+  c.row_u = vec3_scale(vec3_cross(c.a_v, n), 1.0f / area);
+  c.row_v = vec3_scale(vec3_cross(n, c.a_u), 1.0f / area);
   footprint_clip_scan(kg, &c);
-  FootprintCut cut;
-  cut.alpha = 0.0f;
-  cut.beta = 0.0f;
-  cut.gamma = 1.0f;
-  cut.kept = 1.0f;
-  if (c.shrink < 1.0f) {
-    f->axis_u = vec3_scale(f->axis_u, c.shrink);
-    f->axis_v = vec3_scale(f->axis_v, c.shrink);
-    f->axis_n = vec3_scale(f->axis_n, c.shrink);
+  FootprintCut cut = c.cut;
+  if (cut.shrink < 1.0f) {
+    f->axis_u = vec3_scale(f->axis_u, cut.shrink);
+    f->axis_v = vec3_scale(f->axis_v, cut.shrink);
+    f->axis_n = vec3_scale(f->axis_n, cut.shrink);
+    for (int k = 0; k < cut.count; ++k) cut.t[k] /= cut.shrink; /* disc coordinates grow by 1 / shrink */
   }
-  if (c.cut_t < 1.0f) {
-    /* w . y <= d with y = lu a_u + lv a_v: (w . a_u) lu + (w . a_v) lv <= d. */
-    cut.alpha = vec3_dot(c.cut_w, f->axis_u);
-    cut.beta = vec3_dot(c.cut_w, f->axis_v);
-    cut.gamma = c.cut_d;
-    cut.kept = footprint_kept_fraction(c.cut_t / c.shrink, kernel_shape);
+  cut.kept = footprint_kept_fraction(cut.mu, cut.mv, cut.t, cut.count, shape);
+  for (int k = cut.count; k < PM_FOOTPRINT_CUTS; ++k) {
+    cut.mu[k] = 0.0f;
+    cut.mv[k] = 0.0f;
+    cut.t[k] = 1.0f;
   }
   return cut;
 }

@@ -13,8 +13,9 @@
 #define PM_GATHER_MIN_NORMAL_COS2 0.25f
 
 /* Whether photon k's footprint reaches the shading point x with normal n: x lies in the
-   ellipsoid, on the hit's side of its cut (footprint_clip.h; the rows' w hold the cut: alpha lu +
-   beta lv <= gamma, in the ellipsoid's coordinates of x - hit), and x's surface faces the way the
+   ellipsoid, on the hit's side of its cuts (footprint_clip.h; the rows' w hold the first,
+   mu lu + mv lv <= t in the ellipsoid's coordinates of x - hit, map_cut a second one where the
+   flags say so), and x's surface faces the way the
    photon's did: the normal axis row_n = n_hit / |a_n| must lie within 60 degrees of n
    (PM_GATHER_MIN_NORMAL_COS2). The footprint's thickness lets a photon reach the neighbouring
    facets of a tessellated curved surface, and around a convex edge onto the other side of the
@@ -30,6 +31,10 @@ PM_DEVICE int footprint_reaches(const KernelGlobals* kg, uint k, float4 c, Vec3 
   float ln = vec3_dot(vec3_from_float4(row_n), d);
   *r2 = lu * lu + lv * lv + ln * ln;
   if (!(*r2 <= 1.0f) || !(row_u.w * lu + row_v.w * lv <= row_n.w)) return 0;
+  if (PM_AS_UINT(c.w) & PM_HIT_SECOND_CUT) {
+    float4 cut = PM_LOAD(&kg->map_cut[k]);
+    if (!(cut.x * lu + cut.y * lv <= cut.z)) return 0;
+  }
   Vec3 axis_n = vec3_from_float4(row_n);
   float facing = vec3_dot(axis_n, n);
   return facing > 0.0f && facing * facing >= PM_GATHER_MIN_NORMAL_COS2 * vec3_dot(axis_n, axis_n);

@@ -45,10 +45,11 @@ PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p
 }
 
 /* The gather data of a hit: the footprint clipped at the geometry around it (footprint_clip.h),
-   its bounds, the rows of the inverse of its basis, whose w hold the cut (alpha, beta, gamma):
-   the gather accepts x where alpha (row_u . (x - hit)) + beta (row_v . (x - hit)) <= gamma, and
-   flux / (area * kept fraction of the kernel). For knn the bounds are the point box hit +- r_max
-   the knn traversal expects, and the power is the flux (the knn gather divides by its own area). */
+   its bounds, the rows of the inverse of its basis, whose w hold the first cut (mu, mv, t): the
+   gather accepts x where mu (row_u . (x - hit)) + mv (row_v . (x - hit)) <= t, a second cut in
+   footprint_cut (flagged PM_HIT_SECOND_CUT), and flux / (area * kept fraction of the kernel). For
+   knn the bounds are the point box hit +- r_max the knn traversal expects, and the power is the
+   flux (the knn gather divides by its own area). */
 PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchParams* p, uint slot)
 {
   float4 n4 = kg->hit_normal[slot];
@@ -82,12 +83,14 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     power = flux;
     area = 0.0f; /* no footprint area: T_auto stays at 1 for the knn map, as before clipping */
   }
+  uint flags = PM_AS_UINT(n4.w) | (cut.t[1] < 1.0f ? PM_HIT_SECOND_CUT : 0u);
   kg->footprint_lo[slot] = vec3_to_float4(lo, area);
   kg->footprint_hi[slot] = vec3_to_float4(hi, 0.0f);
-  kg->footprint_center[slot] = vec3_to_float4(center, n4.w);
-  kg->footprint_row_u[slot] = vec3_to_float4(vec3_scale(c_vn, inv_det), cut.alpha);
-  kg->footprint_row_v[slot] = vec3_to_float4(vec3_scale(c_nu, inv_det), cut.beta);
-  kg->footprint_row_n[slot] = vec3_to_float4(vec3_scale(c_uv, inv_det), cut.gamma);
+  kg->footprint_center[slot] = vec3_to_float4(center, PM_UINT_AS_FLOAT(flags));
+  kg->footprint_row_u[slot] = vec3_to_float4(vec3_scale(c_vn, inv_det), cut.mu[0]);
+  kg->footprint_row_v[slot] = vec3_to_float4(vec3_scale(c_nu, inv_det), cut.mv[0]);
+  kg->footprint_row_n[slot] = vec3_to_float4(vec3_scale(c_uv, inv_det), cut.t[0]);
+  kg->footprint_cut[slot] = PM_MAKE_FLOAT4(cut.mu[1], cut.mv[1], cut.t[1], 0.0f);
   kg->footprint_power[slot] = vec3_to_float4(power, 0.0f);
 }
 
