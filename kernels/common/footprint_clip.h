@@ -10,14 +10,14 @@
    that pokes in between two of them); the surface the photon hit and its coplanar neighbours
    never cross the lifted plane. Everything below is in the ellipse's unit-disc coordinates q
    (x - hit = q_u a_u + q_v a_v + ...), where the footprint is the unit disc.
-   - A blocker's crossing segment, from the hit, hides what lies behind it. Its point nearest the
-     hit, at distance t < 1 in direction m, gives the cut m . q <= t: the half-disc beyond the
-     tangent line there is dropped. The cut grows continuously as a segment's end enters the disc
-     (t falls from 1), so footprints do not jump as photons move.
+   - A blocker's crossing segment that enters the disc hides what lies behind it: the cut
+     m . q <= t drops the part of the disc beyond the segment's line (normal m, at distance t < 1
+     from the hit), also beyond the segment's ends, so that around a box corner poking into the
+     disc both faces cut and nothing of the box's inside is reached.
    - Up to PM_FOOTPRINT_CUTS cuts are kept, the nearest ones. Cuts within 25 degrees of each other
-     are one wall (the facets of a curved wall, such as a ring of 64 segments, or the triangles
-     of one wall): they merge into one cut whose cap (the part of the disc beyond it) holds both
-     caps. Further blockers (a third wall) shrink the whole disc about the hit to their t.
+     are one wall (the facets of a curved wall, such as a ring of 64 segments, or the triangles of
+     one wall), of which the nearest is kept. A further distinct wall (a third one) shrinks the
+     whole disc about the hit to its t.
    - The flux is divided by the kernel mass left inside the cut disc (footprint_kept_fraction),
      so no energy is lost or created. Uniform photons on a floor then give 69 % of the open-floor
      estimate at a wall's foot (constant kernel), against 50 % for footprints that spill behind
@@ -163,56 +163,33 @@ PM_DEVICE Vec3 footprint_cut_direction(const FootprintClip* clip, float mu, floa
   return vec3_normalize(vec3_add(vec3_scale(clip->row_u, mu), vec3_scale(clip->row_v, mv)));
 }
 
-/* Merges cut (mu, mv, t) into cut k of c: the smallest cap of the disc (the part beyond a cut)
-   that holds both caps, whose arc spans both arcs. Returns 0, changing nothing, when that cap
-   would reach the centre (the hit). */
-PM_DEVICE int footprint_merge_cut(FootprintCut* c, int k, float mu, float mv, float t)
-{
-  float theta_k = pm_atan2f(c->mv[k], c->mu[k]), a_k = pm_acosf(pm_fminf(c->t[k], 1.0f));
-  float a = pm_acosf(pm_fminf(t, 1.0f));
-  float delta = pm_atan2f(mv, mu) - theta_k;
-  if (delta > PM_FP_PI) delta -= 2.0f * PM_FP_PI;
-  if (delta < -PM_FP_PI) delta += 2.0f * PM_FP_PI;
-  float lo = pm_fminf(-a_k, delta - a), hi = pm_fmaxf(a_k, delta + a);
-  float half_width = 0.5f * (hi - lo);
-  if (!(half_width < 0.5f * PM_FP_PI)) return 0;
-  float s, co;
-  pm_sincosf(theta_k + 0.5f * (hi + lo), &s, &co);
-  c->mu[k] = co;
-  c->mv[k] = s;
-  c->t[k] = pm_cosf(half_width);
-  return 1;
-}
-
-/* Adds the cut m . q <= t (m unit in disc coordinates, 0 <= t < 1) to the clip's cuts: merged
-   into a cut of nearly the same direction (the facets of one curved wall, or the two triangles
-   of a wall seen past the end of one of them), else kept if among the PM_FOOTPRINT_CUTS nearest;
-   a cut that is not kept shrinks the disc to its t. */
+/* Adds the cut m . q <= t (m unit in disc coordinates, 0 <= t < 1) to the clip's cuts. A cut
+   within 25 degrees of a kept one is the same wall (the facets of a curved wall, such as a ring
+   of 64 segments, or the two triangles of one wall): the nearer of the two is kept, and the
+   sliver between them is not cut (shrinking instead would make every footprint along a curved
+   wall tiny). Otherwise it is kept if among the PM_FOOTPRINT_CUTS nearest; a distinct wall that
+   is not kept shrinks the disc to its t. */
 PM_DEVICE void footprint_add_cut(FootprintClip* clip, float mu, float mv, float t)
 {
   FootprintCut* c = &clip->cut;
   Vec3 w = footprint_cut_direction(clip, mu, mv);
-  for (int k = 0; k < c->count; ++k)
-    if (vec3_dot(w, footprint_cut_direction(clip, c->mu[k], c->mv[k])) > PM_FOOTPRINT_SAME_WALL_COS &&
-        footprint_merge_cut(c, k, mu, mv, t))
-      return;
-  if (c->count < PM_FOOTPRINT_CUTS) {
-    c->mu[c->count] = mu;
-    c->mv[c->count] = mv;
-    c->t[c->count] = t;
-    ++c->count;
-    return;
+  int slot = -1;
+  for (int k = 0; k < c->count && slot < 0; ++k)
+    if (vec3_dot(w, footprint_cut_direction(clip, c->mu[k], c->mv[k])) > PM_FOOTPRINT_SAME_WALL_COS) slot = k;
+  if (slot < 0 && c->count < PM_FOOTPRINT_CUTS) {
+    slot = c->count++;
+    c->t[slot] = 2.0f;
   }
-  int farthest = 0; /* the kept cut with the largest t, replaced when this one is nearer */
-  for (int k = 1; k < c->count; ++k)
-    if (c->t[k] > c->t[farthest]) farthest = k;
-  if (t < c->t[farthest]) {
-    c->shrink = pm_fminf(c->shrink, c->t[farthest]);
-    c->mu[farthest] = mu;
-    c->mv[farthest] = mv;
-    c->t[farthest] = t;
-  } else {
-    c->shrink = pm_fminf(c->shrink, t);
+  if (slot < 0) {
+    slot = 0; /* the kept cut with the largest t gives way when this one is nearer */
+    for (int k = 1; k < c->count; ++k)
+      if (c->t[k] > c->t[slot]) slot = k;
+    c->shrink = pm_fminf(c->shrink, pm_fmaxf(t, c->t[slot]));
+  }
+  if (t < c->t[slot]) {
+    c->mu[slot] = mu;
+    c->mv[slot] = mv;
+    c->t[slot] = t;
   }
 }
 
@@ -238,22 +215,31 @@ PM_DEVICE void footprint_clip_triangle(FootprintClip* c, Vec3 v0, Vec3 v1, Vec3 
   Vec3 y0 = vec3_sub(p[0], c->center), y1 = vec3_sub(p[1], c->center);
   float ax = vec3_dot(c->row_u, y0), ay = vec3_dot(c->row_v, y0);
   float bx = vec3_dot(c->row_u, y1), by = vec3_dot(c->row_v, y1);
-  /* Its point nearest the hit. */
+  /* A segment that enters the disc cuts away everything beyond its line. (Beyond its ends too:
+     around the corner of a box that pokes into the disc, both faces' lines cut, so nothing of
+     the box's inside is reached.) */
   float dx = bx - ax, dy = by - ay, len2 = dx * dx + dy * dy;
   float s = len2 > 0.0f ? pm_fminf(pm_fmaxf(-(ax * dx + ay * dy) / len2, 0.0f), 1.0f) : 0.0f;
   float qx = ax + s * dx, qy = ay + s * dy;
-  float t = pm_sqrtf(qx * qx + qy * qy);
-  if (!(t < 1.0f)) return;
-  float mu, mv;
-  if (t > 1e-6f) {
-    mu = qx / t;
-    mv = qy / t;
-  } else { /* through the hit: cut along the segment, either side */
+  float nearest = pm_sqrtf(qx * qx + qy * qy);
+  if (!(nearest < 1.0f)) return;
+  float mu, mv, t;
+  if (len2 > 0.0f) {
     float len = pm_sqrtf(len2);
-    if (!(len > 0.0f)) return;
     mu = -dy / len;
     mv = dx / len;
-    t = 0.0f;
+    t = mu * ax + mv * ay;
+    if (t < 0.0f) {
+      mu = -mu;
+      mv = -mv;
+      t = -t;
+    }
+  } else if (nearest > 0.0f) {
+    mu = qx / nearest;
+    mv = qy / nearest;
+    t = nearest;
+  } else {
+    return;
   }
   footprint_add_cut(c, mu, mv, t);
 }
