@@ -58,6 +58,7 @@ typedef struct FootprintClip {
   Vec3 center, n;
   float height;
   FootprintCut cut;
+  Vec3 cut_direction[PM_FOOTPRINT_CUTS]; /* of each kept cut, in the plane (footprint_cut_direction) */
 } FootprintClip;
 
 /* Green's theorem: the kernel mass of a region is the integral of Q dy around its boundary
@@ -175,7 +176,7 @@ PM_DEVICE void footprint_add_cut(FootprintClip* clip, float mu, float mv, float 
   Vec3 w = footprint_cut_direction(clip, mu, mv);
   int slot = -1;
   for (int k = 0; k < c->count && slot < 0; ++k)
-    if (vec3_dot(w, footprint_cut_direction(clip, c->mu[k], c->mv[k])) > PM_FOOTPRINT_SAME_WALL_COS) slot = k;
+    if (vec3_dot(w, clip->cut_direction[k]) > PM_FOOTPRINT_SAME_WALL_COS) slot = k;
   if (slot < 0 && c->count < PM_FOOTPRINT_CUTS) {
     slot = c->count++;
     c->t[slot] = 2.0f;
@@ -190,6 +191,7 @@ PM_DEVICE void footprint_add_cut(FootprintClip* clip, float mu, float mv, float 
     c->mu[slot] = mu;
     c->mv[slot] = mv;
     c->t[slot] = t;
+    clip->cut_direction[slot] = w;
   }
 }
 
@@ -199,12 +201,10 @@ PM_DEVICE Vec3 footprint_edge_crossing(Vec3 a, float ha, Vec3 b, float hb)
   return vec3_madd(a, vec3_sub(b, a), ha / (ha - hb));
 }
 
-/* Cuts at triangle (v0, v1, v2) if it crosses the lifted plane inside the disc. */
-PM_DEVICE void footprint_clip_triangle(FootprintClip* c, Vec3 v0, Vec3 v1, Vec3 v2)
+/* Cuts at triangle (v0, v1, v2), whose heights above the lifted plane are h0, h1, h2 and not all
+   of one sign, if its crossing segment enters the disc. */
+PM_DEVICE void footprint_clip_triangle(FootprintClip* c, Vec3 v0, Vec3 v1, Vec3 v2, float h0, float h1, float h2)
 {
-  float h0 = vec3_dot(c->n, vec3_sub(v0, c->center)) - c->height;
-  float h1 = vec3_dot(c->n, vec3_sub(v1, c->center)) - c->height;
-  float h2 = vec3_dot(c->n, vec3_sub(v2, c->center)) - c->height;
   Vec3 p[2];
   int k = 0;
   if ((h0 < 0.0f) != (h1 < 0.0f)) p[k++] = footprint_edge_crossing(v0, h0, v1, h1);
@@ -244,20 +244,27 @@ PM_DEVICE void footprint_clip_triangle(FootprintClip* c, Vec3 v0, Vec3 v1, Vec3 
   footprint_add_cut(c, mu, mv, t);
 }
 
-/* Whether the child box (stored in its parent's node, scene_bvh.h) overlaps [lo, hi]. */
-PM_DEVICE int footprint_box_overlaps(float4 xy, float z_min, float z_max, Vec3 lo, Vec3 hi)
+/* Whether the child box (stored in its parent's node, scene_bvh.h) overlaps [lo, hi] and
+   straddles the lifted plane n . x = level: a box wholly on one side holds no triangle that
+   crosses it (the surface the photon hit, its coplanar neighbours, a ceiling above). */
+PM_DEVICE int footprint_box_overlaps(float4 xy, float z_min, float z_max, Vec3 lo, Vec3 hi, Vec3 n, float level)
 {
-  return xy.x <= hi.x && xy.y >= lo.x && xy.z <= hi.y && xy.w >= lo.y && z_min <= hi.z && z_max >= lo.z;
+  if (!(xy.x <= hi.x && xy.y >= lo.x && xy.z <= hi.y && xy.w >= lo.y && z_min <= hi.z && z_max >= lo.z)) return 0;
+  float cx = 0.5f * (xy.x + xy.y), cy = 0.5f * (xy.z + xy.w), cz = 0.5f * (z_min + z_max);
+  float reach = 0.5f * (pm_fabsf(n.x) * (xy.y - xy.x) + pm_fabsf(n.y) * (xy.w - xy.z) + pm_fabsf(n.z) * (z_max - z_min));
+  return pm_fabsf(n.x * cx + n.y * cy + n.z * cz - level) <= reach;
 }
 
-/* Every triangle whose BVH leaf overlaps the lifted ellipse's box. */
+/* Every triangle whose BVH leaf overlaps the lifted ellipse's box. The traversal keeps its
+   values in locals (the clip state is touched only for triangles that cross the lifted plane). */
 PM_DEVICE void footprint_clip_scan(const KernelGlobals* kg, FootprintClip* c)
 {
-  Vec3 a_u = c->a_u, a_v = c->a_v;
+  Vec3 a_u = c->a_u, a_v = c->a_v, n = c->n;
   Vec3 ext = vec3(pm_sqrtf(a_u.x * a_u.x + a_v.x * a_v.x), pm_sqrtf(a_u.y * a_u.y + a_v.y * a_v.y),
                   pm_sqrtf(a_u.z * a_u.z + a_v.z * a_v.z));
-  Vec3 mid = vec3_madd(c->center, c->n, c->height);
+  Vec3 mid = vec3_madd(c->center, n, c->height);
   Vec3 lo = vec3_sub(mid, ext), hi = vec3_add(mid, ext);
+  float level = vec3_dot(n, mid);
   int stack[PM_TRAVERSAL_STACK];
   int sp = 0, node = 0;
   for (;;) {
@@ -265,25 +272,29 @@ PM_DEVICE void footprint_clip_scan(const KernelGlobals* kg, FootprintClip* c)
     float4 n1 = PM_LOAD(&kg->scene_nodes[4 * node + 1]);
     float4 n2 = PM_LOAD(&kg->scene_nodes[4 * node + 2]);
     float4 n3 = PM_LOAD(&kg->scene_nodes[4 * node + 3]);
-    int child[2], count[2], visit[2];
-    child[0] = PM_AS_INT(n3.x);
-    child[1] = PM_AS_INT(n3.y);
-    count[0] = PM_AS_INT(n3.z);
-    count[1] = PM_AS_INT(n3.w);
-    visit[0] = child[0] >= 0 && footprint_box_overlaps(n0, n2.x, n2.y, lo, hi);
-    visit[1] = child[1] >= 0 && footprint_box_overlaps(n1, n2.z, n2.w, lo, hi);
+    int child0 = PM_AS_INT(n3.x), child1 = PM_AS_INT(n3.y);
+    int count0 = PM_AS_INT(n3.z), count1 = PM_AS_INT(n3.w);
+    int visit0 = child0 >= 0 && footprint_box_overlaps(n0, n2.x, n2.y, lo, hi, n, level);
+    int visit1 = child1 >= 0 && footprint_box_overlaps(n1, n2.z, n2.w, lo, hi, n, level);
     for (int side = 0; side < 2; ++side) {
-      if (!visit[side] || count[side] == 0) continue;
-      for (int t = child[side]; t < child[side] + count[side]; ++t)
-        footprint_clip_triangle(c, scene_triangle_vertex(kg->triangles, t, 0), scene_triangle_vertex(kg->triangles, t, 1),
-                                scene_triangle_vertex(kg->triangles, t, 2));
-      visit[side] = 0;
+      int first = side ? child1 : child0, count = side ? count1 : count0;
+      if (!(side ? visit1 : visit0) || count == 0) continue;
+      for (int t = first; t < first + count; ++t) {
+        Vec3 v0 = scene_triangle_vertex(kg->triangles, t, 0);
+        Vec3 v1 = scene_triangle_vertex(kg->triangles, t, 1);
+        Vec3 v2 = scene_triangle_vertex(kg->triangles, t, 2);
+        float h0 = vec3_dot(n, v0) - level, h1 = vec3_dot(n, v1) - level, h2 = vec3_dot(n, v2) - level;
+        if ((h0 < 0.0f) == (h1 < 0.0f) && (h1 < 0.0f) == (h2 < 0.0f)) continue;
+        footprint_clip_triangle(c, v0, v1, v2, h0, h1, h2);
+      }
+      if (side) visit1 = 0;
+      else visit0 = 0;
     }
-    if (visit[0] && visit[1]) {
-      stack[sp++] = child[1];
-      node = child[0];
-    } else if (visit[0] || visit[1]) {
-      node = visit[0] ? child[0] : child[1];
+    if (visit0 && visit1) {
+      stack[sp++] = child1;
+      node = child0;
+    } else if (visit0 || visit1) {
+      node = visit0 ? child0 : child1;
     } else {
       if (sp == 0) break;
       node = stack[--sp];
