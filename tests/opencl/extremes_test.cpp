@@ -31,11 +31,7 @@
 namespace pm {
 namespace {
 
-Device& device() {
-  static std::unique_ptr<Device> d = test::open_first_device("opencl");
-  if (!d) throw std::runtime_error("no OpenCL device");
-  return *d;
-}
+Device& device() { return test::shared_opencl_device(); }
 
 using Rendered = test::StillRender;
 using test::layer_mean;

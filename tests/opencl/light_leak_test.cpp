@@ -18,11 +18,7 @@
 namespace pm {
 namespace {
 
-Device& device() {
-  static std::unique_ptr<Device> d = test::open_first_device("opencl");
-  if (!d) throw std::runtime_error("no OpenCL device");
-  return *d;
-}
+Device& device() { return test::shared_opencl_device(); }
 
 // A closed white 10 x 4 x 10 m room (floor y = 0) and a closed white 1 m box standing on its floor
 // at the origin: with `bottom`, the box has its own bottom face on the floor's plane; without,

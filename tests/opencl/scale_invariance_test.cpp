@@ -18,11 +18,7 @@
 namespace pm {
 namespace {
 
-Device& device() {
-  static std::unique_ptr<Device> d = test::open_first_device("opencl");
-  if (!d) throw std::runtime_error("no OpenCL device");
-  return *d;
-}
+Device& device() { return test::shared_opencl_device(); }
 
 // The tightest golden tolerance (golden/README.md): mean HDR-FLIP at 67 pixels per degree.
 constexpr double kSameImage = 0.042;
