@@ -5,6 +5,7 @@
 
 #include "cli/commands.h"
 #include "render/errors.h"
+#include "render/footprint_scale.h"
 #include "scene_io/cornell_box.h"
 #include "scene_io/scene_file.h"
 
@@ -29,8 +30,10 @@ void add_render_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("--kernel", o.kernel, "Density estimation kernel: constant or epanechnikov")
       ->capture_default_str()->check(CLI::IsMember({"constant", "epanechnikov"}));
   cmd->add_option("--smoothing", o.smoothing,
-                  "Diffuse footprint smoothing: auto (per batch, footprints cover the scene's surface a fixed number "
-                  "of times on average; any scene size) or a number, the paper's factor s (section 4.3)")
+                  "Diffuse footprint smoothing: auto (chosen per batch so that footprints cover the scene's surface " +
+                      std::to_string(int(kAutoSmoothingOverlap)) +
+                      " times on average: the same image at any scene size) or a number, the paper's factor s "
+                      "(section 4.3)")
       ->capture_default_str();
   cmd->add_option("--rmax", ph.rmax, "Largest footprint semiaxis and k-NN search radius, metres "
                                      "(default: 10% of the scene diagonal)");
