@@ -1,10 +1,12 @@
 // Options of the photon-mapping method (render/photon/photon_settings.h): registration in their
 // own help group, and the settings they describe. Values are checked by
 // PhotonSettings::validate (one layer); names come from the library's name tables.
+#include <cmath>
 #include <memory>
 
 #include "cli/method_options.h"
 #include "render/errors.h"
+#include "render/footprint_scale.h"
 #include "render/photon/photon_settings.h"
 
 namespace pm::cli {
@@ -17,6 +19,7 @@ class PhotonOptions final : public MethodOptions {
   std::string estimator = "pd";
   std::string kernel = "constant";
   std::string leaf = "auto";
+  std::string smoothing = "auto";
   std::string photon_bvh = "lbvh";
   std::string sequence = "random";
   std::string progressive = "average";
@@ -28,6 +31,20 @@ class PhotonOptions final : public MethodOptions {
     value_of(kPhotonMapBuilderNames, photon_bvh, &s->builder);
     value_of(kPhotonSequenceNames, sequence, &s->sequence);
     value_of(kProgressiveNames, progressive, &s->progressive);
+    if (smoothing == "auto") {
+      s->smoothing = 0;
+    } else {
+      size_t used = 0;
+      float v = 0;
+      try {
+        v = std::stof(smoothing, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != smoothing.size() || !(v > 0) || !std::isfinite(v))
+        throw SettingError("smoothing", "expected auto or a positive number, got '" + smoothing + "'");
+      s->smoothing = v;
+    }
     if (leaf == "auto") {
       s->leaf_threshold = 0;
     } else {
@@ -59,7 +76,11 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
       ->capture_default_str()->check(CLI::IsMember(names_of(kEstimatorNames)))->group(group);
   cmd->add_option("--kernel", o->kernel, "Density estimation kernel: constant or epanechnikov")
       ->capture_default_str()->check(CLI::IsMember(names_of(kKernelShapeNames)))->group(group);
-  cmd->add_option("--smoothing", ph.smoothing, "Footprint smoothing factor s (section 4.3)")
+  cmd->add_option("--smoothing", o->smoothing,
+                  "Diffuse footprint smoothing: auto (chosen per pass so that footprints cover the scene's surface " +
+                      std::to_string(int(kAutoSmoothingOverlap)) +
+                      " times on average: the same image at any scene size) or a number, the paper's factor s "
+                      "(section 4.3)")
       ->capture_default_str()->group(group);
   cmd->add_option("--rmax", ph.rmax, "Largest footprint semiaxis and k-NN search radius, metres "
                                      "(default: 10% of the scene diagonal)")->group(group);

@@ -1,8 +1,11 @@
 // Registration and interpretation of the shared rendering options.
 #include "cli/render_options.h"
 
+#include <cmath>
+
 #include "cli/commands.h"
 #include "render/errors.h"
+
 #include "scene_io/cornell_box.h"
 #include "scene_io/scene_file.h"
 

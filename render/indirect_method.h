@@ -15,19 +15,12 @@
 #include "render/buffer_table.h"
 #include "render/device.h"
 #include "render/scene.h"
+#include "render/scene_scale.h"
 #include "render/stage_timer.h"
 
 namespace pm {
 
 class IndirectMethod;
-
-// Sizes of the scene every method may need, measured once per renderer.
-struct SceneMeasures {
-  double diagonal = 1;      // of the bounding box of all vertices, metres
-  double surface_area = 0;  // of all triangles, m^2
-  Float3 lo, hi;            // bounding box
-};
-SceneMeasures measure_scene(const Scene& scene);
 
 // What a method works with, for its whole life.
 struct MethodContext {

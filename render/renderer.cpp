@@ -13,6 +13,7 @@
 #include "render/errors.h"
 #include "render/scene_bvh.h"
 #include "render/scene_frame.h"
+#include "render/scene_scale.h"
 
 namespace pm {
 
@@ -180,6 +181,7 @@ void Renderer::begin_frame(int frame) {
   p.height = uint32_t(height_);
   p.triangle_count = uint32_t(scene_.triangle_count());
   p.light_count = uint32_t(lights.size());
+  p.ray_epsilon = measures_.ray_epsilon;
   p.mirror_depth = uint32_t(settings_.mirror_depth);
   p.seed = settings_.seed;
   p.frame = uint32_t(frame);

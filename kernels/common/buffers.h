@@ -50,6 +50,7 @@
   X(photon, float4, footprint_row_v, hit_slots, 1)                                                          \
   X(photon, float4, footprint_row_n, hit_slots, 1)                                                          \
   X(photon, float4, footprint_power, hit_slots, 1)   /* rgb flux / footprint area */                        \
+  X(photon, float4, footprint_cut, hit_slots, 1)     /* second cut (mu, mv, t) of a clipped footprint */    \
   X(photon, float4, footprint_partials, bounds_tiles, 2) /* per tile: (lo, area sum), (hi, count) */        \
   /* photon mapping, S4 photon map: sorted order */                                                        \
   X(photon, float4, map_nodes, hit_slots, 4)   /* 4 float4 per inner node, photon_map.h */                  \
@@ -64,6 +65,7 @@
   X(photon, float4, map_row_n, hit_slots, 1)                                                                \
   X(photon, float4, map_power, hit_slots, 1)                                                                \
   X(photon, float4, map_incident, hit_slots, 1)                                                             \
+  X(photon, float4, map_cut, hit_slots, 1)                                                                  \
   X(photon, uint, gather_stats, counters, 2)   /* [0] hits accepted, [1] shading points (collect_stats) */ \
   X(photon, uint, map_tile_offsets, bounds_tiles, 1) /* S4: first compacted key of each tile's valid hits */\
   X(photon, uint, morton_keys, hit_slots, 1)   /* S4 input of the sort: Morton keys of the valid hits */ \

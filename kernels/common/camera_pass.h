@@ -20,15 +20,17 @@ PM_DEVICE Ray camera_primary_ray(const CameraParams* cam, uint x, uint y, uint w
 }
 
 /* Radiance reflected towards wo from the direct illumination of every point light:
-   L = sum f_r(wi, wo) * Phi / (4 pi r^2) * cos(theta_i), shadowed. */
+   L = sum f_r(wi, wo) * Phi / (4 pi r^2) * cos(theta_i), shadowed. The geometry is that of the
+   shading point itself; only the shadow ray starts off the surface, `offset` along n (ray.h). */
 PM_DEVICE Vec3 direct_light(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 pos, Vec3 n,
-                            Vec3 wo)
+                            Vec3 wo, float offset)
 {
   Vec3 sum = vec3_splat(0.0f);
-  Vec3 origin = offset_ray_origin(pos, n);
+  Vec3 origin = offset_ray_origin(pos, n, offset);
   for (uint l = 0; l < p->light_count; ++l) {
     PointLight light = kg->lights[l];
-    Vec3 to_light = vec3_sub(vec3_from_float4(light.position), origin);
+    Vec3 light_position = vec3_from_float4(light.position);
+    Vec3 to_light = vec3_sub(light_position, pos);
     float dist2 = vec3_dot(to_light, to_light);
     if (!(dist2 > 0.0f)) continue;
     float dist = pm_sqrtf(dist2);
@@ -37,8 +39,11 @@ PM_DEVICE Vec3 direct_light(const KernelGlobals* kg, const LaunchParams* p, cons
     if (cos_i <= 0.0f) continue;
     Vec3 f = brdf_eval(m, n, wi, wo);
     if (f.x == 0.0f && f.y == 0.0f && f.z == 0.0f) continue;
-    Ray shadow = ray_make(origin, wi);
-    SceneHit blocker = scene_trace(kg->scene_nodes, kg->triangles, &shadow, 0.0f, dist * (1.0f - 1e-5f), 1);
+    Vec3 shadow_path = vec3_sub(light_position, origin);
+    float shadow_length = vec3_length(shadow_path);
+    if (!(shadow_length > 0.0f)) continue;
+    Ray shadow = ray_make(origin, vec3_scale(shadow_path, 1.0f / shadow_length));
+    SceneHit blocker = scene_trace(kg->scene_nodes, kg->triangles, &shadow, 0.0f, shadow_length * (1.0f - 1e-5f), 1);
     if (blocker.triangle >= 0) continue;
     float irradiance_scale = cos_i / (4.0f * PM_PI * dist2);
     sum = vec3_add(sum, vec3_scale(vec3_mul(f, vec3_from_float4(light.power)), irradiance_scale));
@@ -72,7 +77,8 @@ PM_DEVICE void kernel_camera_pass(const KernelGlobals* kg, const LaunchParams* p
     int material_index = scene_triangle_material(kg->triangles, hit.triangle);
     Material m = material_load(kg->materials, material_index);
 
-    radiance = vec3_add(radiance, vec3_mul(throughput, direct_light(kg, p, &m, pos, n, wo)));
+    float offset = ray_offset_distance(ray.origin, hit.t, p->ray_epsilon);
+    radiance = vec3_add(radiance, vec3_mul(throughput, direct_light(kg, p, &m, pos, n, wo, offset)));
     kg->shade_position[record] = vec3_to_float4(pos, PM_AS_FLOAT(material_index));
     kg->shade_normal[record] = vec3_to_float4(n, 0.0f);
     kg->shade_outgoing[record] = vec3_to_float4(wo, 0.0f);
@@ -80,7 +86,7 @@ PM_DEVICE void kernel_camera_pass(const KernelGlobals* kg, const LaunchParams* p
 
     if (!material_has_mirror(&m) || depth == p->mirror_depth) { ++depth; break; }
     throughput = vec3_mul(throughput, material_mirror(&m));
-    ray = ray_make(offset_ray_origin(pos, n), vec3_reflect(ray.direction, n));
+    ray = ray_make(offset_ray_origin(pos, n, offset), vec3_reflect(ray.direction, n));
   }
   for (; depth <= p->mirror_depth; ++depth) shading_point_clear(kg, depth * pixels + pixel);
   kg->film_direct[pixel] = vec3_to_float4(radiance, 0.0f);

@@ -46,9 +46,10 @@ typedef struct Footprint {
    |a_x| = s Delta L^(1/4). Reading it as (Delta L)^(-3/4) instead would give s Delta^(1/4) L^(1/4),
    radii of ~25 with the paper's s = 40 and n = 256k, far beyond its Table 3 (radii ~0.6 at
    r_max = 0.7), whereas our reading gives 40 * 0.0070 * L^(1/4) ~ 0.5 for L ~ 25 m.
-   Consequence: the result is NOT scale-invariant. Scaling the scene by k scales footprints of
-   diffuse photons by k^(1/4), not k; s (a per-scene setting in the paper) absorbs the scene's
-   unit. L^(1/4) is computed as sqrt(sqrt(L)), exact and NaN-free for L >= 0. */
+   Consequence: the rule is NOT scale-invariant. Scaling the scene by k scales footprints of
+   diffuse photons by k^(1/4), not k; a fixed s (a per-scene setting in the paper) suits one scene
+   size. The automatic smoothing (render/footprint_scale.h) chooses s per batch so that radii scale
+   with the scene. L^(1/4) is computed as sqrt(sqrt(L)), exact and NaN-free for L >= 0. */
 PM_DEVICE float footprint_semiaxis_length(float dp_length, float delta, float smoothing, int is_caustic)
 {
   if (is_caustic) return PM_CAUSTIC_SMOOTHING * delta * dp_length;

@@ -9,6 +9,7 @@
 #include "brdf.h"
 #include "film.h"
 #include "footprint.h"
+#include "gather_reach.h"
 #include "kernel_globals.h"
 #include "pixel_order.h"
 #include "knn_gather.h"
@@ -29,12 +30,8 @@ PM_DEVICE void gather_at(const KernelGlobals* kg, const LaunchParams* p, const M
   int k;
   while ((k = photon_map_query_next(&q, kg->map_nodes, kg->map_lo, kg->map_hi)) >= 0) {
     float4 c = PM_LOAD(&kg->map_center[k]);
-    Vec3 d = vec3_sub(x, vec3_from_float4(c));
-    float lu = vec3_dot(vec3_from_float4(PM_LOAD(&kg->map_row_u[k])), d);
-    float lv = vec3_dot(vec3_from_float4(PM_LOAD(&kg->map_row_v[k])), d);
-    float ln = vec3_dot(vec3_from_float4(PM_LOAD(&kg->map_row_n[k])), d);
-    float r2 = lu * lu + lv * lv + ln * ln;
-    if (r2 > 1.0f) continue;
+    float r2;
+    if (!footprint_reaches(kg, k, c, x, n, &r2)) continue;
     Vec3 wi = vec3_from_float4(PM_LOAD(&kg->map_incident[k]));
     if (vec3_dot(wi, n) <= 0.0f) continue; /* arrived on the other side of this surface */
     Vec3 f = brdf_eval(m, n, wi, wo);

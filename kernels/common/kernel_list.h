@@ -7,6 +7,7 @@
 #define PM_KERNEL_LIST(K)                                                                     \
   K(camera_pass)       /* S5: eye rays, mirror recursion, direct light, shading points */    \
   K(photon_trace)      /* S1+S2: emit, trace, record hits with differentials */              \
+  K(photon_footprint_scale) /* S3: per-tile footprint area at s = 1 (automatic smoothing) */ \
   K(photon_footprint)  /* S3: footprint ellipsoids, AABBs, gather data, per-hit area */      \
   K(photon_reduce)     /* S3: per-tile hit bounds, footprint area and hit count */           \
   K(photon_morton)     /* S4: 30-bit Morton keys (empty slots sort last) */                  \

@@ -8,6 +8,7 @@
 
 #include "brdf.h"
 #include "footprint.h"
+#include "gather_reach.h"
 #include "kernel_globals.h"
 #include "photon_map.h"
 
@@ -57,23 +58,28 @@ PM_DEVICE void knn_offer(KnnHeap* h, float d2, uint index)
   h->index[i] = index;
 }
 
-PM_DEVICE void knn_consider_range(const KernelGlobals* kg, KnnHeap* h, uint first, uint count, Vec3 x, float rmax2)
+/* Offers the photons [first, first + count) whose reach (their clipped sphere of r_max,
+   photon_footprint.h) contains x on a surface facing like theirs (gather_reach.h): photons across
+   a wall or around an edge are not neighbours. */
+PM_DEVICE void knn_consider_range(const KernelGlobals* kg, KnnHeap* h, uint first, uint count, Vec3 x, Vec3 n,
+                                  float rmax2)
 {
   for (uint k = first; k < first + count; ++k) {
-    Vec3 d = vec3_sub(x, vec3_from_float4(PM_LOAD(&kg->map_center[k])));
-    float d2 = vec3_dot(d, d);
-    if (d2 < knn_radius2(h, rmax2)) knn_offer(h, d2, k);
+    float4 c = PM_LOAD(&kg->map_center[k]);
+    Vec3 d = vec3_sub(x, vec3_from_float4(c));
+    float d2 = vec3_dot(d, d), reach2;
+    if (d2 < knn_radius2(h, rmax2) && footprint_reaches(kg, k, c, x, n, &reach2)) knn_offer(h, d2, k);
   }
 }
 
-/* Fills the heap with the k nearest photons within rmax of x. */
-PM_DEVICE void knn_search(const KernelGlobals* kg, const LaunchParams* p, Vec3 x, KnnHeap* h)
+/* Fills the heap with the k nearest photons within rmax of x that reach x (normal n). */
+PM_DEVICE void knn_search(const KernelGlobals* kg, const LaunchParams* p, Vec3 x, Vec3 n, KnnHeap* h)
 {
   float rmax2 = p->rmax * p->rmax;
   h->size = 0;
   h->k = pm_min_u(p->knn_k, (uint)PM_KNN_MAX_K);
   if (p->hit_count < 2) {
-    knn_consider_range(kg, h, 0, p->hit_count, x, rmax2);
+    knn_consider_range(kg, h, 0, p->hit_count, x, n, rmax2);
     return;
   }
   uint stack[PM_TRAVERSAL_STACK];
@@ -90,7 +96,7 @@ PM_DEVICE void knn_search(const KernelGlobals* kg, const LaunchParams* p, Vec3 x
       float d2 = knn_box_distance2(lo, hi, p->rmax, x);
       if (d2 >= knn_radius2(h, rmax2)) continue;
       uint ref = PM_AS_UINT(lo.w);
-      if (ref & PM_PHOTON_MAP_LEAF) knn_consider_range(kg, h, ref & ~PM_PHOTON_MAP_LEAF, PM_AS_UINT(hi.w), x, rmax2);
+      if (ref & PM_PHOTON_MAP_LEAF) knn_consider_range(kg, h, ref & ~PM_PHOTON_MAP_LEAF, PM_AS_UINT(hi.w), x, n, rmax2);
       else { next[n_next] = ref; next_d2[n_next] = d2; ++n_next; }
     }
     if (n_next == 2) {
@@ -123,7 +129,7 @@ PM_DEVICE void knn_gather_at(const KernelGlobals* kg, const LaunchParams* p, con
                              Vec3 wo, Vec3* indirect, Vec3* caustic, uint* accepted)
 {
   KnnHeap h;
-  knn_search(kg, p, x, &h);
+  knn_search(kg, p, x, n, &h);
   float r2 = knn_radius2(&h, p->rmax * p->rmax);
   if (!(r2 > 0.0f)) return;
   float inv_area = 1.0f / (PM_PI * r2);

@@ -1,30 +1,41 @@
-/* Stage S3 (end of section 4.3): turns each recorded hit into its footprint ellipsoid, and
-   stores what the photon map and the gather need: the ellipsoid's AABB, the rows of its inverse
-   basis (so the gather's containment test is three dot products), and flux / area. The radius
-   estimator uses the same path with a sphere of the fixed radius. A tile reduction
-   (photon_map_stage.h) then gives the hits' bounds, count and total footprint area. */
+/* Stage S3 (end of section 4.3): turns each recorded hit into its footprint ellipsoid, clipped
+   at the geometry around the hit (footprint_clip.h), and stores what the photon map and the
+   gather need: the ellipsoid's AABB, the rows of its inverse basis (so the gather's containment
+   test is three dot products), and flux / area. The radius estimator uses the same path with a
+   sphere of the fixed radius, knn a disc of r_max as the photon's reach. A tile reduction
+   then gives the hits' bounds, their count and the total footprint area
+   (photon_map_stage.h). */
 #ifndef PM_PHOTON_FOOTPRINT_H
 #define PM_PHOTON_FOOTPRINT_H
 
 #include "footprint.h"
+#include "footprint_clip.h"
 #include "kernel_globals.h"
 #include "photon_map.h"
 #include "photon_trace.h"
 
 PM_DEVICE int hit_is_valid(float4 normal) { return (PM_AS_UINT(normal.w) & PM_HIT_VALID) != 0u; }
 
-/* Footprint of one hit under the estimator in use. */
+/* Footprint of one hit under the estimator in use, before clipping: the photon-differential
+   ellipsoid (pd), a sphere of the fixed radius (radius, the multi-pass paper's gather), or, for
+   knn, a disc of the search radius r_max: the photon's reach, which the knn gather uses as a mask
+   only. The disc has the pd footprints' normal half-axis, PM_FOOTPRINT_NORMAL_RATIO of its radius:
+   a sphere of r_max would reach through a box's lid onto the floor inside it. (The radius
+   estimator keeps its sphere: a flat disc cut by a curved surface loses the ring near its rim,
+   -10 % in the closed diffuse sphere of tests/opencl/analytic_sphere_test.cpp.) */
 PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p, uint slot)
 {
   float4 n4 = kg->hit_normal[slot];
   Vec3 n = vec3_from_float4(n4);
-  if (p->estimator == PM_ESTIMATOR_RADIUS) {
+  if (p->estimator != PM_ESTIMATOR_PD) {
+    int radius = p->estimator == PM_ESTIMATOR_RADIUS;
+    float r = radius ? p->gather_radius : p->rmax;
     Footprint f;
     Vec3 t, b;
     vec3_onb(n, &t, &b);
-    f.axis_u = vec3_scale(t, p->gather_radius);
-    f.axis_v = vec3_scale(b, p->gather_radius);
-    f.axis_n = vec3_scale(n, p->gather_radius);
+    f.axis_u = vec3_scale(t, r);
+    f.axis_v = vec3_scale(b, r);
+    f.axis_n = vec3_scale(n, radius ? r : PM_FOOTPRINT_NORMAL_RATIO * r);
     return f;
   }
   int caustic = (PM_AS_UINT(n4.w) & PM_HIT_CAUSTIC) != 0u;
@@ -33,6 +44,12 @@ PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p
                                       delta, p->smoothing, p->rmax, caustic);
 }
 
+/* The gather data of a hit: the footprint clipped at the geometry around it (footprint_clip.h),
+   its bounds, the rows of the inverse of its basis, whose w hold the first cut (mu, mv, t): the
+   gather accepts x where mu (row_u . (x - hit)) + mv (row_v . (x - hit)) <= t, a second cut in
+   footprint_cut (flagged PM_HIT_SECOND_CUT), and flux / (area * kept fraction of the kernel). For
+   knn the bounds are the point box hit +- r_max the knn traversal expects, and the power is the
+   flux (the knn gather divides by its own area). */
 PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchParams* p, uint slot)
 {
   float4 n4 = kg->hit_normal[slot];
@@ -43,38 +60,41 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     return;
   }
   Vec3 center = vec3_from_float4(kg->hit_position[slot]);
-  if (p->estimator == PM_ESTIMATOR_KNN) {
-    /* Point boxes grown by the search radius; the k-NN gather divides by its own area. */
-    kg->footprint_lo[slot] = vec3_to_float4(vec3_sub(center, vec3_splat(p->rmax)), 0.0f);
-    kg->footprint_hi[slot] = vec3_to_float4(vec3_add(center, vec3_splat(p->rmax)), 0.0f);
-    kg->footprint_center[slot] = vec3_to_float4(center, n4.w);
-    kg->footprint_power[slot] = kg->hit_flux[slot];
-    return;
-  }
   Footprint f = hit_footprint(kg, p, slot);
   /* Progressive shrink (docs/progressive.md): every footprint of this pass scaled alike. */
   f.axis_u = vec3_scale(f.axis_u, p->footprint_scale);
   f.axis_v = vec3_scale(f.axis_v, p->footprint_scale);
   f.axis_n = vec3_scale(f.axis_n, p->footprint_scale);
+  FootprintCut cut = footprint_clip(kg, &f, center, vec3_normalize(vec3_from_float4(n4)),
+                                    ray_offset_distance(center, 0.0f, p->ray_epsilon), p->kernel_shape);
   Vec3 lo, hi;
   footprint_bounds(f, center, &lo, &hi);
-  float area = footprint_area(f);
+  float area = footprint_area(f) * cut.kept;
 
   /* Inverse of the basis (a_u, a_v, a_n): its rows are the reciprocal basis vectors. */
   Vec3 c_vn = vec3_cross(f.axis_v, f.axis_n), c_nu = vec3_cross(f.axis_n, f.axis_u), c_uv = vec3_cross(f.axis_u, f.axis_v);
   float det = vec3_dot(f.axis_u, c_vn);
   float inv_det = det != 0.0f && pm_isfinite(det) ? 1.0f / det : 0.0f; /* singular: contains nothing */
-  Vec3 power = area > 0.0f ? vec3_scale(vec3_from_float4(kg->hit_flux[slot]), 1.0f / area) : vec3_splat(0.0f);
+  Vec3 flux = vec3_from_float4(kg->hit_flux[slot]);
+  Vec3 power = area > 0.0f ? vec3_scale(flux, 1.0f / area) : vec3_splat(0.0f);
   if (inv_det == 0.0f || !pm_isfinite(power.x + power.y + power.z)) {
     power = vec3_splat(0.0f);
     area = 0.0f;
   }
+  if (p->estimator == PM_ESTIMATOR_KNN) {
+    lo = vec3_sub(center, vec3_splat(p->rmax));
+    hi = vec3_add(center, vec3_splat(p->rmax));
+    power = flux;
+    area = 0.0f; /* no footprint area: T_auto stays at 1 for the knn map, as before clipping */
+  }
+  uint flags = PM_AS_UINT(n4.w) | (cut.t[1] < 1.0f ? PM_HIT_SECOND_CUT : 0u);
   kg->footprint_lo[slot] = vec3_to_float4(lo, area);
   kg->footprint_hi[slot] = vec3_to_float4(hi, 0.0f);
-  kg->footprint_center[slot] = vec3_to_float4(center, n4.w);
-  kg->footprint_row_u[slot] = vec3_to_float4(vec3_scale(c_vn, inv_det), 0.0f);
-  kg->footprint_row_v[slot] = vec3_to_float4(vec3_scale(c_nu, inv_det), 0.0f);
-  kg->footprint_row_n[slot] = vec3_to_float4(vec3_scale(c_uv, inv_det), 0.0f);
+  kg->footprint_center[slot] = vec3_to_float4(center, PM_UINT_AS_FLOAT(flags));
+  kg->footprint_row_u[slot] = vec3_to_float4(vec3_scale(c_vn, inv_det), cut.mu[0]);
+  kg->footprint_row_v[slot] = vec3_to_float4(vec3_scale(c_nu, inv_det), cut.mv[0]);
+  kg->footprint_row_n[slot] = vec3_to_float4(vec3_scale(c_uv, inv_det), cut.t[0]);
+  kg->footprint_cut[slot] = PM_MAKE_FLOAT4(cut.mu[1], cut.mv[1], cut.t[1], 0.0f);
   kg->footprint_power[slot] = vec3_to_float4(power, 0.0f);
 }
 

@@ -45,6 +45,7 @@ PM_DEVICE void kernel_photon_map_reorder(const KernelGlobals* kg, const LaunchPa
   kg->map_row_n[k] = kg->footprint_row_n[slot];
   kg->map_power[k] = kg->footprint_power[slot];
   kg->map_incident[k] = kg->hit_incident[slot];
+  kg->map_cut[k] = kg->footprint_cut[slot];
 }
 
 #endif

@@ -105,7 +105,8 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
       SceneHit hit = scene_trace(kg->scene_nodes, kg->triangles, &r, 0.0f, 1e30f, 0);
       if (hit.triangle < 0) break;
       Vec3 n = scene_triangle_normal(kg->triangles, hit.triangle);
-      /* Differentials travel from the ray origin (the offset start equals it to a few ulps). */
+      /* Differentials travel from the ray origin (the offset start, off the last hit by ray.h's
+         offset, a negligible fraction of the path). */
       ray.origin = start;
       photon_transfer(&ray, hit.t, n);
       Material m = material_load(kg->materials, scene_triangle_material(kg->triangles, hit.triangle));
@@ -148,7 +149,7 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
       } else {
         break; /* absorbed */
       }
-      start = offset_ray_origin(ray.origin, side);
+      start = offset_ray_origin(ray.origin, side, ray_offset_distance(start, hit.t, p->ray_epsilon));
     }
   }
   for (uint k = stored; k < p->hit_slots_per_photon; ++k)

@@ -1,6 +1,6 @@
 /* Rays against the scene's primitives: the watertight ray/triangle test (Woop, Benthin & Wald
-   2013, JCGT 2(1)), the ray/box slab test used by both BVH traversals, and robust origin offsets
-   for secondary rays (Waechter & Binder 2019, Ray Tracing Gems ch. 6). */
+   2013, JCGT 2(1)), the ray/box slab test used by both BVH traversals, and the origin offsets of
+   secondary rays, relative to the hit's magnitude and the scene's size. */
 #ifndef PM_RAY_H
 #define PM_RAY_H
 
@@ -78,19 +78,28 @@ PM_DEVICE float ray_box_entry(const Ray* r, Vec3 lo, Vec3 hi, float t_max)
   return t_enter <= t_exit * 1.00000024f ? t_enter : 1e38f;
 }
 
-/* Moves p off the surface with geometric normal n (pointing to the side the new ray leaves
-   from) by a few ulps of its coordinates, so the new ray cannot hit the surface it starts on. */
-PM_DEVICE float offset_coordinate(float p, float n)
+/* Secondary rays start a short distance off the surface they leave, along its geometric normal,
+   so that rounding cannot make them hit that surface again (shadow acne) and the distance stays
+   negligible next to the scene (a light micrometres from a surface in a tiny scene).
+
+   A hit computed as o + t d carries a rounding error of a few ulps of its magnitude
+   m = max|o_i| + t; the triangle's plane carries errors of a few ulps of the vertices'
+   coordinates, at most the largest coordinate S of the scene. The offset is 2^-17 of both,
+   scene_epsilon + 2^-17 m with scene_epsilon = 2^-17 S (LaunchParams.ray_epsilon, set by the host
+   from the scene's bounds): 64 to 128 ulps, whatever the scene's size and wherever the hit lies.
+   The earlier fixed-point scheme (Waechter & Binder 2019: an absolute 1/65536 within 1/32 of a
+   coordinate plane, integer ulps elsewhere) was too small on the coordinate planes of large
+   scenes and too large in small ones. */
+#define PM_RAY_OFFSET_RELATIVE 7.62939453125e-6f /* 2^-17 */
+
+/* Offset distance for a hit at distance t along a ray from origin (magnitude max|o_i| + t). */
+PM_DEVICE float ray_offset_distance(Vec3 origin, float t, float scene_epsilon)
 {
-  const float origin = 1.0f / 32.0f, float_scale = 1.0f / 65536.0f, int_scale = 256.0f;
-  int of = (int)(int_scale * n);
-  float p_int = PM_AS_FLOAT(PM_AS_INT(p) + ((p < 0.0f) ? -of : of));
-  return pm_fabsf(p) < origin ? p + float_scale * n : p_int;
+  return scene_epsilon + PM_RAY_OFFSET_RELATIVE * (vec3_max_abs(origin) + pm_fabsf(t));
 }
 
-PM_DEVICE Vec3 offset_ray_origin(Vec3 p, Vec3 n)
-{
-  return vec3(offset_coordinate(p.x, n.x), offset_coordinate(p.y, n.y), offset_coordinate(p.z, n.z));
-}
+/* p moved by `distance` along the unit normal n (pointing to the side the new ray leaves from).
+   distance >= 2^-17 |p| exceeds the rounding of the addition (2^-24 |p| per coordinate). */
+PM_DEVICE Vec3 offset_ray_origin(Vec3 p, Vec3 n, float distance) { return vec3_madd(p, n, distance); }
 
 #endif

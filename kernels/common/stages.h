@@ -9,6 +9,7 @@
 #include "film.h"
 #include "gather.h"
 #include "photon_footprint.h"
+#include "footprint_scale.h"
 #include "photon_map_stage.h"
 #include "photon_trace.h"
 #include "radix_sort.h"

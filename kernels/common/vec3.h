@@ -30,6 +30,7 @@ PM_DEVICE Vec3 vec3_normalize(Vec3 a)
 PM_DEVICE Vec3 vec3_min(Vec3 a, Vec3 b) { return vec3(pm_fminf(a.x, b.x), pm_fminf(a.y, b.y), pm_fminf(a.z, b.z)); }
 PM_DEVICE Vec3 vec3_max(Vec3 a, Vec3 b) { return vec3(pm_fmaxf(a.x, b.x), pm_fmaxf(a.y, b.y), pm_fmaxf(a.z, b.z)); }
 PM_DEVICE float vec3_max_component(Vec3 a) { return pm_fmaxf(a.x, pm_fmaxf(a.y, a.z)); }
+PM_DEVICE float vec3_max_abs(Vec3 a) { return pm_fmaxf(pm_fabsf(a.x), pm_fmaxf(pm_fabsf(a.y), pm_fabsf(a.z))); }
 PM_DEVICE float vec3_luminance(Vec3 c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
 /* Mirror direction d about normal n (n unit length). */
 PM_DEVICE Vec3 vec3_reflect(Vec3 d, Vec3 n) { return vec3_madd(d, n, -2.0f * vec3_dot(d, n)); }

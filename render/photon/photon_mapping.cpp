@@ -10,6 +10,7 @@
 #include "kernels/common/photon_map.h"
 #include "kernels/common/pixel_order.h"
 #include "render/errors.h"
+#include "render/footprint_scale.h"
 #include "render/photon/vvh_builder.h"
 
 namespace pm {
@@ -137,6 +138,7 @@ void PhotonMapping::run_pass(const FrameContext& frame, uint32_t pass) {
   stats_.set("hits", stats_.get("hits") + map_params_.hit_count);
   stats_.set("footprint_area", map_footprint_area_);
   stats_.set("leaf_threshold", map_params_.leaf_threshold);
+  stats_.set("smoothing", map_smoothing_);
   if (counters) {
     device_.download(buffers_[BufferSlot::gather_stats], counters, sizeof(counts));
     stats_.set("gathered", stats_.get("gathered") + counts[0]);
@@ -195,6 +197,9 @@ void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
   std::vector<float4> partials(2 * size_t(tiles));
   {
     StageScope scope(timer, "footprints");
+    if (!(settings_.smoothing > 0))
+      params.smoothing =
+          batch_auto_smoothing(device_, buffers_[BufferSlot::footprint_partials], params, tiles, scene_area_);
     device_.launch(KernelId::photon_footprint, slots, params);
     device_.launch(KernelId::photon_reduce, tiles, params);
   }
@@ -207,6 +212,7 @@ void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
   params.hit_bounds_hi = bounds.hi;
   params.hit_count = bounds.count;
   map_footprint_area_ = bounds.area;
+  map_smoothing_ = params.smoothing;
   map_params_ = params;
   if (bounds.count == 0) return;  // every photon escaped or was absorbed before a recorded hit
 

@@ -58,6 +58,7 @@ class PhotonMapping final : public IndirectMethod {
   uint32_t map_pass_ = 0;
   LaunchParams map_params_{};  // its fields: hit bounds and count, T
   double map_footprint_area_ = 0;
+  float map_smoothing_ = 0;  // the s of its diffuse footprints (automatic or set)
   MethodStats stats_;
 };
 

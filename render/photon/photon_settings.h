@@ -28,7 +28,8 @@ class PhotonSettings final : public MethodSettings {
  public:
   uint64_t photons = 262144;  // emitted per pass, all lights together; 0: no indirect light
   int bounces = 2;            // diffuse bounces of indirect light
-  float smoothing = 8.0f;     // s of section 4.3, diffusely reflected photons
+  float smoothing = 0.0f;     // s of section 4.3, diffusely reflected photons; 0: automatic per pass
+                              // (render/footprint_scale.h)
   float rmax = 0.0f;          // footprint semiaxis clamp (knn: search radius), metres; 0: 10 % of the scene diagonal
   int estimator = PM_ESTIMATOR_PD;
   int kernel_shape = PM_KERNEL_CONSTANT;

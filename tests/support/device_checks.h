@@ -9,6 +9,7 @@
 #include <memory>
 #include <numeric>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 #include "render/device.h"
@@ -21,6 +22,14 @@ inline std::unique_ptr<Device> open_first_device(const std::string& backend) {
   for (const DeviceInfo& info : list_devices())
     if (info.backend == backend) return create_device(backend, info.index);
   return nullptr;
+}
+
+// One OpenCL device shared by all tests of a binary that ask for it (building the program is the
+// slow part on PoCL); throws when the machine has none.
+inline Device& shared_opencl_device() {
+  static std::unique_ptr<Device> d = open_first_device("opencl");
+  if (!d) throw std::runtime_error("no OpenCL device");
+  return *d;
 }
 
 // The device compiler sees the shared structs exactly as the host does, and by-value launch

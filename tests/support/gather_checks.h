@@ -58,6 +58,7 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   auto row_u = read_slot<float4>(device, renderer, BufferSlot::map_row_u, n);
   auto row_v = read_slot<float4>(device, renderer, BufferSlot::map_row_v, n);
   auto row_n = read_slot<float4>(device, renderer, BufferSlot::map_row_n, n);
+  auto cut = read_slot<float4>(device, renderer, BufferSlot::map_cut, n);
   auto power = read_slot<float4>(device, renderer, BufferSlot::map_power, n);
   auto incident = read_slot<float4>(device, renderer, BufferSlot::map_incident, n);
   const size_t pixels = size_t(width) * height, records = 2 * pixels;
@@ -82,14 +83,22 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
       std::vector<std::pair<double, size_t>> near;  // knn: (distance^2, index)
       for (size_t k = 0; k < n; ++k) {
         Vec3 d = vec3_sub(x, v3(center[k]));
-        if (used.estimator == PM_ESTIMATOR_KNN) {
-          double d2 = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
-          if (d2 < double(used.rmax) * used.rmax) near.push_back({d2, k});
-          continue;
-        }
+        // The footprint (pd, radius) or reach (knn) on the hit's side of its cuts (the rows' w:
+        // mu lu + mv lv <= t, and map_cut where flagged), and the photon's surface facing within
+        // 60 degrees of the shading point's (gather_reach.h).
         double lu = dot3(row_u[k], d), lv = dot3(row_v[k], d), ln = dot3(row_n[k], d);
         double r2 = lu * lu + lv * lv + ln * ln;
-        if (r2 > 1.0 || vec3_dot(v3(incident[k]), nrm) <= 0.0f) continue;
+        double facing = dot3(row_n[k], nrm), axis2 = dot3(row_n[k], v3(row_n[k]));
+        bool second = (PM_AS_UINT(center[k].w) & PM_HIT_SECOND_CUT) != 0;
+        bool reaches = r2 <= 1.0 && row_u[k].w * lu + row_v[k].w * lv <= row_n[k].w &&
+                       (!second || cut[k].x * lu + cut[k].y * lv <= cut[k].z) && facing > 0 &&
+                       facing * facing >= 0.25 * axis2;
+        if (used.estimator == PM_ESTIMATOR_KNN) {
+          double d2 = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
+          if (d2 < double(used.rmax) * used.rmax && reaches) near.push_back({d2, k});
+          continue;
+        }
+        if (!reaches || vec3_dot(v3(incident[k]), nrm) <= 0.0f) continue;
         double w = used.kernel_shape == PM_KERNEL_EPANECHNIKOV ? 2.0 * (1.0 - r2) : 1.0;
         Vec3 f = brdf_eval(&m, nrm, v3(incident[k]), wo);
         sum[0] += sw[r].x * w * f.x * power[k].x;

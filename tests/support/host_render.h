@@ -8,6 +8,7 @@
 #include "kernels/common/camera_pass.h"
 #include "render/renderer.h"
 #include "render/scene_bvh.h"
+#include "render/scene_scale.h"
 
 namespace pm::test {
 
@@ -35,6 +36,7 @@ inline std::vector<float4> render_direct_on_host(const Scene& scene, int width, 
   p.width = uint32_t(width);
   p.height = uint32_t(height);
   p.light_count = uint32_t(lights.size());
+  p.ray_epsilon = scene_ray_epsilon(scene);
   p.mirror_depth = uint32_t(mirror_depth);
   for (uint32_t i = 0; i < pixel_work_items(p.width, p.height); ++i) kernel_camera_pass(&kg, &p, i);
   return direct;

@@ -8,6 +8,7 @@
 
 #include "render/kernel_abi.h"
 #include "render/scene_bvh.h"
+#include "render/scene_scale.h"
 #include "kernels/common/scene_traverse.h"
 
 namespace pm {
@@ -80,20 +81,50 @@ TEST(RayTriangle, NoRayPassesThroughTheSharedEdgeOfTwoTriangles) {
   }
 }
 
-TEST(RayOffset, SecondaryRayDoesNotHitItsOwnSurface) {
+// Secondary rays leave the surface a hit was computed on (o + t d, with its rounding) and never
+// hit it again: on a plane through the world origin (where an absolute offset is too small for a
+// large scene) and on tilted triangles far from it, at scene sizes from 1e-4 to 1e6 m; and the
+// offset stays a negligible fraction of the scene.
+TEST(RayOffset, SecondaryRaysDoNotHitTheirOwnSurfaceAtAnyScale) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  for (float scale : {1e-3f, 1.0f, 1e3f, 1e5f}) {
-    Vec3 a = vec3(0, 0, 0), b = vec3(scale, 0.1f * scale, 0), c = vec3(0.2f * scale, scale, 0.3f * scale);
-    Vec3 n = vec3_normalize(vec3_cross(vec3_sub(b, a), vec3_sub(c, a)));
-    for (int i = 0; i < 2000; ++i) {
-      float s = u(rng) * 0.5f, t = u(rng) * 0.5f;
-      Vec3 p = vec3_add(a, vec3_add(vec3_scale(vec3_sub(b, a), s), vec3_scale(vec3_sub(c, a), t)));
-      Vec3 dir = random_unit(rng);
-      if (vec3_dot(dir, n) < 0) dir = vec3_neg(dir);
-      Ray ray = ray_make(offset_ray_origin(p, n), dir);
-      float hit_t;
-      ASSERT_FALSE(ray_triangle(&ray, a, b, c, 0.0f, 1e30f, &hit_t)) << "scale " << scale;
+  for (float size : {1e-4f, 1e-2f, 1.0f, 1e3f, 1e6f}) {
+    struct Case {
+      Vec3 a, b, c;
+    };
+    const Case cases[] = {
+        {vec3(-size, 0, -size), vec3(size, 0, -size), vec3(0, 0, 2 * size)},  // on y = 0, around the origin
+        {vec3(0, 0, 0), vec3(size, 0.1f * size, 0), vec3(0.2f * size, size, 0.3f * size)},
+        {vec3(7 * size, 3 * size, 11 * size), vec3(8 * size, 3.1f * size, 11 * size),
+         vec3(7.2f * size, 4 * size, 11.3f * size)}};
+    for (const Case& tri : cases) {
+      Scene scene;
+      scene.positions = {{tri.a.x, tri.a.y, tri.a.z}, {tri.b.x, tri.b.y, tri.b.z}, {tri.c.x, tri.c.y, tri.c.z}};
+      scene.indices = {0, 1, 2};
+      const float scene_epsilon = scene_ray_epsilon(scene);
+      Vec3 n = vec3_normalize(vec3_cross(vec3_sub(tri.b, tri.a), vec3_sub(tri.c, tri.a)));
+      int hits = 0;
+      for (int i = 0; i < 2000; ++i) {
+        // A target inside the triangle, half of them within 1e-3 of its size of a vertex.
+        float s = u(rng) * 0.5f, t = u(rng) * 0.5f;
+        if (i % 2) s *= 1e-3f, t *= 1e-3f;
+        Vec3 target = vec3_add(tri.a, vec3_add(vec3_scale(vec3_sub(tri.b, tri.a), s), vec3_scale(vec3_sub(tri.c, tri.a), t)));
+        Vec3 from = vec3_add(target, vec3_scale(random_unit(rng), size * (0.1f + 2.0f * u(rng))));
+        Ray eye = ray_make(from, vec3_normalize(vec3_sub(target, from)));
+        float hit_t;
+        if (!ray_triangle(&eye, tri.a, tri.b, tri.c, 0.0f, 1e30f, &hit_t)) continue;
+        ++hits;
+        Vec3 p = vec3_madd(eye.origin, eye.direction, hit_t);
+        Vec3 side = vec3_dot(n, eye.direction) < 0 ? n : vec3_neg(n);
+        const float offset = ray_offset_distance(eye.origin, hit_t, scene_epsilon);
+        EXPECT_LT(offset, 2e-4f * (size + vec3_max_abs(p))) << "size " << size;
+        Vec3 dir = random_unit(rng);
+        if (vec3_dot(dir, side) < 0) dir = vec3_neg(dir);
+        Ray secondary = ray_make(offset_ray_origin(p, side, offset), dir);
+        ASSERT_FALSE(ray_triangle(&secondary, tri.a, tri.b, tri.c, 0.0f, 1e30f, &hit_t))
+            << "size " << size << ", target " << target.x << " " << target.y << " " << target.z;
+      }
+      EXPECT_GT(hits, 1500) << "size " << size;
     }
   }
 }

@@ -1,0 +1,43 @@
+/* The gather's test of whether a photon's footprint reaches a shading point, shared by the
+   footprint gather (gather.h) and the knn gather (knn_gather.h, where the clipped sphere of r_max
+   masks the candidates). */
+#ifndef PM_GATHER_REACH_H
+#define PM_GATHER_REACH_H
+
+#include "kernel_globals.h"
+#include "vec3.h"
+
+/* Largest angle between a photon's surface normal and a shading point's for the photon to count
+   there: 60 degrees (cos^2 = 1/4). Creases sharper than that, such as the 90-degree edges of a
+   box, separate surfaces; the facets of tessellated curved surfaces are far closer. */
+#define PM_GATHER_MIN_NORMAL_COS2 0.25f
+
+/* Whether photon k's footprint reaches the shading point x with normal n: x lies in the
+   ellipsoid, on the hit's side of its cuts (footprint_clip.h; the rows' w hold the first,
+   mu lu + mv lv <= t in the ellipsoid's coordinates of x - hit, map_cut a second one where the
+   flags say so), and x's surface faces the way the
+   photon's did: the normal axis row_n = n_hit / |a_n| must lie within 60 degrees of n
+   (PM_GATHER_MIN_NORMAL_COS2). The footprint's thickness lets a photon reach the neighbouring
+   facets of a tessellated curved surface, and around a convex edge onto the other side of the
+   adjoining face (a camera inside a closed box would see the light of the photons on its outside
+   along its edges); the normal test keeps the first and stops the second. Writes the squared
+   ellipsoid radius to *r2. */
+PM_DEVICE int footprint_reaches(const KernelGlobals* kg, uint k, float4 c, Vec3 x, Vec3 n, float* r2)
+{
+  Vec3 d = vec3_sub(x, vec3_from_float4(c));
+  float4 row_u = PM_LOAD(&kg->map_row_u[k]), row_v = PM_LOAD(&kg->map_row_v[k]), row_n = PM_LOAD(&kg->map_row_n[k]);
+  float lu = vec3_dot(vec3_from_float4(row_u), d);
+  float lv = vec3_dot(vec3_from_float4(row_v), d);
+  float ln = vec3_dot(vec3_from_float4(row_n), d);
+  *r2 = lu * lu + lv * lv + ln * ln;
+  if (!(*r2 <= 1.0f) || !(row_u.w * lu + row_v.w * lv <= row_n.w)) return 0;
+  if (PM_AS_UINT(c.w) & PM_HIT_SECOND_CUT) {
+    float4 cut = PM_LOAD(&kg->map_cut[k]);
+    if (!(cut.x * lu + cut.y * lv <= cut.z)) return 0;
+  }
+  Vec3 axis_n = vec3_from_float4(row_n);
+  float facing = vec3_dot(axis_n, n);
+  return facing > 0.0f && facing * facing >= PM_GATHER_MIN_NORMAL_COS2 * vec3_dot(axis_n, axis_n);
+}
+
+#endif

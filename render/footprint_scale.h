@@ -1,0 +1,39 @@
+// Automatic smoothing (`--smoothing auto`, the default): the smoothing factor s of the diffuse
+// photon footprints (paper section 4.3) chosen per batch so that, at any scene size and photon
+// count, the batch's footprints cover the scene's surface kAutoSmoothingOverlap times on average.
+//
+// The paper's rule |a_x| = s Delta |dp_x|^(1/4) (kernels/common/footprint.h) is not scale
+// invariant: scaling a scene by k scales its footprints by k^(1/4), so one fixed s gives
+// footprints too small to reach anything in a large scene and blurry ones in a small one. With
+// A1 the batch's total diffuse footprint area at s = 1 (unclamped; kernels/common/
+// footprint_scale.h) and A the scene's surface area,
+//     s = sqrt(overlap * A / A1),
+// so the total area at s is overlap * A: s grows as k^(3/4) with the scene, radii as k; and since
+// A1 does not depend on the photon count (n hits of area ~ Delta^2 = 4 pi / n each), radii still
+// shrink as Delta ~ 1/sqrt(n), as in the paper. The relative sizes of the footprints (the
+// L^(1/4) compression) are the paper's. The choice depends on the batch's photons only (a fixed
+// reduction order), so a frame's result does not depend on how frames are chunked.
+#pragma once
+
+#include <cstdint>
+
+#include "render/device.h"
+
+namespace pm {
+
+// The overlap of the automatic smoothing: calibrated so that the built-in Cornell box at the
+// default photon count (262144, one batch) gets the s = 8 of the paper-style fixed setting
+// (docs/algorithm.md has the measurement).
+constexpr double kAutoSmoothingOverlap = 800.0;
+
+// s = sqrt(overlap * scene_area / area_at_s1); 1 when the batch has no diffuse footprint area
+// (no diffuse hits: s then sizes nothing).
+float auto_smoothing(double area_at_s1, double scene_area, double overlap = kAutoSmoothingOverlap);
+
+// Runs the photon_footprint_scale reduction over the batch's hit records (params as for the
+// footprint stage, `tiles` tiles of PM_PHOTON_MAP_BOUNDS_TILE slots, partials bound to
+// footprint_partials) and returns the batch's automatic s. *area_at_s1 (if not null) gets A1.
+float batch_auto_smoothing(Device& device, const DeviceBuffer& partials, const LaunchParams& params, uint32_t tiles,
+                           double scene_area, double* area_at_s1 = nullptr);
+
+}  // namespace pm

@@ -1,0 +1,122 @@
+// Unit tests of the automatic smoothing (kernels/common/footprint_scale.h, render/
+// footprint_scale.h): the per-tile reduction of the s = 1 footprint area against an independent
+// double-precision sum, and the chosen s giving the batch's diffuse footprints a total area of
+// overlap x scene area, growing as k^(3/4) when the scene grows by k.
+#include "kernels/common/compat_host.h"
+#include "kernels/common/footprint_scale.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <vector>
+
+#include "render/footprint_scale.h"
+
+namespace pm {
+namespace {
+
+// A batch of hit records held on the host, with the kernel's view of them.
+struct HostHits {
+  std::vector<float4> normal, incident, dp_u, dp_v, partials;
+  LaunchParams params{};
+  KernelGlobals kg{};
+
+  HostHits(uint32_t photons, uint32_t slots_per_photon, uint32_t seed, float scale) {
+    const uint32_t slots = photons * slots_per_photon;
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (uint32_t i = 0; i < slots; ++i) {
+      uint32_t flags = i % 7 == 3 ? 0u : PM_HIT_VALID;  // some empty slots
+      if (i % 11 == 5) flags |= PM_HIT_CAUSTIC;          // some caustic hits
+      float bits;
+      std::memcpy(&bits, &flags, 4);
+      normal.push_back({0, 0, 1, bits});
+      incident.push_back({0, 0, 1, 0.01f + 0.001f * float(i % 5)});  // w: Delta
+      dp_u.push_back({scale * u(rng), scale * u(rng), 0, 0});
+      dp_v.push_back({scale * u(rng), scale * u(rng), 0, 0});
+    }
+    partials.resize(2 * ((slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE));
+    params.photon_count = photons;
+    params.hit_slots_per_photon = slots_per_photon;
+    kg.hit_normal = normal.data();
+    kg.hit_incident = incident.data();
+    kg.hit_dp_u = dp_u.data();
+    kg.hit_dp_v = dp_v.data();
+    kg.footprint_partials = partials.data();
+  }
+
+  // The batch's s = 1 area as the host sums the kernel's tiles.
+  double kernel_area() {
+    double sum = 0;
+    for (uint32_t t = 0; t < partials.size() / 2; ++t) {
+      kernel_photon_footprint_scale(&kg, &params, t);
+      sum += partials[2 * t].x;
+    }
+    return sum;
+  }
+
+  // Independent: pi Delta^2 |dp_u|^(1/4) |dp_v|^(1/4) sin(angle) over valid diffuse hits, in double.
+  double reference_area() const {
+    double sum = 0;
+    for (size_t i = 0; i < normal.size(); ++i) {
+      uint32_t flags;
+      std::memcpy(&flags, &normal[i].w, 4);
+      if (!(flags & PM_HIT_VALID) || (flags & PM_HIT_CAUSTIC)) continue;
+      const double ax = dp_u[i].x, ay = dp_u[i].y, bx = dp_v[i].x, by = dp_v[i].y;
+      const double la = std::hypot(ax, ay), lb = std::hypot(bx, by);
+      const double sine = std::fabs(ax * by - ay * bx) / (la * lb);
+      const double delta = incident[i].w;
+      sum += M_PI * delta * delta * std::pow(la, 0.25) * std::pow(lb, 0.25) * sine;
+    }
+    return sum;
+  }
+
+  // Total area of the batch's diffuse footprints at smoothing s, unclamped, as S3 builds them.
+  double footprint_area_at(float s) const {
+    double sum = 0;
+    for (size_t i = 0; i < normal.size(); ++i) {
+      uint32_t flags;
+      std::memcpy(&flags, &normal[i].w, 4);
+      if (!(flags & PM_HIT_VALID) || (flags & PM_HIT_CAUSTIC)) continue;
+      Footprint f = footprint_from_differentials(vec3_from_float4(dp_u[i]), vec3_from_float4(dp_v[i]), vec3(0, 0, 1),
+                                                 incident[i].w, s, 1e30f, 0);
+      sum += footprint_area(f);
+    }
+    return sum;
+  }
+};
+
+TEST(AutoSmoothing, TileReductionMatchesAnIndependentSum) {
+  HostHits hits(700, 4, 1, 0.3f);  // 2800 slots: 11 tiles, the last one partial
+  EXPECT_NEAR(hits.kernel_area() / hits.reference_area(), 1.0, 1e-5);
+}
+
+TEST(AutoSmoothing, FootprintsCoverTheSceneOverlapTimes) {
+  const double scene_area = 37.5;
+  HostHits hits(700, 4, 2, 0.3f);
+  const float s = auto_smoothing(hits.kernel_area(), scene_area);
+  EXPECT_NEAR(hits.footprint_area_at(s) / (kAutoSmoothingOverlap * scene_area), 1.0, 1e-4);
+}
+
+TEST(AutoSmoothing, GrowsAsTheScenesSizeToTheThreeQuarters) {
+  // Positional differentials grow as k with the scene, its area as k^2: s must grow as k^(3/4),
+  // so that footprint radii s Delta L^(1/4) grow as k.
+  const double area1 = 37.5;
+  HostHits unit(500, 4, 3, 0.3f);
+  const float s1 = auto_smoothing(unit.kernel_area(), area1);
+  for (float k : {1e-4f, 1e-2f, 1e2f, 1e4f, 1e6f}) {
+    HostHits big(500, 4, 3, 0.3f * k);
+    const float s = auto_smoothing(big.kernel_area(), area1 * double(k) * k);
+    EXPECT_NEAR(s / s1 / std::pow(double(k), 0.75), 1.0, 1e-4) << k;
+  }
+}
+
+TEST(AutoSmoothing, NoDiffuseAreaGivesAFiniteFactor) {
+  for (double area : {0.0, -1.0, double(NAN), double(INFINITY)}) EXPECT_EQ(auto_smoothing(area, 10.0), 1.0f);
+  EXPECT_EQ(auto_smoothing(1.0, 0.0), 1.0f);
+}
+
+}  // namespace
+}  // namespace pm
