@@ -61,10 +61,13 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
   }
   Vec3 center = vec3_from_float4(kg->hit_position[slot]);
   Footprint f = hit_footprint(kg, p, slot);
-  /* Progressive shrink (docs/progressive.md): every footprint of this pass scaled alike. */
-  f.axis_u = vec3_scale(f.axis_u, p->footprint_scale);
-  f.axis_v = vec3_scale(f.axis_v, p->footprint_scale);
-  f.axis_n = vec3_scale(f.axis_n, p->footprint_scale);
+  /* Progressive shrink (docs/progressive.md): every footprint of this pass scaled alike (knn's
+     reach is r_max, which the host already shrank). */
+  if (p->estimator != PM_ESTIMATOR_KNN) {
+    f.axis_u = vec3_scale(f.axis_u, p->footprint_scale);
+    f.axis_v = vec3_scale(f.axis_v, p->footprint_scale);
+    f.axis_n = vec3_scale(f.axis_n, p->footprint_scale);
+  }
   FootprintCut cut = footprint_clip(kg, &f, center, vec3_normalize(vec3_from_float4(n4)),
                                     ray_offset_distance(center, 0.0f, p->ray_epsilon), p->kernel_shape);
   Vec3 lo, hi;
