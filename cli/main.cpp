@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   pm::cli::Run compare = pm::cli::add_compare_command(app);
   pm::cli::Run bench = pm::cli::add_bench_command(app);
   pm::cli::Run export_scene = pm::cli::add_export_scene_command(app);
+  pm::cli::Run tradeoff = pm::cli::add_tradeoff_command(app);
 
   try {
     app.parse(argc, argv);
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("compare")) return compare();
     if (app.got_subcommand("bench")) return bench();
     if (app.got_subcommand("export-scene")) return export_scene();
+    if (app.got_subcommand("tradeoff")) return tradeoff();
   } catch (const pm::SettingError& e) {
     // The library names the setting; on the command line it is the option of the same name.
     std::cerr << "pmrender: --" << e.what() << "\n";
