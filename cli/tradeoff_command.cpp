@@ -36,6 +36,7 @@ namespace fs = std::filesystem;
 
 struct TradeoffOptions {
   std::string scene_path, backend = "auto", resolution, output, reference, metric = "relmae";
+  std::string error_levels = "0.05,0.02,0.01,0.005";
   int device = 0, mirror_depth = 1, bounces = 2, warmup = 1, repeat = 3;
   uint32_t seed = 1, reference_spp = 0, reference_passes = 4;
   double budget_ms = 0, target_error = 0;
@@ -52,9 +53,12 @@ std::string describe_pick(const std::vector<TradeoffRow>& rows, int index, const
 }
 
 // The reference: read from --reference, or rendered by the path tracer and written beside the
-// results so the next sweep can reuse it.
+// results so the next sweep can reuse it. A rendered reference also measures its own noise: its
+// two halves of passes differ by twice the error one would expect of the whole (relMAE), which
+// goes to *noise; unknown (0) for a reference read from file.
 FrameImage make_reference(const TradeoffOptions& o, Device& device, const Scene& scene, const RenderSettings& base,
-                          const fs::path& folder) {
+                          const fs::path& folder, double* noise) {
+  *noise = 0;
   if (!o.reference.empty()) return read_exr(o.reference);
   RenderSettings settings = base;
   auto path = std::make_shared<PathSettings>();
@@ -68,13 +72,35 @@ FrameImage make_reference(const TradeoffOptions& o, Device& device, const Scene&
     std::printf("reference: path tracer, %u passes of %u paths per pixel ...\n", o.reference_passes, o.reference_spp);
   std::fflush(stdout);
   const auto start = std::chrono::steady_clock::now();
-  FrameImage image = renderer.render_frame(0);
+  renderer.begin_frame(0);
+  const uint32_t half = o.reference_passes / 2;
+  for (uint32_t i = 0; i < half; ++i) renderer.run_pass();
+  FrameImage first_half;
+  if (half > 0) {
+    renderer.resolve();
+    first_half = renderer.read_image();
+  }
+  for (uint32_t i = half; i < o.reference_passes; ++i) renderer.run_pass();
+  renderer.resolve();
+  FrameImage image = renderer.read_image();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (half > 0 && 2 * half == o.reference_passes) {
+    // whole = (first + second) / 2, so second = 2 whole - first.
+    std::vector<float> second = image.find("")->rgb;
+    const std::vector<float>& first = first_half.find("")->rgb;
+    for (size_t i = 0; i < second.size(); ++i) second[i] = 2.0f * second[i] - first[i];
+    const ImageComparison c = compare_images(second, first, image.width, image.height);
+    double relmae = 0;
+    for (float v : c.mean_map) relmae += v;
+    *noise = relmae / double(c.mean_map.size()) / 2.0;
+  }
   image.attributes = {{"pmrender/version", PMRENDER_VERSION}, {"pmrender/settings", renderer.describe()},
                       {"pmrender/render_ms", std::to_string(seconds * 1000.0)}};
   const std::string file = (folder / "reference.exr").string();
   write_exr(file, image, true);
-  if (!o.quiet) std::printf("wrote %s (%s)\n", file.c_str(), seconds_text(seconds).c_str());
+  if (!o.quiet)
+    std::printf("wrote %s (%s%s)\n", file.c_str(), seconds_text(seconds).c_str(),
+                *noise > 0 ? (", own noise about " + std::to_string(100 * *noise).substr(0, 5) + " % relMAE").c_str() : "");
   return image;
 }
 
@@ -88,6 +114,7 @@ int run_tradeoff(const TradeoffOptions& o) {
   if (o.target_error < 0 || !std::isfinite(o.target_error)) throw InputError("--target-error: expected a positive error");
   if (o.reference_passes < 1) throw InputError("--reference-passes: expected at least 1");
   const std::vector<TradeoffSetting> grid = expand_tradeoff_grid(o.grid);
+  const std::vector<double> levels = parse_number_list(o.error_levels, "--error-levels");
   const Scene scene = o.scene_path.empty() ? builtin_cornell_box() : load_scene_file(o.scene_path);
   RenderSettings base;
   base.mirror_depth = o.mirror_depth;
@@ -125,7 +152,8 @@ int run_tradeoff(const TradeoffOptions& o) {
     std::printf("pmrender tradeoff: %s, %dx%d, %zu settings, on %s (%s)\n", scene.name.c_str(), width, height,
                 grid.size(), info.name.c_str(), info.backend.c_str());
   fs::create_directories(folder);
-  const FrameImage reference = make_reference(o, *device, scene, base, folder);
+  double reference_noise = 0;
+  const FrameImage reference = make_reference(o, *device, scene, base, folder, &reference_noise);
 
   // Warmup frames 1.., measured frames after them: never frame 0 with the reference's seed.
   FramePlan plan;
@@ -146,7 +174,9 @@ int run_tradeoff(const TradeoffOptions& o) {
   }
   mark_pareto_front(rows, o.metric);
 
-  const std::string table = tradeoff_table(rows, o.metric);
+  // The reference's noise is known for relMAE only; twice it is where errors stop meaning much.
+  const double floor = o.metric == "relmae" ? 2 * reference_noise : 0.0;
+  const std::string table = tradeoff_table(rows, o.metric) + "\n" + time_to_error_table(rows, o.metric, levels, floor);
   nlohmann::ordered_json j;
   j["pmrender_version"] = PMRENDER_VERSION;
   j["scene"] = {{"name", scene.name}, {"source", scene.source}, {"triangles", scene.triangle_count()}};
@@ -159,8 +189,10 @@ int run_tradeoff(const TradeoffOptions& o) {
                                                 {"file", (folder / "reference.exr").string()}}
                        : nlohmann::ordered_json{{"file", o.reference}};
   j["frames"] = {{"warmup", o.warmup}, {"measured", o.repeat}};
+  j["reference_noise_relmae"] = reference_noise > 0 ? nlohmann::ordered_json(reference_noise) : nlohmann::ordered_json(nullptr);
   j["metric"] = o.metric;
   j["settings"] = tradeoff_json_rows(rows);
+  j["time_to_error"] = time_to_error_json(rows, o.metric, levels, floor);
   std::vector<TradeoffPoint> points;
   for (const TradeoffRow& r : rows) points.push_back({r.device_ms.median, r.error(o.metric)});
   std::string picks;
@@ -224,6 +256,8 @@ Run add_tradeoff_command(CLI::App& app) {
   cmd->add_option("--warmup", o->warmup, "Frames rendered first and not timed, per setting")->capture_default_str();
   cmd->add_option("--repeat", o->repeat, "Timed frames per setting (medians)")->capture_default_str();
   cmd->add_option("--metric", o->metric, "Error for the front and the picks: relmae, relmse or flip")
+      ->capture_default_str();
+  cmd->add_option("--error-levels", o->error_levels, "Errors (--metric) to report the time to reach, per estimator")
       ->capture_default_str();
   cmd->add_option("--budget-ms", o->budget_ms, "Print the most accurate setting within this device time per frame");
   cmd->add_option("--target-error", o->target_error, "Print the fastest setting with at most this error (--metric)");

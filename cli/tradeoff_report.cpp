@@ -1,6 +1,7 @@
 // Errors, Pareto marking and the table / JSON / SVG of `pmrender tradeoff` (tradeoff_report.h).
 #include "cli/tradeoff_report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -13,6 +14,12 @@
 namespace pm::cli {
 
 namespace {
+
+std::string number_percent(double v) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g%%", 100 * v);
+  return text;
+}
 
 double sum(const std::vector<float>& v) {
   double s = 0;
@@ -82,6 +89,94 @@ std::string tradeoff_table(const std::vector<TradeoffRow>& rows, const std::stri
     s << line;
   }
   return s.str();
+}
+
+namespace {
+
+// Series in order of first appearance: estimator, then one pass or several.
+std::vector<std::string> mode_series(const std::vector<TradeoffRow>& rows, std::vector<std::string>* of_row) {
+  std::vector<std::string> names;
+  for (const TradeoffRow& r : rows) {
+    const std::string name = r.setting.estimator + (r.setting.passes > 1 ? " (passes > 1)" : " (1 pass)");
+    of_row->push_back(name);
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  }
+  return names;
+}
+
+// Index of the fastest row of series reaching level, or -1; the row with the smallest error.
+int fastest_reaching(const std::vector<TradeoffRow>& rows, const std::vector<std::string>& of_row,
+                     const std::string& series, const std::string& metric, double level) {
+  std::vector<TradeoffPoint> points;
+  for (size_t i = 0; i < rows.size(); ++i)
+    points.push_back({rows[i].device_ms.median, of_row[i] == series ? rows[i].error(metric) : INFINITY});
+  return fastest_within_error(points, level);
+}
+
+int most_accurate(const std::vector<TradeoffRow>& rows, const std::vector<std::string>& of_row,
+                  const std::string& series, const std::string& metric) {
+  std::vector<TradeoffPoint> points;
+  for (size_t i = 0; i < rows.size(); ++i)
+    points.push_back({of_row[i] == series ? rows[i].device_ms.median : INFINITY, rows[i].error(metric)});
+  return best_within_time(points, INFINITY);
+}
+
+}  // namespace
+
+std::string time_to_error_table(const std::vector<TradeoffRow>& rows, const std::string& metric,
+                                const std::vector<double>& levels, double floor) {
+  std::vector<std::string> of_row;
+  const std::vector<std::string> series = mode_series(rows, &of_row);
+  std::ostringstream s;
+  char cell[96];
+  std::snprintf(cell, sizeof(cell), "%-22s", ("device ms to reach " + metric).c_str());
+  s << cell;
+  for (double level : levels) {
+    std::snprintf(cell, sizeof(cell), " %12s", (number_percent(level) + (level <= floor ? " (noise)" : "")).c_str());
+    s << cell;
+  }
+  s << "   smallest error (at ms)\n";
+  for (const std::string& name : series) {
+    std::snprintf(cell, sizeof(cell), "%-22s", name.c_str());
+    s << cell;
+    for (double level : levels) {
+      const int i = fastest_reaching(rows, of_row, name, metric, level);
+      if (i < 0) std::snprintf(cell, sizeof(cell), " %12s", "-");
+      else std::snprintf(cell, sizeof(cell), " %12.3f", rows[size_t(i)].device_ms.median);
+      s << cell;
+    }
+    const int best = most_accurate(rows, of_row, name, metric);
+    if (best >= 0) {
+      std::snprintf(cell, sizeof(cell), "   %s (%.3f)", number_percent(rows[size_t(best)].error(metric)).c_str(),
+                    rows[size_t(best)].device_ms.median);
+      s << cell;
+    }
+    s << "\n";
+  }
+  if (floor > 0) s << "(noise): at or under twice the reference's own noise, " << number_percent(floor / 2) << "\n";
+  return s.str();
+}
+
+nlohmann::ordered_json time_to_error_json(const std::vector<TradeoffRow>& rows, const std::string& metric,
+                                          const std::vector<double>& levels, double floor) {
+  std::vector<std::string> of_row;
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (const std::string& name : mode_series(rows, &of_row)) {
+    nlohmann::ordered_json reach = nlohmann::ordered_json::array();
+    for (double level : levels) {
+      const int i = fastest_reaching(rows, of_row, name, metric, level);
+      reach.push_back({{"error", level},
+                       {"below_reference_noise", level <= floor},
+                       {"device_ms", i < 0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(rows[size_t(i)].device_ms.median)},
+                       {"setting", i < 0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(rows[size_t(i)].setting.label())}});
+    }
+    const int best = most_accurate(rows, of_row, name, metric);
+    out.push_back({{"series", name},
+                   {"reach", reach},
+                   {"smallest_error", best < 0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(rows[size_t(best)].error(metric))},
+                   {"smallest_error_setting", best < 0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(rows[size_t(best)].setting.label())}});
+  }
+  return out;
 }
 
 nlohmann::ordered_json tradeoff_json_rows(const std::vector<TradeoffRow>& rows) {
