@@ -40,6 +40,7 @@ struct TradeoffOptions {
   int device = 0, mirror_depth = 1, bounces = 2, warmup = 1, repeat = 3;
   uint32_t seed = 1, reference_spp = 0, reference_passes = 4;
   double budget_ms = 0, target_error = 0;
+  float rmax = 0;
   bool quiet = false;
   TradeoffGridLists grid;
 };
@@ -121,7 +122,7 @@ int run_tradeoff(const TradeoffOptions& o) {
   base.seed = o.seed;
   if (!o.resolution.empty()) parse_resolution(o.resolution, &base.width, &base.height);
   std::vector<RenderSettings> settings;
-  for (const TradeoffSetting& s : grid) settings.push_back(s.render_settings(base, o.bounces));
+  for (const TradeoffSetting& s : grid) settings.push_back(s.render_settings(base, o.bounces, o.rmax));
   if (o.reference_spp > 0) {
     PathSettings reference;
     reference.samples = o.reference_spp;
@@ -243,6 +244,8 @@ Run add_tradeoff_command(CLI::App& app) {
   cmd->add_option("--bounces", o->bounces, "Diffuse bounces of indirect light, every setting and the reference")
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "Random seed")->capture_default_str();
+  cmd->add_option("--rmax", o->rmax, "Largest footprint semiaxis and k-NN search radius of every photon setting, "
+                                     "metres (default: 10% of the scene diagonal)");
   const std::string grid = "Grid (comma-separated lists)";
   cmd->add_option("--estimators", o->grid.estimators, "pd, knn, radius (photon mapping) and path (path tracer)")
       ->capture_default_str()->group(grid);

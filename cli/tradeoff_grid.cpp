@@ -68,7 +68,7 @@ std::string TradeoffSetting::label() const {
 
 std::string TradeoffSetting::series() const { return estimator == "path" ? "path tracer" : "photon " + estimator; }
 
-RenderSettings TradeoffSetting::render_settings(const RenderSettings& base, int bounces) const {
+RenderSettings TradeoffSetting::render_settings(const RenderSettings& base, int bounces, float rmax) const {
   RenderSettings s = base;
   s.passes = passes;
   if (estimator == "path") {
@@ -80,6 +80,7 @@ RenderSettings TradeoffSetting::render_settings(const RenderSettings& base, int 
     auto photon = std::make_shared<PhotonSettings>();
     photon->photons = photons;
     photon->bounces = bounces;
+    photon->rmax = rmax;
     value_of(kEstimatorNames, estimator, &photon->estimator);
     if (estimator == "pd") photon->smoothing = float(parameter);
     if (estimator == "knn") photon->knn_k = int(parameter);

@@ -20,7 +20,8 @@ struct TradeoffSetting {
   std::string label() const;   // "pd 262144 s=8 x4", "path spp=16 x4"
   std::string series() const;  // the plot's colour: "photon pd", "path tracer", ...
   // base (scene, resolution, seed, mirror depth) with this point's method and passes.
-  RenderSettings render_settings(const RenderSettings& base, int bounces) const;
+  // rmax: footprint clamp and k-NN search radius of the photon estimators, metres (0: default).
+  RenderSettings render_settings(const RenderSettings& base, int bounces, float rmax) const;
 };
 
 // The lists as given on the command line.
