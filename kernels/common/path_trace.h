@@ -110,17 +110,13 @@ PM_DEVICE void kernel_path_trace(const KernelGlobals* kg, const LaunchParams* p,
   Vec3 indirect = vec3_splat(0.0f);
   float inv_samples = 1.0f / (float)(p->path_samples > 0u ? p->path_samples : 1u);
   for (uint depth = 0; depth <= p->mirror_depth; ++depth) {
-    uint record = depth * pixels + pixel;
-    float4 pos = kg->shade_position[record];
-    int material_index = PM_AS_INT(pos.w);
-    if (material_index < 0) break;
-    Material m = material_load(kg->materials, material_index);
-    Vec3 x = vec3_from_float4(pos), n = vec3_from_float4(kg->shade_normal[record]);
-    Vec3 wo = vec3_from_float4(kg->shade_outgoing[record]);
+    ShadingPoint sp;
+    if (!shading_point_load(kg, depth * pixels + pixel, &sp)) break;
     Vec3 sum = vec3_splat(0.0f);
     for (uint s = 0; s < p->path_samples; ++s)
-      sum = vec3_add(sum, path_radiance(kg, p, &m, x, n, wo, pixel, depth, p->path_first_sample + s));
-    indirect = vec3_add(indirect, vec3_mul(vec3_from_float4(kg->shade_weight[record]), vec3_scale(sum, inv_samples)));
+      sum = vec3_add(sum, path_radiance(kg, p, &sp.material, sp.position, sp.normal, sp.outgoing, pixel, depth,
+                                        p->path_first_sample + s));
+    indirect = vec3_add(indirect, vec3_mul(sp.weight, vec3_scale(sum, inv_samples)));
   }
   film_add(kg, pixel, indirect, vec3_splat(0.0f));
 }

@@ -27,28 +27,29 @@ std::vector<bool> pareto_front(const std::vector<TradeoffPoint>& points) {
   return front;
 }
 
-int best_within_time(const std::vector<TradeoffPoint>& points, double budget_ms) {
+// The index of the best finite point that accept() admits, better(a, b) saying a beats b; -1 if none.
+template <typename Accept, typename Better>
+int best_index(const std::vector<TradeoffPoint>& points, Accept accept, Better better) {
   int best = -1;
-  for (size_t i = 0; i < points.size(); ++i) {
-    const TradeoffPoint& p = points[i];
-    if (!finite(p) || p.time_ms > budget_ms) continue;
-    if (best < 0 || p.error < points[best].error ||
-        (p.error == points[best].error && p.time_ms < points[best].time_ms))
-      best = int(i);
-  }
+  for (size_t i = 0; i < points.size(); ++i)
+    if (finite(points[i]) && accept(points[i]) && (best < 0 || better(points[i], points[size_t(best)]))) best = int(i);
   return best;
 }
 
+int best_within_time(const std::vector<TradeoffPoint>& points, double budget_ms) {
+  return best_index(
+      points, [&](const TradeoffPoint& p) { return p.time_ms <= budget_ms; },
+      [](const TradeoffPoint& a, const TradeoffPoint& b) {
+        return a.error < b.error || (a.error == b.error && a.time_ms < b.time_ms);
+      });
+}
+
 int fastest_within_error(const std::vector<TradeoffPoint>& points, double target) {
-  int best = -1;
-  for (size_t i = 0; i < points.size(); ++i) {
-    const TradeoffPoint& p = points[i];
-    if (!finite(p) || p.error > target) continue;
-    if (best < 0 || p.time_ms < points[best].time_ms ||
-        (p.time_ms == points[best].time_ms && p.error < points[best].error))
-      best = int(i);
-  }
-  return best;
+  return best_index(
+      points, [&](const TradeoffPoint& p) { return p.error <= target; },
+      [](const TradeoffPoint& a, const TradeoffPoint& b) {
+        return a.time_ms < b.time_ms || (a.time_ms == b.time_ms && a.error < b.error);
+      });
 }
 
 }  // namespace pm
