@@ -45,12 +45,27 @@ struct TradeoffOptions {
   TradeoffGridLists grid;
 };
 
-std::string describe_pick(const std::vector<TradeoffRow>& rows, int index, const std::string& metric) {
-  char text[256];
-  const TradeoffRow& r = rows[size_t(index)];
-  std::snprintf(text, sizeof(text), "%s (%.3f ms, %s %.4g)", r.setting.label().c_str(), r.device_ms.median,
-                metric.c_str(), r.error(metric));
+std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", v);
   return text;
+}
+
+// A --budget-ms or --target-error answer: a line for the report and an entry in the JSON.
+void add_pick(const std::vector<TradeoffRow>& rows, int best, const std::string& metric, const char* key, double limit,
+              const std::string& what, const char* none, std::string* picks, nlohmann::ordered_json* j) {
+  std::string answer = none;
+  nlohmann::ordered_json label = nullptr;
+  if (best >= 0) {
+    const TradeoffRow& r = rows[size_t(best)];
+    char text[256];
+    std::snprintf(text, sizeof(text), "%s (%.3f ms, %s %.4g)", r.setting.label().c_str(), r.device_ms.median,
+                  metric.c_str(), r.error(metric));
+    answer = text;
+    label = r.setting.label();
+  }
+  *picks += what + answer + "\n";
+  (*j)[key] = {{"limit", limit}, {"best", label}};
 }
 
 // The reference: read from --reference, or rendered by the path tracer and written beside the
@@ -197,20 +212,13 @@ int run_tradeoff(const TradeoffOptions& o) {
   std::vector<TradeoffPoint> points;
   for (const TradeoffRow& r : rows) points.push_back({r.device_ms.median, r.error(o.metric)});
   std::string picks;
-  if (o.budget_ms > 0) {
-    const int best = best_within_time(points, o.budget_ms);
-    char line[64];
-    std::snprintf(line, sizeof(line), "best within %g ms: ", o.budget_ms);
-    picks += line + (best < 0 ? std::string("none of the settings is that fast") : describe_pick(rows, best, o.metric)) + "\n";
-    j["budget_ms"] = {{"budget", o.budget_ms}, {"best", best < 0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(rows[size_t(best)].setting.label())}};
-  }
-  if (o.target_error > 0) {
-    const int best = fastest_within_error(points, o.target_error);
-    char line[64];
-    std::snprintf(line, sizeof(line), "fastest with %s <= %g: ", o.metric.c_str(), o.target_error);
-    picks += line + (best < 0 ? std::string("none of the settings is that accurate") : describe_pick(rows, best, o.metric)) + "\n";
-    j["target_error"] = {{"target", o.target_error}, {"best", best < 0 ? nlohmann::ordered_json(nullptr) : nlohmann::ordered_json(rows[size_t(best)].setting.label())}};
-  }
+  if (o.budget_ms > 0)
+    add_pick(rows, best_within_time(points, o.budget_ms), o.metric, "budget_ms", o.budget_ms,
+             "best within " + number_text(o.budget_ms) + " ms: ", "none of the settings is that fast", &picks, &j);
+  if (o.target_error > 0)
+    add_pick(rows, fastest_within_error(points, o.target_error), o.metric, "target_error", o.target_error,
+             "fastest with " + o.metric + " <= " + number_text(o.target_error) + ": ",
+             "none of the settings is that accurate", &picks, &j);
   const std::string title = scene.name + ", " + std::to_string(width) + "x" + std::to_string(height) + ", " + info.name;
   write_file_atomically((folder / "tradeoff.txt").string(), table + picks);
   write_file_atomically((folder / "tradeoff.json").string(), j.dump(2) + "\n");
