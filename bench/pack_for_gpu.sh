@@ -9,6 +9,8 @@
 #   OUT_DIR/bin, lib, env.sh      device-bundle's output
 #   OUT_DIR/data/                 tests/data (PM_TEST_DATA_DIR for the bundled test binaries)
 #   OUT_DIR/bench/run_suite.sh    the suite; finds ../bin/pmrender and ../env.sh itself
+#   OUT_DIR/bench/tradeoff_suite.sh, mitsuba_peer.py, OUT_DIR/tests/mitsuba/pm_mitsuba.py:
+#                                 the speed/accuracy suite and its Mitsuba peer (docs/tradeoff.md)
 #   OUT_DIR/bench/scenes/*.json   the bench scene files, paths rewritten to ../../shared/scenes/
 #   OUT_DIR/shared/scenes/...     the OBJ and MTL files they name (no textures: nothing reads them)
 #   OUT_DIR/COMMIT                the commit the binaries were built from
@@ -31,7 +33,10 @@ done
 "$shared/tools/device-bundle" "$out" "${binaries[@]}" >/dev/null
 cp -r "$repo/tests/data" "$out/data"
 mkdir -p "$out/bench/scenes" "$out/shared/scenes"
-cp "$repo/bench/run_suite.sh" "$out/bench/"
+cp "$repo/bench/run_suite.sh" "$repo/bench/tradeoff_suite.sh" "$repo/bench/mitsuba_peer.py" "$out/bench/"
+# The Mitsuba converter mitsuba_peer.py imports (docs/tradeoff.md, "H200 (CUDA)").
+mkdir -p "$out/tests/mitsuba"
+cp "$repo/tests/mitsuba/pm_mitsuba.py" "$repo/tests/mitsuba/requirements.txt" "$out/tests/mitsuba/"
 
 # The scene JSONs name their meshes as ../../../shared/scenes/<path> (relative to bench/scenes/ in
 # the repository); in the bundle, bench/scenes/ is two levels below the bundle's shared/.

@@ -17,6 +17,8 @@ Run add_compare_command(CLI::App& app);
 Run add_bench_command(CLI::App& app);
 Run add_frames_command(CLI::App& app);
 Run add_farm_command(CLI::App& app);
+Run add_export_scene_command(CLI::App& app);
+Run add_tradeoff_command(CLI::App& app);
 
 // "640x480" -> width, height; throws InputError naming the option on anything else.
 void parse_resolution(const std::string& text, int* width, int* height);

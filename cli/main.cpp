@@ -16,6 +16,8 @@ int main(int argc, char** argv) {
   pm::cli::Run bench = pm::cli::add_bench_command(app);
   pm::cli::Run frames = pm::cli::add_frames_command(app);
   pm::cli::Run farm = pm::cli::add_farm_command(app);
+  pm::cli::Run export_scene = pm::cli::add_export_scene_command(app);
+  pm::cli::Run tradeoff = pm::cli::add_tradeoff_command(app);
 
   try {
     app.parse(argc, argv);
@@ -31,6 +33,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("bench")) return bench();
     if (app.got_subcommand("frames")) return frames();
     if (app.got_subcommand("farm")) return farm();
+    if (app.got_subcommand("export-scene")) return export_scene();
+    if (app.got_subcommand("tradeoff")) return tradeoff();
   } catch (const pm::SettingError& e) {
     // The library names the setting; on the command line it is the option of the same name.
     std::cerr << "pmrender: --" << e.what() << "\n";

@@ -7,6 +7,7 @@ const std::vector<MethodEntry>& methods() {
   static const std::vector<MethodEntry> table = {
       {"photon", "photon mapping with photon-differential footprints (Fabianowski & Dingliana 2009)",
        &add_photon_options},
+      {"path", "reference path tracer with next-event estimation, the same BRDFs and bounces", &add_path_options},
   };
   return table;
 }

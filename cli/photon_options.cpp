@@ -71,7 +71,7 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
   const std::string group = "Photon mapping (--method photon)";
   cmd->add_option("--photons", ph.photons, "Photons emitted per pass (0: direct light only)")
       ->capture_default_str()->group(group);
-  cmd->add_option("--bounces", ph.bounces, "Diffuse bounces of indirect light")->capture_default_str()->group(group);
+  cmd->add_option("--bounces", ph.bounces, "Diffuse bounces of indirect light (also --method path)")->capture_default_str()->group(group);
   cmd->add_option("--estimator", o->estimator, "pd (photon differentials), knn or radius")
       ->capture_default_str()->check(CLI::IsMember(names_of(kEstimatorNames)))->group(group);
   cmd->add_option("--kernel", o->kernel, "Density estimation kernel: constant or epanechnikov")

@@ -1,7 +1,9 @@
 /* Reflection at a surface: the modified Phong BRDF (Lafortune & Willems 1994, "Using the
    Modified Phong Reflectance Model for Physically Based Rendering") plus a perfect mirror term
    handled by the tracers. f_r = rho_d / pi + rho_s (n + 2) / (2 pi) cos^n(alpha), alpha the angle
-   between the mirror direction of wi and wo; energy-conserving when rho_d + rho_s <= 1. */
+   between the mirror direction of wi and wo; energy-conserving when rho_d + rho_s <= 1.
+   Also the importance sampling of each lobe, shared by the photon tracer (photon_trace.h) and the
+   path tracer (path_trace.h), so both walk the same distributions with the same weights. */
 #ifndef PM_BRDF_H
 #define PM_BRDF_H
 
@@ -35,6 +37,55 @@ PM_DEVICE Vec3 brdf_eval(const Material* m, Vec3 n, Vec3 wi, Vec3 wo)
     }
   }
   return f;
+}
+
+/* Mean of the three channels: the probability of choosing a reflectance's event in Russian
+   roulette (photon tracer and path tracer alike). */
+PM_DEVICE float channel_mean(Vec3 c) { return (c.x + c.y + c.z) * (1.0f / 3.0f); }
+
+/* A direction sampled about an axis: polar angle (cos, sin) and azimuth phi. */
+typedef struct LobeSample {
+  float cos_theta, sin_theta, phi;
+} LobeSample;
+
+/* Diffuse lobe: cosine-weighted about the normal, cos theta = sqrt(1 - u1), sin theta = sqrt(u1)
+   (the same distribution as cos theta = sqrt(u1), but cos theta is never exactly 0, so the
+   direction is never tangent to the surface), phi = 2 pi u2. pdf cos theta / pi, so
+   f_d cos theta / pdf = rho_d. */
+PM_DEVICE LobeSample brdf_sample_diffuse(float u1, float u2)
+{
+  LobeSample s;
+  s.cos_theta = pm_sqrtf(1.0f - u1);
+  s.sin_theta = pm_sqrtf(u1);
+  s.phi = PM_TWO_PI * u2;
+  return s;
+}
+
+/* Glossy lobe: about the mirror direction r of the incoming direction, cos alpha = u1^(1/(n+1)),
+   phi = 2 pi u2, pdf (n + 1) / (2 pi) cos^n alpha (the lobe's importance sampling, Lafortune &
+   Willems 1994). Samples may fall below the surface; brdf_glossy_sample_weight is then 0. */
+PM_DEVICE LobeSample brdf_sample_glossy(float exponent, float u1, float u2)
+{
+  LobeSample s;
+  s.cos_theta = pm_powf(pm_fmaxf(u1, 1e-12f), 1.0f / (exponent + 1.0f));
+  s.sin_theta = pm_sqrtf(pm_fmaxf(0.0f, 1.0f - s.cos_theta * s.cos_theta));
+  s.phi = PM_TWO_PI * u2;
+  return s;
+}
+
+/* f_s cos theta / pdf of a brdf_sample_glossy direction, per unit rho_s: the lobe's cos^n alpha
+   cancels, leaving (n + 2) / (n + 1) cos theta, theta the angle to the normal (0 below it). */
+PM_DEVICE float brdf_glossy_sample_weight(float exponent, float cos_theta)
+{
+  return cos_theta > 0.0f ? (exponent + 2.0f) / (exponent + 1.0f) * cos_theta : 0.0f;
+}
+
+/* The sample as a world direction, (t, b, axis) an orthonormal frame. */
+PM_DEVICE Vec3 lobe_direction(LobeSample s, Vec3 t, Vec3 b, Vec3 axis)
+{
+  float sin_phi, cos_phi;
+  pm_sincosf(s.phi, &sin_phi, &cos_phi);
+  return vec3_frame_to_world(t, b, axis, vec3(cos_phi * s.sin_theta, sin_phi * s.sin_theta, s.cos_theta));
 }
 
 #endif

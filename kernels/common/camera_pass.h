@@ -51,6 +51,28 @@ PM_DEVICE Vec3 direct_light(const KernelGlobals* kg, const LaunchParams* p, cons
   return sum;
 }
 
+/* A shading point as the methods read it back (gather, path tracer). */
+typedef struct ShadingPoint {
+  Material material;
+  Vec3 position, normal, outgoing; /* normal and outgoing face the viewer */
+  Vec3 weight;                     /* product of the eye path's mirror reflectances */
+} ShadingPoint;
+
+/* The shading point of record (depth * pixels + pixel); 0 when the eye path ended before it
+   (every deeper record is empty too). */
+PM_DEVICE int shading_point_load(const KernelGlobals* kg, uint record, ShadingPoint* sp)
+{
+  float4 pos = kg->shade_position[record];
+  int material_index = PM_AS_INT(pos.w);
+  if (material_index < 0) return 0;
+  sp->material = material_load(kg->materials, material_index);
+  sp->position = vec3_from_float4(pos);
+  sp->normal = vec3_from_float4(kg->shade_normal[record]);
+  sp->outgoing = vec3_from_float4(kg->shade_outgoing[record]);
+  sp->weight = vec3_from_float4(kg->shade_weight[record]);
+  return 1;
+}
+
 PM_DEVICE void shading_point_clear(const KernelGlobals* kg, uint record)
 {
   kg->shade_position[record] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_AS_FLOAT(-1));

@@ -7,6 +7,7 @@
 #define PM_GATHER_H
 
 #include "brdf.h"
+#include "camera_pass.h"
 #include "film.h"
 #include "footprint.h"
 #include "gather_reach.h"
@@ -52,20 +53,16 @@ PM_DEVICE void kernel_gather(const KernelGlobals* kg, const LaunchParams* p, uin
   Vec3 indirect = vec3_splat(0.0f), caustic = vec3_splat(0.0f);
   uint accepted = 0, points = 0;
   for (uint depth = 0; depth <= p->mirror_depth; ++depth) {
-    uint record = depth * pixels + pixel;
-    float4 pos = kg->shade_position[record];
-    int material_index = PM_AS_INT(pos.w);
-    if (material_index < 0) break;
-    Material m = material_load(kg->materials, material_index);
-    if (channel_mean(material_diffuse(&m)) + channel_mean(material_glossy(&m)) <= 0.0f) continue;
-    Vec3 weight = vec3_from_float4(kg->shade_weight[record]);
+    ShadingPoint sp;
+    if (!shading_point_load(kg, depth * pixels + pixel, &sp)) break;
+    const Material* m = &sp.material;
+    if (channel_mean(material_diffuse(m)) + channel_mean(material_glossy(m)) <= 0.0f) continue;
     Vec3 point_indirect = vec3_splat(0.0f), point_caustic = vec3_splat(0.0f);
-    Vec3 x = vec3_from_float4(pos), n = vec3_from_float4(kg->shade_normal[record]);
-    Vec3 wo = vec3_from_float4(kg->shade_outgoing[record]);
-    if (p->estimator == PM_ESTIMATOR_KNN) knn_gather_at(kg, p, &m, x, n, wo, &point_indirect, &point_caustic, &accepted);
-    else gather_at(kg, p, &m, x, n, wo, &point_indirect, &point_caustic, &accepted);
-    indirect = vec3_add(indirect, vec3_mul(weight, point_indirect));
-    caustic = vec3_add(caustic, vec3_mul(weight, point_caustic));
+    if (p->estimator == PM_ESTIMATOR_KNN)
+      knn_gather_at(kg, p, m, sp.position, sp.normal, sp.outgoing, &point_indirect, &point_caustic, &accepted);
+    else gather_at(kg, p, m, sp.position, sp.normal, sp.outgoing, &point_indirect, &point_caustic, &accepted);
+    indirect = vec3_add(indirect, vec3_mul(sp.weight, point_indirect));
+    caustic = vec3_add(caustic, vec3_mul(sp.weight, point_caustic));
     ++points;
   }
   film_add(kg, p, pixel, indirect, caustic);

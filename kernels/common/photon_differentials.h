@@ -11,6 +11,7 @@
 #ifndef PM_PHOTON_DIFFERENTIALS_H
 #define PM_PHOTON_DIFFERENTIALS_H
 
+#include "brdf.h"
 #include "types.h"
 #include "vec3.h"
 
@@ -160,9 +161,9 @@ PM_DEVICE float photon_reemit_in_frame(PhotonRay* ray, Vec3 t, Vec3 b, Vec3 axis
 {
   Vec3 dl, dul, dvl;
   photon_sphere_direction(cos_theta, sin_theta, phi, &dl, &dul, &dvl);
-  Vec3 d = vec3_add(vec3_add(vec3_scale(t, dl.x), vec3_scale(b, dl.y)), vec3_scale(axis, dl.z));
-  Vec3 du = vec3_add(vec3_add(vec3_scale(t, dul.x), vec3_scale(b, dul.y)), vec3_scale(axis, dul.z));
-  Vec3 dv = vec3_add(vec3_add(vec3_scale(t, dvl.x), vec3_scale(b, dvl.y)), vec3_scale(axis, dvl.z));
+  Vec3 d = vec3_frame_to_world(t, b, axis, dl);
+  Vec3 du = vec3_frame_to_world(t, b, axis, dul);
+  Vec3 dv = vec3_frame_to_world(t, b, axis, dvl);
 
   float area_in = vec3_length(vec3_cross(ray->dp_u, ray->dp_v));
   float area_dir = vec3_length(vec3_cross(du, dv)); /* 1 up to rounding (eq. 8) */
@@ -182,7 +183,8 @@ PM_DEVICE float photon_diffuse_reemit(PhotonRay* ray, Vec3 n, float u1, float u2
   Vec3 nf = vec3_dot(ray->direction, n) > 0.0f ? vec3_neg(n) : n;
   Vec3 t, b;
   vec3_onb(nf, &t, &b);
-  return photon_reemit_in_frame(ray, t, b, nf, pm_sqrtf(1.0f - u1), pm_sqrtf(u1), PM_TWO_PI * u2);
+  LobeSample s = brdf_sample_diffuse(u1, u2);
+  return photon_reemit_in_frame(ray, t, b, nf, s.cos_theta, s.sin_theta, s.phi);
 }
 
 #endif

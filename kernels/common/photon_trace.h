@@ -14,10 +14,6 @@
 #include "rng.h"
 #include "scene_traverse.h"
 
-/* Mirror bounces a photon may take beyond its diffuse bounces (caps mirror-to-mirror loops). */
-#define PM_PHOTON_MAX_SPECULAR 8
-
-PM_DEVICE float channel_mean(Vec3 c) { return (c.x + c.y + c.z) * (1.0f / 3.0f); }
 
 /* Photons are shared out by power: light l owns pass indices [first, first + count) of
    photon_emitters[l] = (first, count, 0, 0). */
@@ -40,9 +36,8 @@ PM_DEVICE int photon_glossy_reemit(PhotonRay* ray, Vec3 n, float exponent, float
   Vec3 r = vec3_reflect(ray->direction, nf);
   Vec3 t, b;
   vec3_onb(r, &t, &b);
-  float cos_a = pm_powf(pm_fmaxf(u1, 1e-12f), 1.0f / (exponent + 1.0f));
-  float sin_a = pm_sqrtf(pm_fmaxf(0.0f, 1.0f - cos_a * cos_a));
-  photon_reemit_in_frame(ray, t, b, r, cos_a, sin_a, PM_TWO_PI * u2);
+  LobeSample s = brdf_sample_glossy(exponent, u1, u2);
+  photon_reemit_in_frame(ray, t, b, r, s.cos_theta, s.sin_theta, s.phi);
   return vec3_dot(ray->direction, nf) > 0.0f;
 }
 
@@ -135,8 +130,7 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
           float exponent = m.glossy.w;
           photon_roulette_rescale(&ray, p_glossy);
           if (!photon_glossy_reemit(&ray, n, exponent, u.u0, u.u1)) break;
-          /* Lobe sampling weight f cos / pdf of the normalised modified Phong lobe. */
-          float weight = (exponent + 2.0f) / (exponent + 1.0f) * vec3_dot(side, ray.direction);
+          float weight = brdf_glossy_sample_weight(exponent, vec3_dot(side, ray.direction));
           flux = vec3_scale(vec3_mul(flux, material_glossy(&m)), weight / p_glossy);
         }
         ++diffuse_bounces;

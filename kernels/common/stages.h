@@ -8,6 +8,7 @@
 #include "camera_pass.h"
 #include "film.h"
 #include "gather.h"
+#include "path_trace.h"
 #include "photon_footprint.h"
 #include "footprint_scale.h"
 #include "photon_map_stage.h"

@@ -94,6 +94,11 @@ typedef struct LaunchParams {
   uint photon_offset_hi; /* high 32 bits of the pass's first photon index (frames of 2^32 photons and more) */
   uint film_odd_passes;  /* of film_passes, those with an odd pass number (film_odd_sum's) */
   uint pad0;             /* (a whole 16-byte row) */
+
+  uint path_samples;      /* path tracer: paths per shading point in this pass */
+  uint path_first_sample; /* path tracer: index of the pass's first path (random stream) */
+  uint path_frame;        /* path tracer: the frame whose random numbers the paths draw */
+  uint path_unused;       /* keeps the row 16 bytes */
 } LaunchParams;
 
 /* Photon emission sequences (--photon-sequence). RANDOM: Philox keyed by (seed, photon_frame).
@@ -106,6 +111,10 @@ typedef struct LaunchParams {
 #define PM_SORT_RADIX_BITS 4
 #define PM_SORT_RADIX (1 << PM_SORT_RADIX_BITS)
 #define PM_SORT_TILE 256
+
+/* Perfect-mirror reflections a light path may take besides its diffuse and glossy bounces (caps
+   mirror-to-mirror loops): the photon tracer and the path tracer count the same paths. */
+#define PM_PHOTON_MAX_SPECULAR 8
 
 /* Bounds of the per-ray traversal stack; the host BVH builder guarantees depth below this. */
 #define PM_TRAVERSAL_STACK 64

@@ -46,4 +46,10 @@ PM_DEVICE void vec3_onb(Vec3 n, Vec3* t, Vec3* b)
   *b = vec3(c, sign + n.y * n.y * a, -n.y);
 }
 
+/* Local coordinates (x, y, z) in the orthonormal frame (t, b, axis) as a world vector. */
+PM_DEVICE Vec3 vec3_frame_to_world(Vec3 t, Vec3 b, Vec3 axis, Vec3 v)
+{
+  return vec3_add(vec3_add(vec3_scale(t, v.x), vec3_scale(b, v.y)), vec3_scale(axis, v.z));
+}
+
 #endif

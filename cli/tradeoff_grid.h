@@ -1,0 +1,46 @@
+// The grid of settings `pmrender tradeoff` sweeps: which estimators, photon counts, smoothing /
+// k / radius values, passes and path-tracer samples, parsed from comma-separated lists, expanded
+// into one RenderSettings per point, each with a short label for tables and plots.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "render/renderer.h"
+
+namespace pm::cli {
+
+struct TradeoffSetting {
+  std::string estimator;  // pd, knn, radius (photon mapping) or path
+  uint64_t photons = 0;   // photons per pass (photon mapping)
+  uint32_t passes = 1;
+  double parameter = 0;   // pd: smoothing s; knn: k; radius: metres (0: the scene default); path: spp
+
+  std::string label() const;   // "pd 262144 s=8 x4", "path spp=16 x4"
+  std::string series() const;  // the plot's colour: "photon pd", "path tracer", ...
+  // base (scene, resolution, seed, mirror depth) with this point's method and passes.
+  // rmax: footprint clamp and k-NN search radius of the photon estimators, metres (0: default).
+  RenderSettings render_settings(const RenderSettings& base, int bounces, float rmax) const;
+};
+
+// The lists as given on the command line.
+struct TradeoffGridLists {
+  std::string estimators = "pd,knn,radius,path";
+  std::string photons = "65536,262144,1048576";
+  std::string passes = "1,4";
+  std::string smoothing = "8";
+  std::string k = "64";
+  std::string radius = "0";
+  std::string spp = "1,4,16";
+};
+
+// Every combination, estimator by estimator in the order given. InputError naming the option
+// ("--photons: ...") for an empty list, a bad number or an unknown estimator.
+std::vector<TradeoffSetting> expand_tradeoff_grid(const TradeoffGridLists& lists);
+
+// "1,4,16" -> {1, 4, 16}: finite numbers, each > 0 (>= 0 where zero_allowed); InputError naming
+// the option otherwise.
+std::vector<double> parse_number_list(const std::string& text, const std::string& option, bool zero_allowed = false);
+
+}  // namespace pm::cli

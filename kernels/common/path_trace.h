@@ -1,0 +1,129 @@
+/* The reference path tracer (--method path): from every shading point of the camera pass (S5),
+   unidirectional path tracing with next-event estimation to every point light at each vertex,
+   the modified-Phong BRDF and mirror term of brdf.h, and the photon tracer's Russian roulette over
+   the reflection events (photon_trace.h), so that its indirect layer converges to exactly what
+   the photon mapper's indirect layer estimates (docs/tradeoff.md, "Which light paths").
+
+   A path x <- v1 <- ... <- vn <- light starts at the shading point x, whose own diffuse and
+   glossy lobes choose the first direction (its mirror term belongs to the camera pass), and
+   reflects at v1..vn: a diffuse or glossy event (D) or a perfect-mirror event (S). vn is joined
+   to the light by a shadow ray, so it is a D event. Counted, as in the photon tracer: paths with
+   1 to max_bounces D events and at most PM_PHOTON_MAX_SPECULAR S events. Not counted: paths that
+   leave the light through a mirror (light -> S -> ...): a point light seen in a perfect mirror
+   has zero probability under both BRDF sampling and next-event estimation. The photon mapper
+   does trace them (its caustic layer and part of its indirect layer).
+
+   One work item per pixel (in tile order); each pass adds the mean of path_samples paths per shading point,
+   weighted by the shading point's mirror weight, into film_indirect_sum (the caustic sum gets
+   nothing). Random numbers: Philox keyed by (seed, path_frame), counter (pixel, depth and
+   vertex, PM_STREAM_PATH, path index within the frame). */
+#ifndef PM_PATH_TRACE_H
+#define PM_PATH_TRACE_H
+
+#include "brdf.h"
+#include "camera_pass.h"
+#include "film.h"
+#include "kernel_globals.h"
+#include "pixel_order.h"
+#include "rng.h"
+#include "scene_traverse.h"
+
+#define PM_STREAM_PATH 0x50415448u /* "PATH" */
+
+/* Samples a direction from the diffuse (glossy == 0) or glossy lobe of m at a point with normal
+   n facing wo. Returns f cos / pdf per channel (rho_d, or rho_s times the lobe weight); zero when
+   a glossy sample falls below the surface. */
+PM_DEVICE Vec3 path_sample_lobe(const Material* m, int glossy, Vec3 n, Vec3 wo, float u1, float u2, Vec3* wi)
+{
+  Vec3 t, b;
+  if (!glossy) {
+    vec3_onb(n, &t, &b);
+    *wi = lobe_direction(brdf_sample_diffuse(u1, u2), t, b, n);
+    return material_diffuse(m);
+  }
+  Vec3 r = vec3_reflect(vec3_neg(wo), n);
+  vec3_onb(r, &t, &b);
+  *wi = lobe_direction(brdf_sample_glossy(m->glossy.w, u1, u2), t, b, r);
+  return vec3_scale(material_glossy(m), brdf_glossy_sample_weight(m->glossy.w, vec3_dot(n, *wi)));
+}
+
+/* One path's estimate of the indirect radiance leaving x towards wo (n facing wo). */
+PM_DEVICE Vec3 path_radiance(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 x, Vec3 n, Vec3 wo,
+                             uint pixel, uint depth, uint path)
+{
+  Vec3 radiance = vec3_splat(0.0f);
+  float p_diffuse = channel_mean(material_diffuse(m)), p_glossy = channel_mean(material_glossy(m));
+  if (p->max_bounces == 0u || p_diffuse + p_glossy <= 0.0f) return radiance;
+  uint event_base = depth << 8; /* at most max_bounces + PM_PHOTON_MAX_SPECULAR + 1 < 256 vertices */
+
+  /* x: the diffuse or the glossy lobe, chosen in proportion to their reflectances. */
+  Uniform4 u = rng_uniform4_bits(rng_bits4(p->seed, p->path_frame, pixel, event_base, PM_STREAM_PATH, path));
+  float p_lobe_diffuse = p_diffuse / (p_diffuse + p_glossy);
+  int glossy = u.u2 >= p_lobe_diffuse;
+  Vec3 dir;
+  Vec3 beta = path_sample_lobe(m, glossy, n, wo, u.u0, u.u1, &dir);
+  beta = vec3_scale(beta, 1.0f / (glossy ? 1.0f - p_lobe_diffuse : p_lobe_diffuse));
+  if (vec3_max_component(beta) <= 0.0f) return radiance;
+
+  Vec3 origin = offset_ray_origin(x, n, ray_offset_distance(x, 0.0f, p->ray_epsilon));
+  uint diffuse_events = 0, mirror_events = 0;
+  for (uint vertex = 1; vertex <= p->max_bounces + PM_PHOTON_MAX_SPECULAR; ++vertex) {
+    Ray ray = ray_make(origin, dir);
+    SceneHit hit = scene_trace(kg->scene_nodes, kg->triangles, &ray, 0.0f, 1e30f, 0);
+    if (hit.triangle < 0) break;
+    Vec3 pos = vec3_madd(origin, dir, hit.t);
+    Vec3 nv = scene_triangle_normal(kg->triangles, hit.triangle);
+    if (vec3_dot(nv, dir) > 0.0f) nv = vec3_neg(nv); /* the side the path arrived on */
+    Vec3 wv = vec3_neg(dir);
+    Material mv = material_load(kg->materials, scene_triangle_material(kg->triangles, hit.triangle));
+    float offset = ray_offset_distance(origin, hit.t, p->ray_epsilon);
+
+    /* Next-event estimation: the paths whose last D event is this vertex. */
+    radiance = vec3_add(radiance, vec3_mul(beta, direct_light(kg, p, &mv, pos, nv, wv, offset)));
+
+    /* Russian roulette over this vertex's events, as the photon tracer chooses them. */
+    u = rng_uniform4_bits(rng_bits4(p->seed, p->path_frame, pixel, event_base + vertex, PM_STREAM_PATH, path));
+    float pd = channel_mean(material_diffuse(&mv)), pg = channel_mean(material_glossy(&mv));
+    float pm = channel_mean(material_mirror(&mv));
+    if (u.u2 < pd + pg) {
+      /* A further D event leaves max_bounces no room for the next vertex's light. */
+      if (diffuse_events + 1u >= p->max_bounces) break;
+      int lobe_glossy = u.u2 >= pd;
+      Vec3 f = path_sample_lobe(&mv, lobe_glossy, nv, wv, u.u0, u.u1, &dir);
+      beta = vec3_scale(vec3_mul(beta, f), 1.0f / (lobe_glossy ? pg : pd));
+      if (vec3_max_component(beta) <= 0.0f) break;
+      ++diffuse_events;
+    } else if (u.u2 < pd + pg + pm) {
+      if (mirror_events == PM_PHOTON_MAX_SPECULAR) break;
+      beta = vec3_scale(vec3_mul(beta, material_mirror(&mv)), 1.0f / pm);
+      dir = vec3_reflect(dir, nv);
+      ++mirror_events;
+    } else {
+      break; /* absorbed */
+    }
+    origin = offset_ray_origin(pos, nv, offset);
+  }
+  return radiance;
+}
+
+/* Work item = pixel in tile order (pixel_order.h). */
+PM_DEVICE void kernel_path_trace(const KernelGlobals* kg, const LaunchParams* p, uint item)
+{
+  uint pixel;
+  if (!pixel_of_work_item(item, p->width, p->height, &pixel)) return;
+  uint pixels = p->width * p->height;
+  Vec3 indirect = vec3_splat(0.0f);
+  float inv_samples = 1.0f / (float)(p->path_samples > 0u ? p->path_samples : 1u);
+  for (uint depth = 0; depth <= p->mirror_depth; ++depth) {
+    ShadingPoint sp;
+    if (!shading_point_load(kg, depth * pixels + pixel, &sp)) break;
+    Vec3 sum = vec3_splat(0.0f);
+    for (uint s = 0; s < p->path_samples; ++s)
+      sum = vec3_add(sum, path_radiance(kg, p, &sp.material, sp.position, sp.normal, sp.outgoing, pixel, depth,
+                                        p->path_first_sample + s));
+    indirect = vec3_add(indirect, vec3_mul(sp.weight, vec3_scale(sum, inv_samples)));
+  }
+  film_add(kg, p, pixel, indirect, vec3_splat(0.0f));
+}
+
+#endif

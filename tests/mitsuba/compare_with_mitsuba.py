@@ -1,0 +1,202 @@
+#!/usr/bin/env python3
+"""pmrender's path tracer against Mitsuba 3 on every golden scene and the built-in Cornell box
+(ctest `mitsuba`; tests/mitsuba/README.md says how to run it and why the tolerances are what
+they are). Exit code 0 when every scene agrees within the noise of both renderers and every
+injected bias is detected, 1 otherwise (also when Mitsuba is missing), 2 on bad arguments.
+
+Per scene: `pmrender export-scene` writes what pmrender loaded; Mitsuba renders that (scalar_rgb,
+samples at pixel centres, pm_mitsuba.py); pmrender renders the original scene with
+`--method path`. Each renderer renders twice with different seeds, so the noise of each is
+measured, not assumed. Compared: means over square regions of the combined image, and the image
+mean.
+  - regions: relative mean absolute difference of the region means (every channel) of the two
+    averaged images must be <= 1.5 x what pure noise would give, sqrt(D_pm^2 + D_mi^2) / 2 with
+    D the same difference between a renderer's two seeds, plus 0.2 % for rounding;
+  - image mean: |difference| <= 4 standard errors (from the region differences of the seeds).
+Bias must fail: the same test on pmrender's image x 1.05 (5 % too much light), and on scenes
+without mirrors on pmrender with one bounce fewer, must report a difference (> 4 standard
+errors), or the comparison is too weak to mean anything and the scene fails.
+
+Scenes without mirrors compare exact bounce semantics: pmrender --bounces 2 is Mitsuba
+max_depth 4. With mirrors the two count paths differently (Mitsuba counts mirror reflections as
+depth, pmrender does not: eye mirrors up to --mirror-depth, then up to 8 more besides the
+bounces), so both render to convergence instead: pmrender --bounces 16 --mirror-depth 8 against
+Mitsuba max_depth -1 (Russian roulette, unbiased); what pmrender then leaves out is below
+0.1 % here. Neither renderer samples light that leaves a point light through a perfect mirror
+(docs/tradeoff.md), so the same light paths are compared."""
+import argparse
+import glob
+import json
+import math
+import os
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+# Samples per pixel relative to --pm-spp and --mi-spp, by scene. The Cornell box's light hangs
+# 1 cm under the ceiling: the bright spot it makes there reaches the rest of the room through few
+# paths, so this scene needs the most samples for the same noise. The glossy scene's Mitsuba BSDF
+# is Python (pm_mitsuba.py), the slowest per sample, and needs fewer for the noise wanted.
+SAMPLE_SCALE = {"cornell-box": (4, 6), "glossy": (1, 0.5)}
+ROOT = os.path.dirname(os.path.dirname(HERE))
+
+
+def fail(message):
+    print("compare_with_mitsuba: " + message, file=sys.stderr)
+    sys.exit(1)
+
+
+try:
+    import numpy as np
+    import mitsuba  # noqa: F401  (checked here so a missing install fails with this message)
+except ImportError as e:
+    fail("%s: Mitsuba 3 and numpy are needed (tests/mitsuba/install.sh creates the virtual "
+         "environment; cmake -DPMRENDER_TEST_PYTHON=... points the test at it)" % e)
+
+sys.path.insert(0, HERE)
+import pm_mitsuba  # noqa: E402
+
+
+def read_exr_layers(path):
+    bitmap = mitsuba.Bitmap(path)
+    return {("combined" if name == "<root>" else name): np.array(b, dtype=np.float64) for name, b in bitmap.split()}
+
+
+def region_means(image, block):
+    h, w, c = image.shape
+    return image[: h - h % block, : w - w % block].reshape(h // block, block, w // block, block, c).mean(axis=(1, 3))
+
+
+def rel_mad(a, b):
+    """Relative mean absolute difference of two arrays of region means."""
+    return float(np.abs(a - b).sum() / np.abs(b).sum())
+
+
+def mean_variance(r1, r2):
+    """Variance of the mean of the averaged image, from the region differences of two seeds."""
+    d = (r1 - r2).sum(axis=2)  # channels of a region are not independent: one value per region
+    n = d.size
+    return float((d ** 2).sum() / (4.0 * n * n)) / 9.0  # per channel of the image mean
+
+
+class Verdict:
+    def __init__(self, pm1, pm2, mi1, mi2, block):
+        self.r_pm1, self.r_pm2 = region_means(pm1, block), region_means(pm2, block)
+        self.r_mi1, self.r_mi2 = region_means(mi1, block), region_means(mi2, block)
+        self.noise_pm = rel_mad(self.r_pm1, self.r_pm2)
+        self.noise_mi = rel_mad(self.r_mi1, self.r_mi2)
+        self.var_pm = mean_variance(self.r_pm1, self.r_pm2)
+        self.var_mi = mean_variance(self.r_mi1, self.r_mi2)
+        self.mi = 0.5 * (self.r_mi1 + self.r_mi2)
+        self.bound = 1.5 * math.sqrt(self.noise_pm ** 2 + self.noise_mi ** 2) / 2.0 + 0.002
+
+    def judge(self, pm_regions):
+        """(z of the image means, relative region difference, pass)"""
+        diff = pm_regions.mean() - self.mi.mean()
+        z = diff / math.sqrt(self.var_pm + self.var_mi)
+        mad = rel_mad(pm_regions, self.mi)
+        return z, mad, abs(z) <= 4.0 and mad <= self.bound
+
+
+def pmrender_path(args, scene, out, seed, bounces, mirror_depth, spp):
+    cmd = [args.pmrender, "render"] + ([scene] if scene else []) + [
+        "--backend", args.backend, "--method", "path", "--spp", str(spp), "--bounces", str(bounces),
+        "--mirror-depth", str(mirror_depth), "--resolution", "%dx%d" % (args.size, args.size),
+        "--seed", str(seed), "--float", "-q", "-o", out]
+    subprocess.run(cmd, check=True)
+    return read_exr_layers(out)["combined"]
+
+
+def compare_scene(args, name, scene):
+    work = os.path.join(args.work, name)
+    os.makedirs(work, exist_ok=True)
+    exported = os.path.join(work, name + ".json")
+    subprocess.run([args.pmrender, "export-scene"] + ([scene] if scene else []) + ["-o", exported], check=True,
+                   stdout=subprocess.DEVNULL)
+    with open(exported) as f:
+        mirrors = any(max(m["mirror"]) > 0 for m in json.load(f)["materials"].values())
+    bounces, mirror_depth, max_depth = (16, 8, -1) if mirrors else (args.bounces, 1, args.bounces + 2)
+
+    pm_scale, mi_scale = SAMPLE_SCALE.get(name, (1, 1))
+    pm_spp, mi_spp = int(args.pm_spp * pm_scale), int(args.mi_spp * mi_scale)
+    start = time.time()
+    pm = [pmrender_path(args, scene, os.path.join(work, "pm%d.exr" % s), s, bounces, mirror_depth, pm_spp)
+          for s in (1, 2)]
+    pm_seconds = time.time() - start
+    start = time.time()
+    mi_scene = mitsuba.load_dict(pm_mitsuba.scene_dict(exported, max_depth, args.size, args.size))
+    mi = [pm_mitsuba.render(mi_scene, mi_spp, seed=s) for s in (1, 2)]
+    mi_seconds = time.time() - start
+
+    v = Verdict(pm[0], pm[1], mi[0], mi[1], args.block)
+    pm_regions = 0.5 * (v.r_pm1 + v.r_pm2)
+    z, mad, ok = v.judge(pm_regions)
+    row = {"scene": name, "mirrors": mirrors, "bounces": bounces, "max_depth": max_depth, "pm_spp": pm_spp,
+           "mi_spp": mi_spp,
+           "pm_mean": float(pm_regions.mean()), "mi_mean": float(v.mi.mean()), "z": z, "region_diff": mad,
+           "bound": v.bound, "noise_pm": v.noise_pm, "noise_mi": v.noise_mi,
+           "pm_seconds": pm_seconds, "mi_seconds": mi_seconds, "pass": ok}
+    # Bias must fail.
+    z_flux, _, ok_flux = v.judge(pm_regions * 1.05)
+    row["z_flux"] = z_flux
+    detected = not ok_flux
+    if not mirrors:
+        fewer = pmrender_path(args, scene, os.path.join(work, "pm_fewer.exr"), 3, bounces - 1, mirror_depth,
+                              2 * pm_spp)
+        z_fewer, _, ok_fewer = v.judge(region_means(fewer, args.block))
+        row["z_fewer"] = z_fewer
+        detected = detected and not ok_fewer
+    row["bias_detected"] = detected
+    row["pass"] = ok and detected
+    return row
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--pmrender", required=True)
+    parser.add_argument("--work", required=True, help="folder for exported scenes and renders")
+    parser.add_argument("--backend", default="opencl")
+    parser.add_argument("--scenes", nargs="*", help="scene files (default: the built-in Cornell box and "
+                        "golden/scenes/*.json)")
+    parser.add_argument("--size", type=int, default=32, help="image side, pixels")
+    parser.add_argument("--block", type=int, default=4, help="region side, pixels")
+    parser.add_argument("--bounces", type=int, default=2)
+    parser.add_argument("--pm-spp", type=int, default=512, help="pmrender paths per pixel, each seed")
+    parser.add_argument("--mi-spp", type=int, default=128, help="Mitsuba samples per pixel, each seed")
+    parser.add_argument("--json", help="also write the table as JSON here")
+    args = parser.parse_args()
+    if args.size % args.block:
+        parser.error("--size must be a multiple of --block")
+    pm_mitsuba.set_variant("scalar_rgb")
+    scenes = [("cornell-box", None)]
+    for path in args.scenes if args.scenes is not None else sorted(glob.glob(os.path.join(ROOT, "golden/scenes/*.json"))):
+        scenes.append((os.path.splitext(os.path.basename(path))[0], path))
+    if args.scenes:
+        scenes = scenes[1:]
+
+    rows = []
+    print("%-13s %-8s %9s %9s %7s %6s %8s %8s %8s %8s %6s %6s  %s" % (
+        "scene", "paths", "pmrender", "mitsuba", "diff", "z", "regions", "bound", "x1.05 z", "B-1 z", "pm s", "mi s",
+        "result"))
+    for name, scene in scenes:
+        r = compare_scene(args, name, scene)
+        rows.append(r)
+        paths = "conv." if r["mirrors"] else "B=%d" % r["bounces"]
+        print("%-13s %-8s %9.5f %9.5f %+6.2f%% %+6.2f %7.3f%% %7.3f%% %+8.1f %8s %6.1f %6.1f  %s" % (
+            name, paths, r["pm_mean"], r["mi_mean"], 100 * (r["pm_mean"] / r["mi_mean"] - 1), r["z"],
+            100 * r["region_diff"], 100 * r["bound"], r["z_flux"],
+            "%+8.1f" % r["z_fewer"] if "z_fewer" in r else "n/a", r["pm_seconds"], r["mi_seconds"],
+            "pass" if r["pass"] else ("FAIL" if r["bias_detected"] else "FAIL (bias not detectable)")))
+        sys.stdout.flush()
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(rows, f, indent=2)
+    failed = [r["scene"] for r in rows if not r["pass"]]
+    if failed:
+        fail("path tracer and Mitsuba 3 disagree on: " + ", ".join(failed))
+    print("path tracer agrees with Mitsuba 3 on %d scenes" % len(rows))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,210 @@
+"""Mitsuba 3 as the independent renderer of pmrender's scenes (tests/mitsuba/README.md).
+
+scene_dict() converts a scene written by `pmrender export-scene` (JSON + one OBJ per material,
+metres) into a Mitsuba scene description; render() renders it with Mitsuba's own `path`
+integrator through a sensor that puts every sample at its pixel's centre, as pmrender's camera
+pass shades them (Mitsuba's film would jitter samples over the pixel area instead).
+
+Conversions (docs/tradeoff.md, "Validation against Mitsuba 3"):
+- point light: Mitsuba `point`, intensity = power / (4 pi) W/sr per channel (pmrender's power is
+  the radiant flux of an isotropic point light);
+- diffuse only: `diffuse`; mirror only: `conductor` with material "none" (a perfect mirror) and
+  specular_reflectance = mirror; diffuse + mirror: `blendbsdf` of the two, every BSDF `twosided`
+  because pmrender shades both sides of every triangle;
+- modified Phong (glossy > 0): Mitsuba 3 has no such BSDF. `modified_phong` below is a Mitsuba
+  plugin written here from Lafortune & Willems 1994 (f = rho_d / pi + rho_s (n + 2) / (2 pi)
+  cos^n alpha), sampled by Mitsuba's integrator with its own mixture pdf;
+- camera: `perspective`, fov_axis y, the vertical field of view, to_world = look_at;
+- bounces: pmrender's direct light + B diffuse/glossy bounces is Mitsuba's max_depth = B + 2
+  (Mitsuba counts every path segment: 2 is direct light only), on scenes without mirrors.
+"""
+import json
+import math
+import os
+
+import drjit as dr
+import mitsuba as mi
+import numpy as np
+
+DEFAULT_VARIANT = "scalar_rgb"
+
+
+def set_variant(variant=DEFAULT_VARIANT):
+    """Selects the Mitsuba variant and registers this module's plugins for it."""
+    mi.set_variant(variant)
+    phong, sensor = modified_phong_class(), centred_sensor_class()
+    mi.register_bsdf("modified_phong", lambda props: phong(props))
+    mi.register_sensor("pixel_centres", lambda props: sensor(props))
+
+
+def mean3(v):
+    return (v[0] + v[1] + v[2]) / 3.0
+
+
+def modified_phong_class():
+    """The modified Phong BSDF as a Mitsuba plugin class (Mitsuba classes exist once a variant is set)."""
+
+    class ModifiedPhong(mi.BSDF):
+        """Two-sided modified Phong: rho_d / pi + rho_s (n + 2) / (2 pi) cos^n alpha, alpha between
+        wo and the mirror direction of wi. Sampling: the diffuse lobe (cosine) or the glossy lobe
+        (cos alpha = u^(1/(n+1))), chosen in proportion to their mean reflectances; the weight is
+        f cos / (mixture pdf)."""
+
+        def __init__(self, props):
+            mi.BSDF.__init__(self, props)
+            self.kd = [props["kd_r"], props["kd_g"], props["kd_b"]]
+            self.ks = [props["ks_r"], props["ks_g"], props["ks_b"]]
+            self.n = props["exponent"]
+            pd, pg = mean3(self.kd), mean3(self.ks)
+            self.p_glossy = pg / (pd + pg) if pd + pg > 0 else 0.0
+            both = mi.BSDFFlags.FrontSide | mi.BSDFFlags.BackSide
+            self.m_components = [mi.BSDFFlags.DiffuseReflection | both, mi.BSDFFlags.GlossyReflection | both]
+            self.m_flags = self.m_components[0] | self.m_components[1]
+
+        @staticmethod
+        def _upper(si, wo):
+            # Both directions mirrored into the upper hemisphere when the ray arrives from below.
+            flip = si.wi.z < 0
+            s = dr.select(flip, -1.0, 1.0)
+            return mi.Vector3f(si.wi.x, si.wi.y, si.wi.z * s), mi.Vector3f(wo.x, wo.y, wo.z * s), s
+
+        def _f_cos_pdf(self, wi, wo):
+            valid = (wi.z > 0) & (wo.z > 0)
+            cos_alpha = dr.maximum(dr.dot(mi.Vector3f(-wi.x, -wi.y, wi.z), wo), 0.0)
+            lobe = dr.power(cos_alpha, self.n)
+            f = mi.Color3f(*self.kd) * dr.inv_pi + mi.Color3f(*self.ks) * ((self.n + 2) * 0.5 * dr.inv_pi * lobe)
+            pdf = (1.0 - self.p_glossy) * wo.z * dr.inv_pi + self.p_glossy * (self.n + 1) * 0.5 * dr.inv_pi * lobe
+            return dr.select(valid, f * wo.z, 0.0), dr.select(valid, pdf, 0.0)
+
+        def sample(self, ctx, si, sample1, sample2, active=True):
+            wi, _, s = self._upper(si, si.wi)
+            glossy = sample1 < self.p_glossy
+            diffuse_dir = mi.warp.square_to_cosine_hemisphere(sample2)
+            cos_a = dr.power(dr.maximum(sample2.x, 1e-12), 1.0 / (self.n + 1))
+            sin_a = dr.safe_sqrt(1.0 - cos_a * cos_a)
+            sin_phi, cos_phi = dr.sincos(2.0 * dr.pi * sample2.y)
+            lobe_frame = mi.Frame3f(mi.Vector3f(-wi.x, -wi.y, wi.z))
+            glossy_dir = lobe_frame.to_world(mi.Vector3f(cos_phi * sin_a, sin_phi * sin_a, cos_a))
+            wo = dr.select(glossy, glossy_dir, diffuse_dir)
+            value, pdf = self._f_cos_pdf(wi, wo)
+            bs = dr.zeros(mi.BSDFSample3f)
+            bs.wo = mi.Vector3f(wo.x, wo.y, wo.z * s)
+            bs.pdf = pdf
+            bs.eta = 1.0
+            bs.sampled_type = dr.select(glossy, mi.UInt32(+mi.BSDFFlags.GlossyReflection),
+                                        mi.UInt32(+mi.BSDFFlags.DiffuseReflection))
+            bs.sampled_component = dr.select(glossy, mi.UInt32(1), mi.UInt32(0))
+            ok = active & (pdf > 0)
+            return bs, dr.select(ok, value / dr.select(ok, pdf, 1.0), 0.0)
+
+        def eval(self, ctx, si, wo, active=True):
+            wi, wo_up, _ = self._upper(si, wo)
+            return self._f_cos_pdf(wi, wo_up)[0]
+
+        def pdf(self, ctx, si, wo, active=True):
+            wi, wo_up, _ = self._upper(si, wo)
+            return self._f_cos_pdf(wi, wo_up)[1]
+
+        def eval_pdf(self, ctx, si, wo, active=True):
+            wi, wo_up, _ = self._upper(si, wo)
+            return self._f_cos_pdf(wi, wo_up)
+
+        def to_string(self):
+            return "ModifiedPhong[kd=%s, ks=%s, n=%g]" % (self.kd, self.ks, self.n)
+
+    return ModifiedPhong
+
+
+def rgb(v):
+    return {"type": "rgb", "value": [float(x) for x in v]}
+
+
+def material_bsdf(m):
+    """The Mitsuba BSDF of a pmrender material (diffuse, glossy, exponent, mirror)."""
+    d, g, r = m["diffuse"], m["glossy"], m["mirror"]
+    has_glossy, has_mirror = max(g) > 0, max(r) > 0
+    if has_glossy:
+        base = {"type": "modified_phong", "exponent": float(m["exponent"])}
+    else:
+        base = {"type": "twosided", "bsdf": {"type": "diffuse"}}
+    if not has_mirror:
+        scale = 1.0
+    else:
+        # blendbsdf: (1 - w) base + w mirror, with the reflectances divided by their weights; w
+        # between the largest mirror and 1 - the largest diffuse+glossy keeps both parts <= 1.
+        w = 0.5 * (max(r) + 1.0 - max(a + b for a, b in zip(d, g)))
+        w = min(max(w, 1e-3), 1.0 - 1e-3) if max(d) + max(g) > 0 else 1.0
+        scale = 1.0 / (1.0 - w) if w < 1.0 else 0.0
+    kd = [x * scale for x in d]
+    ks = [x * scale for x in g]
+    if has_glossy:
+        for c, name in enumerate("rgb"):
+            base["kd_" + name] = kd[c]
+            base["ks_" + name] = ks[c]
+    else:
+        base["bsdf"]["reflectance"] = rgb(kd)
+    if not has_mirror:
+        return base
+    mirror = {"type": "twosided", "bsdf": {"type": "conductor", "material": "none",
+                                           "specular_reflectance": rgb([x / w for x in r])}}
+    if w >= 1.0:
+        return mirror
+    return {"type": "blendbsdf", "weight": w, "bsdf_0": base, "bsdf_1": mirror}
+
+
+def scene_dict(exported_json, max_depth, width=None, height=None):
+    """Mitsuba scene dict of a `pmrender export-scene` file; width/height override the camera's."""
+    folder = os.path.dirname(os.path.abspath(exported_json))
+    with open(exported_json) as f:
+        s = json.load(f)
+    cam = s["camera"]
+    w, h = width or cam["resolution"][0], height or cam["resolution"][1]
+    film = {"type": "hdrfilm", "width": w, "height": h, "rfilter": {"type": "box"}, "pixel_format": "rgb"}
+    camera = {"type": "perspective", "fov_axis": "y", "fov": float(cam["vertical_fov"]),
+              "to_world": mi.ScalarTransform4f().look_at(origin=cam["position"], target=cam["look_at"], up=cam["up"]),
+              "film": dict(film)}
+    d = {"type": "scene",
+         "integrator": {"type": "path", "max_depth": int(max_depth), "hide_emitters": True},
+         "sensor": {"type": "pixel_centres", "inner": camera, "film": film, "sampler": {"type": "independent"}}}
+    for i, mesh in enumerate(s["meshes"]):
+        d["mesh%d" % i] = {"type": "obj", "filename": os.path.join(folder, mesh["file"]), "face_normals": True,
+                           "bsdf": material_bsdf(s["materials"][mesh["material"]])}
+    for i, light in enumerate(s["lights"]):
+        d["light%d" % i] = {"type": "point", "position": light["position"],
+                            "intensity": rgb([p / (4.0 * math.pi) for p in light["power"]])}
+    return d
+
+
+def centred_sensor_class():
+    """A Mitsuba sensor that shoots every sample through the centre of its pixel, as pmrender's
+    camera pass does, by handing the centre to the wrapped `perspective` sensor. Mitsuba's own
+    film would average over the pixel area, which differs from a pixel-centre image wherever an
+    edge crosses a pixel."""
+
+    class CentredSensor(mi.Sensor):
+        def __init__(self, props):
+            mi.Sensor.__init__(self, props)
+            self.inner = props["inner"]
+            self.size = mi.ScalarVector2f(self.film().crop_size())
+
+        def _centre(self, position_sample):
+            return (dr.floor(position_sample * self.size) + 0.5) / self.size
+
+        def sample_ray(self, time, sample1, sample2, sample3, active=True):
+            return self.inner.sample_ray(time, sample1, self._centre(sample2), sample3, active)
+
+        def sample_ray_differential(self, time, sample1, sample2, sample3, active=True):
+            return self.inner.sample_ray_differential(time, sample1, self._centre(sample2), sample3, active)
+
+        def bbox(self):
+            return self.inner.bbox()
+
+        def to_string(self):
+            return "CentredSensor[%s]" % self.inner
+
+    return CentredSensor
+
+
+def render(scene, spp, seed=0):
+    """Mitsuba's render of the scene: float64 array (height, width, 3)."""
+    return np.array(mi.render(scene, spp=spp, seed=seed), dtype=np.float64)
