@@ -7,6 +7,8 @@ const std::vector<MethodEntry>& methods() {
   static const std::vector<MethodEntry> table = {
       {"photon", "photon mapping with photon-differential footprints (Fabianowski & Dingliana 2009)",
        &add_photon_options},
+      {"radiosity", "vertex link radiosity over explicit visibility links (2008; docs/radiosity.md)",
+       &add_radiosity_options},
   };
   return table;
 }

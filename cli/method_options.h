@@ -31,5 +31,6 @@ std::vector<std::string> method_names();
 
 // Each method's options file.
 std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd);
+std::shared_ptr<MethodOptions> add_radiosity_options(CLI::App* cmd);
 
 }  // namespace pm::cli

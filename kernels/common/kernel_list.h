@@ -15,6 +15,13 @@
   K(photon_map_reorder)   /* S4: gather data into sorted order */                             \
   K(gather)            /* S6: indirect and caustic radiance at every shading point */        \
   K(film_resolve)      /* S7: combined = direct + indirect + caustic, NaN guard */           \
+  K(radiosity_link_trace)   /* radiosity: nC rays per element of a batch, barycentric links */ \
+  K(radiosity_link_merge)   /* radiosity: an element's links to one element combined */        \
+  K(radiosity_link_store)   /* radiosity: merged links, compact, at host-computed offsets */   \
+  K(radiosity_light_links)  /* radiosity: eq. 2 from every light, bounce-0 radiance */         \
+  K(radiosity_gather)       /* radiosity: one bounce over the links (eq. 3, 4) */              \
+  K(radiosity_smooth)       /* radiosity: one-ring smoothing within alpha_f (eq. 5, 6) */      \
+  K(radiosity_interpolate)  /* radiosity: vertex irradiance at the shading points, film */     \
   K(sort_histogram)    /* portable radix sort: per-tile digit counts */                      \
   K(sort_scan_chunks)  /* portable radix sort: exclusive scan within chunks of counts */     \
   K(sort_scan_totals)  /* portable radix sort: exclusive scan of chunk totals */             \

@@ -88,6 +88,16 @@ typedef struct LaunchParams {
   uint photon_frame;    /* the frame whose random numbers the photons draw (animations: camera-only
                            runs share the photons of their first frame; docs/animation.md) */
   uint photon_sequence; /* PM_PHOTON_SEQUENCE_*: how emission directions are drawn */
+
+  uint element_count;    /* radiosity: elements (vertices split by side, feature edges and material) */
+  uint link_directions;  /* radiosity: nC, hemisphere directions shot per element */
+  uint batch_first;      /* radiosity link build: first element of the batch */
+  uint batch_count;      /* radiosity link build: elements in the batch */
+
+  uint radiosity_source; /* radiosity: which half of a ping-pong buffer holds the input (0 or 1) */
+  uint light_sampling;   /* radiosity: PM_RADIOSITY_LIGHT_* */
+  float feature_cos;     /* radiosity: cos alpha_f, the feature angle of the smoothing (eq. 6) */
+  uint radiosity_unused;
 } LaunchParams;
 
 /* Photon emission sequences (--photon-sequence). RANDOM: Philox keyed by (seed, photon_frame).
@@ -96,6 +106,16 @@ typedef struct LaunchParams {
    frame: the same lights give the same photons in every frame. */
 #define PM_PHOTON_SEQUENCE_RANDOM 0
 #define PM_PHOTON_SEQUENCE_HALTON 1
+
+/* Vertex link radiosity (docs/radiosity.md). An element index that does not exist (the back side
+   of a one-sided surface, an empty link slot). */
+#define PM_RADIOSITY_NONE 0xffffffffu
+/* Light links (section 3.3): the vertex alone, or the vertex and the midpoints of its one-ring
+   edges (the paper's 1:4 subdivision), weighted as a quadrature of the vertex's hat function. */
+#define PM_RADIOSITY_LIGHT_VERTEX 0
+#define PM_RADIOSITY_LIGHT_ONE_RING 1
+/* Deepest refinement tree (render/radiosity/mesh_refinement.h guarantees it). */
+#define PM_RADIOSITY_MAX_TREE_DEPTH 128
 
 #define PM_SORT_RADIX_BITS 4
 #define PM_SORT_RADIX (1 << PM_SORT_RADIX_BITS)
