@@ -1,18 +1,25 @@
 /* Vertex link radiosity, light links (section 3.3): explicit visibility from every point light to
    every element, and the geometry term of eq. 2. For a point light of power Phi the light's side
-   of eq. 2 (cos theta_y dA_y) is its intensity Phi / (4 pi), so the irradiance at the vertex is
+   of eq. 2 (cos theta_y dA_y) is its intensity Phi / (4 pi), so a surface point receives
    E = Phi / (4 pi r^2) * cos theta_x * V, the same direct light the camera pass computes per
    pixel. The element's outgoing radiance is initialised with rho_d / pi * E (the light it
    received times its BRDF), and the gathered irradiance I_total is reset.
 
-   Sampling V only at the vertex aliases (a shadow edge between two vertices is missed). With
-   PM_RADIOSITY_LIGHT_ONE_RING the paper's oversampling of the visibility term is used: rays also
-   go from the light to the points the 1:4 subdivision adds around the vertex, the midpoints of
-   its one-ring edges, and V becomes their weighted mean. The weights are a quadrature of the
-   vertex's hat function phi over its one-ring: on a triangle of area A, splitting it 1:4 and
-   using each sub-triangle's corner average gives A/12 * (1, 3/2, 3/2) for the vertex and the
-   two edge midpoints, summing to A/3 = the integral of phi. The geometry term stays the
-   vertex's, so unshadowed elements get exactly the vertex's irradiance in both modes. */
+   PM_RADIOSITY_LIGHT_VERTEX evaluates that at the vertex. It aliases (a shadow edge between two
+   vertices is missed) and, near a light, over-weights the vertex: a ceiling vertex 1 cm above
+   a lamp gets 1 / (4 pi 1e-4) of its power per m^2, and interpolation spreads that over its
+   whole one-ring, many times the power that really arrives there.
+   PM_RADIOSITY_LIGHT_ONE_RING (default) is the paper's oversampling of the visibility term over
+   the one-ring, with the geometry term integrated over it: eq. 2 integrated over a triangle is
+   Phi / (4 pi) times the solid angle the triangle subtends at the light (cos theta_x dA / r^2 =
+   d omega), exact for any distance. Each one-ring triangle gives its vertex a third of the power
+   it receives, times its visibility; the element's irradiance is that power over a third of
+   the one-ring's area, so the linearly interpolated irradiance carries exactly the power that
+   reaches the surface (unshadowed). Visibility is sampled at the points the paper's 1:4
+   subdivision adds around the vertex, the midpoints of its one-ring edges, and the vertex,
+   weighted 1 : 3/2 : 3/2 per triangle (the vertex's hat function integrated over the 1:4
+   sub-triangles with their corner averages: A/12 * (1, 3/2, 3/2)). Far from the light both
+   modes agree to O(h^2). */
 #ifndef PM_RADIOSITY_LIGHT_H
 #define PM_RADIOSITY_LIGHT_H
 
@@ -31,7 +38,7 @@ PM_DEVICE float radiosity_light_visible(const KernelGlobals* kg, Vec3 light_pos,
   return blocker.triangle >= 0 ? 0.0f : 1.0f;
 }
 
-/* The geometry term of eq. 2 at the vertex for a light of unit power: cos theta_x / (4 pi r^2). */
+/* Eq. 2 at a point for a light of unit power: cos theta_x / (4 pi r^2), unshadowed. */
 PM_DEVICE float radiosity_light_geometry(Vec3 light_pos, Vec3 x, Vec3 n)
 {
   Vec3 to_light = vec3_sub(light_pos, x);
@@ -41,14 +48,30 @@ PM_DEVICE float radiosity_light_geometry(Vec3 light_pos, Vec3 x, Vec3 n)
   return cos_x > 0.0f ? cos_x / (4.0f * PM_PI * dist2) : 0.0f;
 }
 
-/* The visibility term for element e: at the vertex, or its hat-weighted mean over the one-ring. */
-PM_DEVICE float radiosity_element_visibility(const KernelGlobals* kg, const LaunchParams* p, uint e, Vec3 light_pos)
+/* Solid angle of triangle (a, b, c) seen from o (Van Oosterom & Strackee 1983):
+   tan(omega / 2) = |a . (b x c)| / (|a||b||c| + (a.b)|c| + (a.c)|b| + (b.c)|a|), corners relative to o. */
+PM_DEVICE float radiosity_solid_angle(Vec3 o, Vec3 a, Vec3 b, Vec3 c)
+{
+  a = vec3_sub(a, o);
+  b = vec3_sub(b, o);
+  c = vec3_sub(c, o);
+  float la = vec3_length(a), lb = vec3_length(b), lc = vec3_length(c);
+  float num = pm_fabsf(vec3_dot(a, vec3_cross(b, c)));
+  float den = la * lb * lc + vec3_dot(a, b) * lc + vec3_dot(a, c) * lb + vec3_dot(b, c) * la;
+  return 2.0f * pm_atan2f(num, den);
+}
+
+/* Element e's irradiance from a light of unit power at light_pos (see above for the modes). */
+PM_DEVICE float radiosity_element_light(const KernelGlobals* kg, const LaunchParams* p, uint e, Vec3 light_pos)
 {
   Vec3 v = radiosity_element_position(kg, e), n = radiosity_element_normal(kg, e);
-  float at_vertex = radiosity_light_visible(kg, light_pos, v, n);
-  if (p->light_sampling == PM_RADIOSITY_LIGHT_VERTEX) return at_vertex;
+  if (p->light_sampling == PM_RADIOSITY_LIGHT_VERTEX) {
+    float g = radiosity_light_geometry(light_pos, v, n);
+    return g > 0.0f ? g * radiosity_light_visible(kg, light_pos, v, n) : 0.0f;
+  }
   uint first = PM_LOAD(&kg->rad_element_ranges[e]).x, end = PM_LOAD(&kg->rad_element_ranges[e + 1u]).x;
-  float sum = 0.0f, weight_sum = 0.0f;
+  float power = 0.0f, area = 0.0f;
+  float at_vertex = -1.0f; /* visibility at the vertex, traced once when first needed */
   for (uint r = first; r < end; ++r) {
     uint ring = PM_LOAD(&kg->rad_adjacency[r]);
     uint tri = ring >> 2, corner = ring & 3u;
@@ -64,16 +87,17 @@ PM_DEVICE float radiosity_element_visibility(const KernelGlobals* kg, const Laun
     Vec3 cross = vec3_cross(vec3_sub(b, v), vec3_sub(c, v));
     float twice_area = vec3_length(cross);
     if (!(twice_area > 0.0f)) continue;
+    area += twice_area * (0.5f / 3.0f);
     Vec3 face_n = vec3_scale(cross, 1.0f / twice_area);
     if (vec3_dot(face_n, n) < 0.0f) face_n = vec3_neg(face_n); /* the element's side */
+    if (vec3_dot(face_n, vec3_sub(light_pos, v)) <= 0.0f) continue; /* lit from the other side */
+    if (at_vertex < 0.0f) at_vertex = radiosity_light_visible(kg, light_pos, v, n);
     float visible = at_vertex;
     visible += 1.5f * radiosity_light_visible(kg, light_pos, vec3_scale(vec3_add(v, b), 0.5f), face_n);
     visible += 1.5f * radiosity_light_visible(kg, light_pos, vec3_scale(vec3_add(v, c), 0.5f), face_n);
-    float area = 0.5f * twice_area;
-    sum += area * (1.0f / 12.0f) * visible;
-    weight_sum += area * (1.0f / 3.0f);
+    power += (1.0f / 3.0f) * (0.25f * visible) * radiosity_solid_angle(light_pos, v, b, c) * (1.0f / (4.0f * PM_PI));
   }
-  return weight_sum > 0.0f ? sum / weight_sum : at_vertex;
+  return area > 0.0f ? power / area : 0.0f;
 }
 
 /* One work item per element: direct irradiance from every light, outgoing radiance of bounce 0
@@ -83,9 +107,7 @@ PM_DEVICE void kernel_radiosity_light_links(const KernelGlobals* kg, const Launc
   Vec3 irradiance = vec3_splat(0.0f);
   for (uint l = 0; l < p->light_count; ++l) {
     PointLight light = kg->lights[l];
-    Vec3 light_pos = vec3_from_float4(light.position);
-    float g = radiosity_light_geometry(light_pos, radiosity_element_position(kg, e), radiosity_element_normal(kg, e));
-    if (g > 0.0f) g *= radiosity_element_visibility(kg, p, e, light_pos); /* eq. 2 times V */
+    float g = radiosity_element_light(kg, p, e, vec3_from_float4(light.position));
     irradiance = vec3_madd(irradiance, vec3_from_float4(light.power), g);
   }
   Vec3 radiance = vec3_scale(vec3_mul(radiosity_element_reflectance(kg, e), irradiance), PM_INV_PI);

@@ -85,10 +85,10 @@ PM_DEVICE void radiosity_sort_entries(const KernelGlobals* kg, uint base, uint c
 
 /* One work item per element of the batch: sorts its 3 nC entries by target, sums the weights of
    equal targets into the first entries, and counts merged and raw (valid) links. */
-PM_DEVICE void kernel_radiosity_link_merge(const KernelGlobals* kg, const LaunchParams* p, uint local)
+PM_DEVICE void kernel_radiosity_link_merge(const KernelGlobals* kg, const LaunchParams* p, uint item)
 {
   uint count = 3u * p->link_directions;
-  uint base = local * count;
+  uint base = item * count;
   radiosity_sort_entries(kg, base, count);
   uint merged = 0, raw = 0;
   for (uint j = 0; j < count; ++j) {
@@ -104,8 +104,8 @@ PM_DEVICE void kernel_radiosity_link_merge(const KernelGlobals* kg, const Launch
       ++merged;
     }
   }
-  kg->rad_batch_counts[4u * local] = merged;
-  kg->rad_batch_counts[4u * local + 1u] = raw;
+  kg->rad_batch_counts[4u * item] = merged;
+  kg->rad_batch_counts[4u * item + 1u] = raw;
 }
 
 /* Unorm16 weight of merged link j, rounded so that the element's weights keep their sum: each
@@ -121,13 +121,13 @@ PM_DEVICE uint radiosity_quantised_weight(float sum_before, float w)
 /* One work item per element of the batch: its merged links to rad_link_targets/weights from the
    offset in rad_batch_counts (even, so no two elements share a weight word); an odd count is
    padded by a zero-weight link to the element itself. */
-PM_DEVICE void kernel_radiosity_link_store(const KernelGlobals* kg, const LaunchParams* p, uint local)
+PM_DEVICE void kernel_radiosity_link_store(const KernelGlobals* kg, const LaunchParams* p, uint item)
 {
   uint count = 3u * p->link_directions;
-  uint base = local * count;
-  uint merged = kg->rad_batch_counts[4u * local];
-  uint offset = kg->rad_batch_counts[4u * local + 2u];
-  uint e = p->batch_first + local;
+  uint base = item * count;
+  uint merged = kg->rad_batch_counts[4u * item];
+  uint offset = kg->rad_batch_counts[4u * item + 2u];
+  uint e = p->batch_first + item;
   float sum = 0.0f;
   uint packed = 0u;
   for (uint j = 0; j < merged + (merged & 1u); ++j) {

@@ -30,6 +30,7 @@ typedef unsigned int uint;
 #define pm_sinf sinf
 #define pm_cosf cosf
 #define pm_tanf tanf
+#define pm_atan2f atan2f
 #define pm_powf powf
 #define pm_expf expf
 #define pm_logf logf

@@ -32,6 +32,7 @@ typedef int int32_t;
 #define pm_sinf sin
 #define pm_cosf cos
 #define pm_tanf tan
+#define pm_atan2f atan2
 #define pm_powf pow
 #define pm_expf exp
 #define pm_logf log

@@ -100,9 +100,11 @@ TEST_F(Radiosity, CameraOnlyFramesOnlyInterpolate) {
   EXPECT_TRUE(test::all_finite(last.find("")->rgb));
 }
 
-// Both methods estimate the same indirect light (bounces 1 and 2, all diffuse). Radiosity
-// interpolates vertex values linearly and samples visibility with nC rays; photon mapping blurs
-// over footprints: the image means must still agree within 5 %.
+// Both methods estimate the same indirect light (bounces 1 and 2, all diffuse). Their biases
+// differ: radiosity interpolates vertex values linearly over 3.8 cm triangles and samples
+// visibility with nC rays per vertex; photon mapping blurs over footprints (and has photon
+// noise, about 0.5 % of the image mean at 400k photons). Measured here: ratio 1.004 (PoCL). The
+// image means must agree within 3 %; a lost bounce (-25 % here) or a factor of pi cannot.
 TEST_F(Radiosity, CornellBoxAgreesWithPhotonMapping) {
   Scene scene = builtin_cornell_box();
   RenderSettings radiosity = small_radiosity(48, 48, 128);
@@ -116,7 +118,7 @@ TEST_F(Radiosity, CornellBoxAgreesWithPhotonMapping) {
   const double mr = test::mean(r.find("indirect")->rgb), mp = test::mean(p.find("indirect")->rgb);
   std::printf("Cornell box indirect mean: radiosity %.6g (%g elements, %g links), photon mapping %.6g, ratio %.4f\n", mr,
               stat(stats, "elements"), stat(stats, "links"), mp, mr / mp);
-  EXPECT_NEAR(mr / mp, 1.0, 0.05);
+  EXPECT_NEAR(mr / mp, 1.0, 0.03);
   // Direct light is the same camera pass in both.
   EXPECT_TRUE(r.find("direct")->rgb == p.find("direct")->rgb);
   EXPECT_TRUE(test::all_finite(r.find("")->rgb));

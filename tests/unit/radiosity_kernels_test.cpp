@@ -232,23 +232,78 @@ double point_irradiance(const Float3& light, double power, const Vec3& x, const 
   return c > 0 ? power * c / (4 * M_PI * r2) : 0.0;
 }
 
-// Unshadowed, both light-link modes give the vertex's own irradiance (eq. 2 times Phi / 4 pi),
-// and the element's bounce-0 radiance is rho / pi times it.
-TEST(RadiosityLightLinks, UnshadowedElementsGetTheVertexIrradiance) {
-  Scene flat = test::folded_sheet(1.0f, 1.0f, 0.0f);  // a flat 1 x 2 m sheet, normal +y
-  flat.lights[0].position = {0.4f, 0.6f, 0.3f};
-  const double rho = flat.materials[0].diffuse.x, power = flat.lights[0].power.x;
-  HostMesh h(flat, 0.3, 40.0f, true);
-  for (int mode : {PM_RADIOSITY_LIGHT_VERTEX, PM_RADIOSITY_LIGHT_ONE_RING}) {
-    h.p.light_sampling = uint32_t(mode);
-    for (uint32_t e = 0; e < h.el.count(); ++e) kernel_radiosity_light_links(&h.kg, &h.p, e);
-    for (size_t e = 0; e < h.el.count(); ++e) {
-      const double expected = rho / M_PI * point_irradiance(flat.lights[0].position, power,
-                                                            vec3_from_float4(h.el.data[2 * e]),
-                                                            vec3_from_float4(h.el.data[2 * e + 1]));
-      // The back side faces away from the light: nothing.
-      EXPECT_NEAR(h.radiance[e].x, h.el.back[e] ? 0.0 : expected, 1e-5 * expected) << "element " << e << " mode " << mode;
-      EXPECT_EQ(h.irradiance[e].x, 0.0f);  // I_total reset for the gathering
+// Element e's one-ring: the mean irradiance over it (integrated on a grid of steps^2 equal
+// sub-triangles per triangle, at their centroids) and its area.
+double ring_mean_irradiance(const HostMesh& h, size_t e, const Float3& light, double power, double* ring_area = nullptr) {
+  const Vec3 normal = vec3_from_float4(h.el.data[2 * e + 1]);
+  double integral = 0, area_sum = 0;
+  for (uint32_t i = h.el.ranges[e].x; i < h.el.ranges[e + 1].x; ++i) {
+    const uint32_t r = h.el.adjacency[i] >> 2;
+    Vec3 c[3];
+    for (int j = 0; j < 3; ++j) {
+      const Float3& q = h.mesh.positions[h.mesh.indices[3 * r + j]];
+      c[j] = vec3(q.x, q.y, q.z);
+    }
+    const double area = 0.5 * vec3_length(vec3_cross(vec3_sub(c[1], c[0]), vec3_sub(c[2], c[0])));
+    const int steps = 64;
+    double sum = 0;
+    for (int a = 0; a < steps; ++a)
+      for (int b = 0; a + b < steps; ++b)
+        for (double offset : {1.0 / 3, 2.0 / 3}) {
+          if (offset > 0.5 && a + b > steps - 2) continue;
+          const double wa = (a + offset) / steps, wb = (b + offset) / steps;
+          const Vec3 x = vec3_add(vec3_add(vec3_scale(c[0], float(1 - wa - wb)), vec3_scale(c[1], float(wa))),
+                                  vec3_scale(c[2], float(wb)));
+          sum += point_irradiance(light, power, x, normal);
+        }
+    integral += area * sum / (steps * steps);
+    area_sum += area;
+  }
+  if (ring_area) *ring_area = area_sum;
+  return integral / area_sum;
+}
+
+// Unshadowed: the vertex mode gives the vertex's own irradiance (eq. 2 times Phi / 4 pi); the
+// one-ring mode the mean irradiance over the one-ring, exactly, however close the light (2 cm
+// above the sheet here, where the vertex value is far off), so the power the interpolated
+// irradiance carries is the power reaching the sheet. The element's bounce-0 radiance is rho / pi
+// times it; back sides, facing away, get nothing.
+TEST(RadiosityLightLinks, VertexValueAndExactOneRingMean) {
+  for (float height : {0.6f, 0.02f}) {
+    Scene flat = test::folded_sheet(1.0f, 1.0f, 0.0f);  // a flat 1 x 2 m sheet, normal +y
+    flat.lights[0].position = {0.4f, height, 0.3f};
+    const Float3 light = flat.lights[0].position;
+    const double rho = flat.materials[0].diffuse.x, power = flat.lights[0].power.x;
+    HostMesh h(flat, 0.3, 40.0f, true);
+    double worst_vertex_vs_mean = 0;
+    for (int mode : {PM_RADIOSITY_LIGHT_VERTEX, PM_RADIOSITY_LIGHT_ONE_RING}) {
+      h.p.light_sampling = uint32_t(mode);
+      for (uint32_t e = 0; e < h.el.count(); ++e) kernel_radiosity_light_links(&h.kg, &h.p, e);
+      double carried = 0, reaching = 0;
+      for (size_t e = 0; e < h.el.count(); ++e) {
+        EXPECT_EQ(h.irradiance[e].x, 0.0f);  // I_total reset for the gathering
+        if (h.el.back[e]) {
+          EXPECT_EQ(h.radiance[e].x, 0.0f);
+          continue;
+        }
+        double ring_area = 0;
+        const double mean = ring_mean_irradiance(h, e, light, power, &ring_area);
+        const double at_vertex = point_irradiance(light, power, vec3_from_float4(h.el.data[2 * e]), vec3(0, 1, 0));
+        const double expected = rho / M_PI * (mode == PM_RADIOSITY_LIGHT_VERTEX ? at_vertex : mean);
+        EXPECT_NEAR(h.radiance[e].x, expected, 2e-3 * expected) << "element " << e << " mode " << mode;
+        carried += h.radiance[e].x / (rho / M_PI) * ring_area / 3;
+        reaching += mean * ring_area / 3;
+        worst_vertex_vs_mean = std::max(worst_vertex_vs_mean, std::fabs(at_vertex / mean - 1));
+      }
+      if (mode == PM_RADIOSITY_LIGHT_ONE_RING) {
+        EXPECT_NEAR(carried, reaching, 2e-3 * reaching);
+      }
+    }
+    // Why the vertex mode is not the default: near the light, vertex values miss the power.
+    std::printf("light %.2f m above: vertex values differ from the one-ring means by up to %.0f %%\n", height,
+                100 * worst_vertex_vs_mean);
+    if (height < 0.1f) {
+      EXPECT_GT(worst_vertex_vs_mean, 0.5);
     }
   }
 }
@@ -258,6 +313,8 @@ TEST(RadiosityLightLinks, UnshadowedElementsGetTheVertexIrradiance) {
 TEST(RadiosityLightLinks, OneRingOversamplesShadowEdgesBetweenVertices) {
   Scene scene = test::folded_sheet(1.0f, 1.0f, 0.0f);
   scene.lights[0].position = {0.5f, 1.0f, 0.5f};
+  const Float3 light = scene.lights[0].position;
+  const double rho = scene.materials[0].diffuse.x, power = scene.lights[0].power.x;
   // A blocker half way up: a square at y = 0.5 covering x < 0.55, whose shadow edge on the sheet
   // (x = 0.6) falls between the vertices at 0.5 and 0.625.
   const uint32_t b = uint32_t(scene.positions.size());
@@ -272,19 +329,18 @@ TEST(RadiosityLightLinks, OneRingOversamplesShadowEdgesBetweenVertices) {
     for (size_t e = 0; e < h.el.count(); ++e) {
       const Float3 p = h.el.position(e);
       if (p.y != 0.0f) continue;  // the sheet's elements only
-      const double lit = scene.materials[0].diffuse.x / M_PI *
-                         point_irradiance(scene.lights[0].position, scene.lights[0].power.x, vec3(p.x, p.y, p.z), vec3(0, 1, 0));
-      const double v = h.radiance[e].x;
-      const bool shadowed = p.x < 0.6f;
+      const double v = h.radiance[e].x / (rho / M_PI);
       if (mode == PM_RADIOSITY_LIGHT_VERTEX) {
-        EXPECT_NEAR(v, shadowed ? 0.0 : lit, 1e-5 * lit) << "element " << e;
+        const double lit = point_irradiance(light, power, vec3(p.x, p.y, p.z), vec3(0, 1, 0));
+        EXPECT_NEAR(v, p.x < 0.6f ? 0.0 : lit, 1e-5 * lit) << "element " << e;
         ++checked;
       } else {
-        // Far from the edge (more than one 0.125 m ring away) nothing changes.
+        const double lit = ring_mean_irradiance(h, e, light, power);
+        // More than one 0.125 m ring away from the edge: all or nothing.
         if (p.x < 0.45f || p.x > 0.75f) {
-          EXPECT_NEAR(v, p.x < 0.45f ? 0.0 : lit, 1e-5 * lit) << "element " << e;
+          EXPECT_NEAR(v, p.x < 0.45f ? 0.0 : lit, 2e-3 * lit) << "element " << e;
         }
-        EXPECT_LE(v, lit * (1 + 1e-5));
+        EXPECT_LE(v, lit * (1 + 2e-3));
         partial += v > 0.05 * lit && v < 0.95 * lit;
       }
     }
