@@ -191,7 +191,9 @@ void VertexLinkRadiosity::begin_frame(const FrameContext& frame, const FrameChan
     if (element_count_ > 0) build_links(launch_params(frame), frame.timer);
     built = true;
   }
-  if (element_count_ > 0 && (built || change.first || change.lights || !solved_)) {
+  // --no-reuse: the lighting of every frame is computed afresh (links stay: geometry is static).
+  const bool relight = built || change.first || change.lights || !solved_ || !frame.reuse_lighting;
+  if (element_count_ > 0 && relight) {
     solve(launch_params(frame), frame.timer);
     lit = true;
   }

@@ -4,7 +4,7 @@
 //   first frame   refine the mesh, build the elements (host), then trace the links on the
 //                 device in batches of elements with bounded scratch ("prepare");
 //   lights moved  light links (eq. 2), nB gathering bounces (eq. 3, 4), smoothing (eq. 5, 6);
-//   camera moved  nothing: the vertex irradiance stays on the device;
+//   camera moved  nothing: the vertex irradiance stays on the device (--no-reuse: relight anyway);
 // and every frame's single pass interpolates the vertex irradiance at the camera pass's
 // shading points into the indirect layer. The method is deterministic: one pass per frame.
 #pragma once

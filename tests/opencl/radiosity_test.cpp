@@ -104,7 +104,7 @@ TEST_F(Radiosity, CameraOnlyFramesOnlyInterpolate) {
 // differ: radiosity interpolates vertex values linearly over 3.8 cm triangles and samples
 // visibility with nC rays per vertex; photon mapping blurs over footprints (and has photon
 // noise, about 0.5 % of the image mean at 400k photons). Measured here: ratio 1.004 (PoCL). The
-// image means must agree within 3 %; a lost bounce (-25 % here) or a factor of pi cannot.
+// image means must agree within 3 %; a lost bounce (-33 % here) or a factor of pi cannot.
 TEST_F(Radiosity, CornellBoxAgreesWithPhotonMapping) {
   Scene scene = builtin_cornell_box();
   RenderSettings radiosity = small_radiosity(48, 48, 128);
