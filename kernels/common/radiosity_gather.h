@@ -24,9 +24,11 @@ PM_DEVICE void kernel_radiosity_gather(const KernelGlobals* kg, const LaunchPara
   PM_GLOBAL float4* target = kg->rad_radiance + (1u - p->radiosity_source) * p->element_count;
   uint first = PM_LOAD(&kg->rad_element_ranges[e]).z, end = PM_LOAD(&kg->rad_element_ranges[e + 1u]).z;
   Vec3 sum = vec3_splat(0.0f);
-  for (uint j = first; j < end; ++j) {
-    uint y = PM_LOAD(&kg->rad_link_targets[j]);
-    sum = vec3_madd(sum, vec3_from_float4(PM_LOAD(&source[y])), radiosity_link_weight(kg->rad_link_weights, j));
+  uint y = 0;
+  for (uint at = first; at < end;) {
+    float w;
+    y = radiosity_next_link(kg->rad_links, &at, y, &w);
+    sum = vec3_madd(sum, vec3_from_float4(PM_LOAD(&source[y])), w);
   }
   Vec3 gathered = vec3_scale(sum, PM_PI);
   kg->rad_irradiance[e] = vec3_to_float4(vec3_add(vec3_from_float4(kg->rad_irradiance[e]), gathered), 0.0f);

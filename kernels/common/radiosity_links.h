@@ -4,8 +4,8 @@
       their barycentric coordinates over nC (which keeps the energy balance);
    2. merge: an element's links to the same element are combined into one (the paper's
       compression, done there on the CPU), sorted by target;
-   3. store: the merged links are written compactly (target, 16-bit weight) at the offsets the
-      host computed from the merged counts.
+   3. store: the merged links are written compactly (a target delta and a 16-bit weight in one
+      word, below) at the offsets the host computed from the counts.
    Link weights w carry the visibility and geometry terms of eq. 3: with cosine-weighted
    directions, the irradiance an element gathers is E = pi * sum_links w * L_target, and its
    weights sum to the fraction of its rays that hit something (1 in a closed scene), i.e. pi
@@ -83,29 +83,46 @@ PM_DEVICE void radiosity_sort_entries(const KernelGlobals* kg, uint base, uint c
   }
 }
 
+/* Links are stored as one 32-bit word each, per element sorted by target: the high 16 bits are
+   the target's distance from the previous link's target (from 0 for the first), the low 16 bits
+   the weight as unorm16. A distance that does not fit (0xffff or more) is written as 0xffff and
+   the target follows in a word of its own. Elements are in Morton order, so an element's targets
+   are usually close together: most links take 4 bytes instead of 8 (target + float weight). */
+#define PM_RADIOSITY_LINK_ESCAPE 0xffffu
+
+/* Words link `target` takes after a link to `previous`. */
+PM_DEVICE uint radiosity_link_words(uint previous, uint target)
+{
+  return target - previous >= PM_RADIOSITY_LINK_ESCAPE ? 2u : 1u;
+}
+
 /* One work item per element of the batch: sorts its 3 nC entries by target, sums the weights of
-   equal targets into the first entries, and counts merged and raw (valid) links. */
+   equal targets into the first entries, and counts the words they will take, the raw (valid)
+   entries and the merged links. */
 PM_DEVICE void kernel_radiosity_link_merge(const KernelGlobals* kg, const LaunchParams* p, uint item)
 {
   uint count = 3u * p->link_directions;
   uint base = item * count;
   radiosity_sort_entries(kg, base, count);
-  uint merged = 0, raw = 0;
+  uint merged = 0, raw = 0, words = 0, previous = 0;
   for (uint j = 0; j < count; ++j) {
     uint target = radiosity_entry_target(kg, base + j);
     if (target == PM_RADIOSITY_NONE) break; /* empty entries sort last */
     float w = PM_AS_FLOAT(kg->rad_batch_links[2u * (base + j) + 1u]);
     ++raw;
-    if (merged > 0u && radiosity_entry_target(kg, base + merged - 1u) == target) {
+    if (merged > 0u && previous == target) {
       uint slot = 2u * (base + merged - 1u) + 1u;
       kg->rad_batch_links[slot] = PM_AS_UINT(PM_AS_FLOAT(kg->rad_batch_links[slot]) + w);
     } else {
+      words += radiosity_link_words(previous, target);
       radiosity_put_entry(kg, base + merged, target, w);
+      previous = target;
       ++merged;
     }
   }
-  kg->rad_batch_counts[4u * item] = merged;
+  kg->rad_batch_counts[4u * item] = words;
   kg->rad_batch_counts[4u * item + 1u] = raw;
+  kg->rad_batch_counts[4u * item + 3u] = merged;
 }
 
 /* Unorm16 weight of merged link j, rounded so that the element's weights keep their sum: each
@@ -118,37 +135,42 @@ PM_DEVICE uint radiosity_quantised_weight(float sum_before, float w)
   return q <= 0.0f ? 0u : (q >= PM_RADIOSITY_WEIGHT_SCALE ? 65535u : (uint)q);
 }
 
-/* One work item per element of the batch: its merged links to rad_link_targets/weights from the
-   offset in rad_batch_counts (even, so no two elements share a weight word); an odd count is
-   padded by a zero-weight link to the element itself. */
+/* One work item per element of the batch: its merged links, encoded, into rad_links from the
+   word offset the host put in rad_batch_counts. */
 PM_DEVICE void kernel_radiosity_link_store(const KernelGlobals* kg, const LaunchParams* p, uint item)
 {
-  uint count = 3u * p->link_directions;
-  uint base = item * count;
-  uint merged = kg->rad_batch_counts[4u * item];
-  uint offset = kg->rad_batch_counts[4u * item + 2u];
-  uint e = p->batch_first + item;
+  uint base = item * 3u * p->link_directions;
+  uint merged = kg->rad_batch_counts[4u * item + 3u];
+  uint out = kg->rad_batch_counts[4u * item + 2u];
   float sum = 0.0f;
-  uint packed = 0u;
-  for (uint j = 0; j < merged + (merged & 1u); ++j) {
-    uint target = e, q = 0u;
-    if (j < merged) {
-      float w = PM_AS_FLOAT(kg->rad_batch_links[2u * (base + j) + 1u]);
-      target = radiosity_entry_target(kg, base + j);
-      q = radiosity_quantised_weight(sum, w);
-      sum += w;
+  uint previous = 0;
+  for (uint j = 0; j < merged; ++j) {
+    float w = PM_AS_FLOAT(kg->rad_batch_links[2u * (base + j) + 1u]);
+    uint target = radiosity_entry_target(kg, base + j);
+    uint q = radiosity_quantised_weight(sum, w);
+    sum += w;
+    if (radiosity_link_words(previous, target) == 1u) {
+      kg->rad_links[out++] = ((target - previous) << 16) | q;
+    } else {
+      kg->rad_links[out++] = (PM_RADIOSITY_LINK_ESCAPE << 16) | q;
+      kg->rad_links[out++] = target;
     }
-    kg->rad_link_targets[offset + j] = target;
-    if ((j & 1u) == 0u) packed = q;
-    else kg->rad_link_weights[(offset + j) >> 1] = packed | (q << 16);
+    previous = target;
   }
 }
 
-/* Weight of link j as a fraction (its unorm16 value / 65535). */
-PM_DEVICE float radiosity_link_weight(PM_GLOBAL const uint* weights, uint j)
+/* Decodes the link at word *at (advancing it past the link): its target after `previous`, and
+   its weight as a fraction (the unorm16 value / 65535). */
+PM_DEVICE uint radiosity_next_link(PM_GLOBAL const uint* links, uint* at, uint previous, float* weight)
 {
-  uint word = PM_LOAD(&weights[j >> 1]);
-  return (float)((j & 1u) ? (word >> 16) : (word & 0xffffu)) * (1.0f / PM_RADIOSITY_WEIGHT_SCALE);
+  uint word = PM_LOAD(&links[*at]);
+  *at += 1u;
+  *weight = (float)(word & 0xffffu) * (1.0f / PM_RADIOSITY_WEIGHT_SCALE);
+  uint delta = word >> 16;
+  if (delta != PM_RADIOSITY_LINK_ESCAPE) return previous + delta;
+  uint target = PM_LOAD(&links[*at]);
+  *at += 1u;
+  return target;
 }
 
 #endif

@@ -41,7 +41,7 @@ std::vector<StageInfo> VertexLinkRadiosity::stages(const FrameContext& frame) co
       {"radiosity: refine", double(scene_.triangle_count()), "triangles/s", "scene triangles refined (first frame)"},
       {"radiosity: links", elements * settings_.directions, "rays/s", "link rays, nC per element (first frame)"},
       {"radiosity: light links", double(light_samples_) * lights, "rays/s", "shadow rays, all lights (light changes)"},
-      {"radiosity: gather", double(link_slots_) * settings_.bounces, "links/s", "links read, all bounces"},
+      {"radiosity: gather", double(links_) * settings_.bounces, "links/s", "links read, all bounces"},
       {"radiosity: smooth", elements * settings_.smooth_passes, "elements/s", "elements smoothed, all passes"},
       {"radiosity: interpolate", double(pixels_), "pixels/s", "pixels interpolated (every frame)"},
   };
@@ -80,24 +80,17 @@ void VertexLinkRadiosity::prepare(StageTimer* timer) {
   mesh_stats_.set("tree_depth", mesh.depth);
 }
 
-// Grows the link arrays to hold `links`, keeping the first `used` (device copies).
-void VertexLinkRadiosity::ensure_link_capacity(uint64_t links, uint64_t used) {
-  if (links <= link_capacity_) return;
-  const uint64_t capacity = std::max<uint64_t>(links, link_capacity_ + link_capacity_ / 4);
-  DeviceBuffer targets = device_.allocate(capacity * 4, "rad_link_targets");
-  DeviceBuffer weights = device_.allocate((capacity / 2 + 1) * 4, "rad_link_weights");
-  if (used > 0) {
-    device_.copy(buffers_[BufferSlot::rad_link_targets], targets, used * 4);
-    device_.copy(buffers_[BufferSlot::rad_link_weights], weights, used / 2 * 4);
-  }
-  buffers_[BufferSlot::rad_link_targets] = std::move(targets);
-  buffers_[BufferSlot::rad_link_weights] = std::move(weights);
-  link_capacity_ = capacity;
+// Grows rad_links to hold `words`, keeping the first `used` (a device copy).
+void VertexLinkRadiosity::resize_links(uint64_t words, uint64_t used) {
+  DeviceBuffer links = device_.allocate(std::max<uint64_t>(words, 1) * 4, "rad_links");
+  if (used > 0) device_.copy(buffers_[BufferSlot::rad_links], links, used * 4);
+  buffers_[BufferSlot::rad_links] = std::move(links);
+  link_capacity_ = words;
   buffers_.bind_all();
 }
 
 // Link generation in batches ("radiosity: links"): trace and merge on the device, the batch's
-// merged counts to the host for the offsets (a prefix sum, kept even), store on the device.
+// word counts to the host for the offsets (a prefix sum), encode and store on the device.
 void VertexLinkRadiosity::build_links(LaunchParams p, StageTimer* timer) {
   StageScope scope(timer, "radiosity: links");
   const uint32_t elements = element_count_, nc = settings_.directions;
@@ -107,8 +100,7 @@ void VertexLinkRadiosity::build_links(LaunchParams p, StageTimer* timer) {
   extents.link_batch = batch_elements_;
   extents.link_scratch = uint64_t(batch_elements_) * nc * 3;
   buffers_.allocate(BufferGroup::radiosity, extents);
-  link_capacity_ = 0;
-  ensure_link_capacity(std::max<uint64_t>(uint64_t(elements) * nc, 2), 0);
+  resize_links(uint64_t(elements) * nc, 0);  // a first guess: about one link per ray
 
   std::vector<uint32_t> counts(4 * size_t(batch_elements_));
   uint64_t total = 0;
@@ -123,32 +115,22 @@ void VertexLinkRadiosity::build_links(LaunchParams p, StageTimer* timer) {
     device_.download(buffers_[BufferSlot::rad_batch_counts], counts.data(), 4 * size_t(count) * sizeof(uint32_t));
     const uint64_t used = total;
     for (uint32_t i = 0; i < count; ++i) {
-      const uint32_t merged = counts[4 * i];
       counts[4 * i + 2] = uint32_t(total);
       ranges_[first + i].z = uint32_t(total);
-      total += merged + (merged & 1u);
-      links_ += merged;
+      total += counts[4 * i];
       raw_links_ += counts[4 * i + 1];
+      links_ += counts[4 * i + 3];
     }
     if (total > 0xffffffffull)
-      throw SettingError("directions", "the links exceed 2^32; use fewer directions or a larger --max-edge");
-    ensure_link_capacity(total, used);
+      throw SettingError("directions", "the links exceed 2^32 words; use fewer directions or a larger --max-edge");
+    if (total > link_capacity_) resize_links(std::max(total, link_capacity_ + link_capacity_ / 4), used);
     device_.upload(buffers_[BufferSlot::rad_batch_counts], counts.data(), 4 * size_t(count) * sizeof(uint32_t));
     device_.launch(KernelId::radiosity_link_store, count, p);
     ++link_batches_;
   }
   ranges_[elements].z = uint32_t(total);
-  link_slots_ = total;
-  // Shrink to fit: the arrays keep what the links need, no growth slack.
-  if (link_capacity_ > total + total / 16 + 2) {
-    DeviceBuffer targets = device_.allocate(std::max<uint64_t>(total, 2) * 4, "rad_link_targets");
-    DeviceBuffer weights = device_.allocate((total / 2 + 1) * 4, "rad_link_weights");
-    device_.copy(buffers_[BufferSlot::rad_link_targets], targets, total * 4);
-    device_.copy(buffers_[BufferSlot::rad_link_weights], weights, total / 2 * 4);
-    buffers_[BufferSlot::rad_link_targets] = std::move(targets);
-    buffers_[BufferSlot::rad_link_weights] = std::move(weights);
-    link_capacity_ = std::max<uint64_t>(total, 2);
-  }
+  link_words_ = total;
+  if (link_capacity_ > total + total / 16) resize_links(total, total);  // no growth slack kept
   buffers_.upload(BufferSlot::rad_element_ranges, ranges_);
   extents.link_batch = extents.link_scratch = 0;  // the scratch is freed
   buffers_.allocate(BufferGroup::radiosity, extents);
@@ -210,7 +192,8 @@ void VertexLinkRadiosity::run_pass(const FrameContext& frame, uint32_t pass) {
 
 void VertexLinkRadiosity::update_stats(bool built, bool lit) {
   stats_ = mesh_stats_;
-  const uint64_t link_bytes = link_slots_ * 4 + (link_slots_ / 2) * 4 + uint64_t(element_count_ + 1) * 4;
+  // The links' words and their per-element offsets (the ranges' link column).
+  const uint64_t link_bytes = link_words_ * 4 + uint64_t(element_count_ + 1) * 4;
   stats_.set("link_rays", double(element_count_) * settings_.directions);
   stats_.set("links", double(links_));
   stats_.set("links_raw", double(raw_links_));

@@ -43,7 +43,7 @@ class VertexLinkRadiosity final : public IndirectMethod {
   LaunchParams launch_params(const FrameContext& frame) const;
   void prepare(StageTimer* timer);
   void build_links(LaunchParams params, StageTimer* timer);
-  void ensure_link_capacity(uint64_t links, uint64_t used);
+  void resize_links(uint64_t words, uint64_t used);
   void solve(LaunchParams params, StageTimer* timer);
   void update_stats(bool built, bool lit);
 
@@ -58,8 +58,8 @@ class VertexLinkRadiosity final : public IndirectMethod {
   uint32_t element_count_ = 0;
   uint32_t final_source_ = 0;       // the half of rad_irradiance the interpolation reads
   std::vector<uint4> ranges_;       // host copy of rad_element_ranges (link offsets filled by the build)
-  uint64_t link_capacity_ = 0;      // links rad_link_targets holds
-  uint64_t links_ = 0, link_slots_ = 0, raw_links_ = 0;
+  uint64_t link_capacity_ = 0;      // words rad_links holds
+  uint64_t links_ = 0, link_words_ = 0, raw_links_ = 0;
   uint32_t link_batches_ = 0, batch_elements_ = 0;
   uint64_t light_samples_ = 0;      // light-link shadow rays per light and run
   uint64_t link_builds_ = 0, light_link_runs_ = 0;

@@ -9,6 +9,8 @@
 
 #include <cmath>
 
+#include "kernels/common/compat_host.h"
+#include "kernels/common/radiosity_links.h"
 #include "render/radiosity/vertex_link_radiosity.h"
 #include "render/renderer.h"
 #include "support/render_settings.h"
@@ -89,12 +91,18 @@ TEST(AnalyticSphereRadiosity, IndirectRadianceMatchesClosedFormAndLinksCoverTheH
   std::vector<float4> elements(2 * size_t(n));
   device->download(buffers[BufferSlot::rad_element_ranges], ranges.data(), ranges.size() * sizeof(uint4));
   device->download(buffers[BufferSlot::rad_elements], elements.data(), elements.size() * sizeof(float4));
-  std::vector<uint32_t> weights(ranges[n].z / 2);
-  device->download(buffers[BufferSlot::rad_link_weights], weights.data(), weights.size() * sizeof(uint32_t));
+  std::vector<uint32_t> links(ranges[n].z);
+  device->download(buffers[BufferSlot::rad_links], links.data(), links.size() * sizeof(uint32_t));
   int inner = 0;
   for (uint32_t e = 0; e < n; ++e) {
     double sum = 0;
-    for (uint32_t j = ranges[e].z; j < ranges[e + 1].z; ++j) sum += ((weights[j / 2] >> (16 * (j % 2))) & 0xffffu) / 65535.0;
+    uint32_t target = 0;
+    for (uint32_t at = ranges[e].z; at < ranges[e + 1].z;) {
+      float w = 0;
+      target = radiosity_next_link(links.data(), &at, target, &w);
+      ASSERT_LT(target, n);
+      sum += w;
+    }
     const float4& p = elements[2 * e];
     const float4& normal = elements[2 * e + 1];
     const bool faces_centre = p.x * normal.x + p.y * normal.y + p.z * normal.z < 0;

@@ -92,11 +92,12 @@ TEST(RadiosityDirections, CosineWeightedOverTheHemisphere) {
 
 TEST(RadiosityLinks, MergeAndStoreKeepEveryWeightAndTheirSum) {
   const uint32_t nc = 8, batch = 3, per = 3 * nc;
-  std::vector<uint32_t> links(2 * batch * per), counts(4 * batch), targets(256), weights(128);
+  std::vector<uint32_t> links(2 * batch * per), counts(4 * batch), words(512);
   std::mt19937 rng(11);
-  std::uniform_int_distribution<int> pick(0, 4);
+  std::uniform_int_distribution<int> pick(0, 5);
   std::uniform_real_distribution<float> w(0.0f, 1.0f / float(per));
-  const uint32_t ids[5] = {9, 3, 12, 3000000, PM_RADIOSITY_NONE};
+  // Targets close together (one word each) and far apart (escaped: two words).
+  const uint32_t ids[6] = {9, 3, 12, 3000000, 3000001, PM_RADIOSITY_NONE};
   std::vector<std::map<uint32_t, double>> expected(batch);
   std::vector<double> sums(batch, 0.0);
   for (uint32_t e = 0; e < batch; ++e)
@@ -113,33 +114,34 @@ TEST(RadiosityLinks, MergeAndStoreKeepEveryWeightAndTheirSum) {
   KernelGlobals kg{};
   kg.rad_batch_links = links.data();
   kg.rad_batch_counts = counts.data();
-  kg.rad_link_targets = targets.data();
-  kg.rad_link_weights = weights.data();
+  kg.rad_links = words.data();
   LaunchParams p{};
   p.link_directions = nc;
-  p.batch_first = 40;
   for (uint32_t e = 0; e < batch; ++e) kernel_radiosity_link_merge(&kg, &p, e);
-  uint32_t offset = 0;  // the host's offsets: running sum of merged counts, kept even
+  uint32_t offset = 0;  // the host's offsets: the running sum of the words
   for (uint32_t e = 0; e < batch; ++e) {
     counts[4 * e + 2] = offset;
-    offset += counts[4 * e] + (counts[4 * e] & 1u);
+    offset += counts[4 * e];
   }
   for (uint32_t e = 0; e < batch; ++e) kernel_radiosity_link_store(&kg, &p, e);
   for (uint32_t e = 0; e < batch; ++e) {
-    const uint32_t merged = counts[4 * e], first = counts[4 * e + 2];
-    ASSERT_EQ(merged, expected[e].size());
-    uint32_t quantised_sum = 0;
-    uint32_t j = first;
-    for (const auto& [target, weight] : expected[e]) {  // ascending, one link per target
-      EXPECT_EQ(targets[j], target);
-      EXPECT_NEAR(radiosity_link_weight(weights.data(), j), weight, 1.0 / 65535.0);
-      quantised_sum += uint32_t(std::lround(radiosity_link_weight(weights.data(), j) * 65535.0));
-      ++j;
+    ASSERT_EQ(counts[4 * e + 3], expected[e].size());
+    // Escapes: the first far target after a near one, and the first link if its target is far.
+    uint32_t expected_words = 0, previous = 0;
+    for (const auto& [target, weight] : expected[e]) {
+      expected_words += target - previous >= 0xffffu ? 2 : 1;
+      previous = target;
     }
-    if (merged & 1u) {  // the pad link: to the element itself, weight 0
-      EXPECT_EQ(targets[j], p.batch_first + e);
-      EXPECT_EQ(radiosity_link_weight(weights.data(), j), 0.0f);
+    EXPECT_EQ(counts[4 * e], expected_words);
+    uint32_t quantised_sum = 0, at = counts[4 * e + 2], target = 0;
+    for (const auto& [expected_target, weight] : expected[e]) {  // ascending, one link per target
+      float decoded = 0;
+      target = radiosity_next_link(words.data(), &at, target, &decoded);
+      EXPECT_EQ(target, expected_target);
+      EXPECT_NEAR(decoded, weight, 1.0 / 65535.0);
+      quantised_sum += uint32_t(std::lround(decoded * 65535.0));
     }
+    EXPECT_EQ(at, counts[4 * e + 2] + counts[4 * e]);  // every word read, no more
     // The quantised weights sum to the rounded sum: nothing lost or gained in compression.
     EXPECT_NEAR(double(quantised_sum), sums[e] * 65535.0, 1.0);
   }
@@ -151,17 +153,15 @@ TEST(RadiosityGather, OneBounceInTheUnitsOfEquationsThreeAndFour) {
   std::vector<Material> materials(1);
   materials[0].diffuse = float4{0.5f, 0.25f, 1.0f, 0};
   std::vector<float4> elements = {{0, 0, 0, PM_AS_FLOAT(0)}, {0, 0, 1, 0}, {0, 0, 1, PM_AS_FLOAT(0)}, {0, 0, -1, 0}};
-  std::vector<uint4> ranges = {{0, 0, 0, 0}, {0, 0, 2, 0}, {0, 0, 4, 0}};
-  std::vector<uint32_t> targets = {1, 0, 0, 1};
-  std::vector<uint32_t> weights = {65535u, 32768u};  // link 0: 1, link 1 (pad): 0; link 2: 0.5..., link 3: 0
+  std::vector<uint4> ranges = {{0, 0, 0, 0}, {0, 0, 1, 0}, {0, 0, 2, 0}};
+  std::vector<uint32_t> links = {1u << 16 | 65535u, 0u << 16 | 32768u};  // (delta << 16) | unorm16 weight
   std::vector<float4> radiance = {{0, 0, 0, 0}, {2, 2, 2, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}};
   std::vector<float4> irradiance(4, float4{0, 0, 0, 0});
   KernelGlobals kg{};
   kg.materials = materials.data();
   kg.rad_elements = elements.data();
   kg.rad_element_ranges = ranges.data();
-  kg.rad_link_targets = targets.data();
-  kg.rad_link_weights = weights.data();
+  kg.rad_links = links.data();
   kg.rad_radiance = radiance.data();
   kg.rad_irradiance = irradiance.data();
   LaunchParams p{};
