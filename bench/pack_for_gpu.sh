@@ -8,7 +8,7 @@
 # Layout:
 #   OUT_DIR/bin, lib, env.sh      device-bundle's output
 #   OUT_DIR/data/                 tests/data (PM_TEST_DATA_DIR for the bundled test binaries)
-#   OUT_DIR/bench/run_suite.sh    the suite; finds ../bin/pmrender and ../env.sh itself
+#   OUT_DIR/bench/run_suite.sh    the suites (and radiosity_suite.sh, suite_common.sh); find ../bin/pmrender and ../env.sh
 #   OUT_DIR/bench/scenes/*.json   the bench scene files, paths rewritten to ../../shared/scenes/
 #   OUT_DIR/shared/scenes/...     the OBJ and MTL files they name (no textures: nothing reads them)
 #   OUT_DIR/COMMIT                the commit the binaries were built from
@@ -31,7 +31,7 @@ done
 "$shared/tools/device-bundle" "$out" "${binaries[@]}" >/dev/null
 cp -r "$repo/tests/data" "$out/data"
 mkdir -p "$out/bench/scenes" "$out/shared/scenes"
-cp "$repo/bench/run_suite.sh" "$out/bench/"
+cp "$repo/bench/run_suite.sh" "$repo/bench/radiosity_suite.sh" "$repo/bench/suite_common.sh" "$out/bench/"
 
 # The scene JSONs name their meshes as ../../../shared/scenes/<path> (relative to bench/scenes/ in
 # the repository); in the bundle, bench/scenes/ is two levels below the bundle's shared/.

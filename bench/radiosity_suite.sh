@@ -68,18 +68,10 @@ for n in device directions bounces photons frames full_runs reference_passes; do
 done
 [ "$frames" -ge 1 ] || { echo "radiosity_suite.sh: --frames: expected at least 1" >&2; exit 2; }
 
-if [ -z "$pmrender" ]; then
-  if [ -x "$suite_dir/../build/pmrender" ]; then
-    pmrender=$suite_dir/../build/pmrender
-  elif [ -x "$suite_dir/../bin/pmrender" ]; then
-    pmrender=$suite_dir/../bin/pmrender
-    # shellcheck disable=SC1091
-    source "$suite_dir/../env.sh"
-  else
-    pmrender=$(command -v pmrender || true)
-  fi
-fi
-[ -n "$pmrender" ] && [ -x "$pmrender" ] || { echo "radiosity_suite.sh: no pmrender binary found (use --pmrender)" >&2; exit 2; }
+suite_name=radiosity_suite.sh
+# shellcheck source=bench/suite_common.sh
+source "$suite_dir/suite_common.sh"
+suite_find_pmrender "$pmrender"
 
 # Per scene: how far its light and its camera move over one second (24 frames), in scene units.
 light_motion() {
@@ -126,42 +118,16 @@ animated() {
   echo "$dst"
 }
 
-commit=unknown
-if [ -f "$suite_dir/../COMMIT" ]; then commit=$(cat "$suite_dir/../COMMIT")
-elif git -C "$suite_dir" rev-parse --short HEAD >/dev/null 2>&1; then
-  commit=$(git -C "$suite_dir" rev-parse --short HEAD)
-  git -C "$suite_dir" diff --quiet HEAD -- 2>/dev/null || commit="$commit (with uncommitted changes)"
-fi
-{
-  echo "date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
-  echo "commit: $commit"
-  echo "host: $(uname -n) ($(nproc) cores)"
-  echo "pmrender: $pmrender ($("$pmrender" --version))"
-  echo "suite: backend=$backends device=$device scenes='$scenes' resolution=$resolution directions=$directions" \
-       "bounces=$bounces photons=$photons frames=$frames full-runs=$full_runs reference-passes=$reference_passes" \
-       "radiosity-args='$radiosity_args'"
-  echo
-  "$pmrender" devices || true
-} >"$out/environment.txt"
-cat "$out/environment.txt"
+suite_environment "$out" "backend=$backends device=$device scenes='$scenes' resolution=$resolution \
+directions=$directions bounces=$bounces photons=$photons frames=$frames full-runs=$full_runs \
+reference-passes=$reference_passes radiosity-args='$radiosity_args'"
 
 failed=0
 runs=()
-# run NAME ARGS...: one pmrender bench, text to NAME.txt, JSON to NAME.json.
-run() {
-  local name=$1; shift
-  echo
-  echo "== $name: pmrender bench $*"
-  local rc=0
-  "$pmrender" bench "$@" --json "$out/$name.json" >"$out/$name.txt" 2>"$out/$name.err" || rc=$?
-  grep -E '^(radiosity: |camera |photon trace|gather |frame \(|frames per second)' "$out/$name.txt" || true
-  if [ "$rc" -ne 0 ]; then
-    echo "FAILED (exit $rc): $(cat "$out/$name.err")"
-    failed=$((failed + 1))
-  fi
-  [ -s "$out/$name.err" ] || rm -f "$out/$name.err"
-  runs+=("$name")
-}
+# run NAME ARGS...: one pmrender bench; only its stage and frame rows are shown.
+show_rows() { grep -E '^(radiosity: |camera |photon trace|gather |frame \(|frames per second)'; }
+suite_show=show_rows
+run() { suite_run "$@"; }
 # image NAME ARGS...: one pmrender render of frame 0 into OUT/images/NAME.exr.
 image() {
   local name=$1; shift
