@@ -15,17 +15,10 @@
 namespace pm {
 namespace {
 
-std::unique_ptr<Device> open_opencl_preferring_gpu() {
-  for (const DeviceInfo& info : list_devices())
-    if (info.backend == "opencl" && info.platform.find("NVIDIA") != std::string::npos)
-      return create_device("opencl", info.index);
-  return test::open_first_device("opencl");
-}
-
 void expect_backends_agree(const Scene& scene, int frame, int width, int height) {
   std::unique_ptr<Device> cuda = test::open_first_device("cuda");
   if (!cuda) GTEST_SKIP() << "no CUDA device on this machine";
-  std::unique_ptr<Device> opencl = open_opencl_preferring_gpu();
+  std::unique_ptr<Device> opencl = test::open_opencl_preferring_gpu();
   ASSERT_NE(opencl, nullptr);
   RenderSettings settings = test::radiosity_render_settings(RadiositySettings{});  // nC 256, two bounces
   settings.width = width;
