@@ -194,10 +194,7 @@ summary=$out/summary.md
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   for name in "${runs[@]}"; do
     f=$out/$name.txt
-    if ! grep -q '^frames per second' "$f" 2>/dev/null; then
-      echo "| $name | failed: $(head -n 1 "$out/$name.err" 2>/dev/null) |||||||||||||||"
-      continue
-    fi
+    if suite_failed_row "$name" 15; then continue; fi
     awk -v name="$name" '
       /^camera / { camera = $2 }
       /^radiosity: refine / { refine = $3 } /^radiosity: links / { links_ms = $3 }

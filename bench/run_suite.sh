@@ -126,10 +126,7 @@ summary=$out/summary.md
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   for name in "${runs[@]}"; do
     f=$out/$name.txt
-    if ! grep -q '^frames per second' "$f" 2>/dev/null; then
-      echo "| $name | failed: $(head -n 1 "$out/$name.err" 2>/dev/null) |||||||||||||"
-      continue
-    fi
+    if suite_failed_row "$name" 13; then continue; fi
     awk -v name="$name" '
       /^settings: / { res = $2; for (i = 3; i <= NF; ++i) if ($i ~ /^photons=/) { split($i, kv, "="); photons = kv[2] } }
       /^camera / { camera = $2 }

@@ -61,3 +61,11 @@ suite_run() {
   [ -s "$out/$name.err" ] || rm -f "$out/$name.err"
   runs+=("$name")
 }
+
+# suite_failed_row NAME CELLS: for a run that printed no results, its summary row ("failed: " and
+# the first line of its error, then CELLS empty cells), returning 0; returns 1 for a good run.
+suite_failed_row() {
+  grep -q '^frames per second' "$out/$1.txt" 2>/dev/null && return 1
+  printf '| %s | failed: %s |%s\n' "$1" "$(head -n 1 "$out/$1.err" 2>/dev/null)" "$(printf '%*s' "$2" '' | tr ' ' '|')"
+  return 0
+}
