@@ -8,7 +8,7 @@
 # Layout:
 #   OUT_DIR/bin, lib, env.sh      device-bundle's output
 #   OUT_DIR/data/                 tests/data (PM_TEST_DATA_DIR for the bundled test binaries)
-#   OUT_DIR/bench/run_suite.sh    the suite; finds ../bin/pmrender and ../env.sh itself
+#   OUT_DIR/bench/run_suite.sh    the suites (and radiosity_suite.sh, suite_common.sh); find ../bin/pmrender and ../env.sh
 #   OUT_DIR/bench/tradeoff_suite.sh, mitsuba_peer.py, OUT_DIR/tests/mitsuba/pm_mitsuba.py:
 #                                 the speed/accuracy suite and its Mitsuba peer (docs/tradeoff.md)
 #   OUT_DIR/bench/scenes/*.json   the bench scene files, paths rewritten to ../../shared/scenes/
@@ -33,7 +33,8 @@ done
 "$shared/tools/device-bundle" "$out" "${binaries[@]}" >/dev/null
 cp -r "$repo/tests/data" "$out/data"
 mkdir -p "$out/bench/scenes" "$out/shared/scenes"
-cp "$repo/bench/run_suite.sh" "$repo/bench/tradeoff_suite.sh" "$repo/bench/mitsuba_peer.py" "$out/bench/"
+cp "$repo/bench/run_suite.sh" "$repo/bench/radiosity_suite.sh" "$repo/bench/suite_common.sh" \
+   "$repo/bench/tradeoff_suite.sh" "$repo/bench/mitsuba_peer.py" "$repo/bench/gpu_check.sh" "$out/bench/"
 # The Mitsuba converter mitsuba_peer.py imports (docs/tradeoff.md, "H200 (CUDA)").
 mkdir -p "$out/tests/mitsuba"
 cp "$repo/tests/mitsuba/pm_mitsuba.py" "$repo/tests/mitsuba/requirements.txt" "$out/tests/mitsuba/"

@@ -59,21 +59,10 @@ case $profile in paper) profiles=paper ;; production) profiles=production ;; all
 [[ $divisor =~ ^[1-9][0-9]*$ ]] || { echo "run_suite.sh: --photon-divisor: expected a positive integer, got '$divisor'" >&2; exit 2; }
 
 # The binary: given, the repository's build, or the bundle's (with its libraries).
-if [ -z "$pmrender" ]; then
-  if [ -x "$suite_dir/../build/pmrender" ]; then
-    pmrender=$suite_dir/../build/pmrender
-  elif [ -x "$suite_dir/../bin/pmrender" ]; then
-    pmrender=$suite_dir/../bin/pmrender
-    # shellcheck disable=SC1091
-    source "$suite_dir/../env.sh"  # (it sets its own variable `here`)
-  else
-    pmrender=$(command -v pmrender || true)
-  fi
-fi
-if [ -z "$pmrender" ] || [ ! -x "$pmrender" ]; then
-  echo "run_suite.sh: no pmrender binary found (use --pmrender)" >&2
-  exit 2
-fi
+suite_name=run_suite.sh
+# shellcheck source=bench/suite_common.sh
+source "$suite_dir/suite_common.sh"
+suite_find_pmrender "$pmrender"
 
 # Per scene: the scene argument (empty: the built-in Cornell box), the paper's emitted photons
 # (Table 2; k = 1024) and smoothing factor s.
@@ -94,41 +83,12 @@ done
 [ -n "$out" ] || out=bench-results/$(date -u +%Y%m%d-%H%M%S)
 mkdir -p "$out"
 
-commit=unknown
-if [ -f "$suite_dir/../COMMIT" ]; then commit=$(cat "$suite_dir/../COMMIT")
-elif git -C "$suite_dir" rev-parse --short HEAD >/dev/null 2>&1; then
-  commit=$(git -C "$suite_dir" rev-parse --short HEAD)
-  git -C "$suite_dir" diff --quiet HEAD -- 2>/dev/null || commit="$commit (with uncommitted changes)"
-fi
-{
-  echo "date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
-  echo "commit: $commit"
-  echo "host: $(uname -n) ($(nproc) cores)"
-  echo "pmrender: $pmrender ($("$pmrender" --version))"
-  echo "suite: backend=$backends device=$device profile=$profile scenes='$scenes' warmup=$warmup repeat=$repeat" \
-       "resolution=${resolution:-profile} photon-divisor=$divisor paper-tables=$paper_tables knn=$knn"
-  echo
-  "$pmrender" devices || true
-} >"$out/environment.txt"
-cat "$out/environment.txt"
+suite_environment "$out" "backend=$backends device=$device profile=$profile scenes='$scenes' warmup=$warmup \
+repeat=$repeat resolution=${resolution:-profile} photon-divisor=$divisor paper-tables=$paper_tables knn=$knn"
 
 failed=0
 runs=()
-# run NAME ARGS...: one pmrender bench, text to NAME.txt, JSON to NAME.json.
-run() {
-  local name=$1; shift
-  echo
-  echo "== $name: pmrender bench $*"
-  local rc=0
-  "$pmrender" bench "$@" --json "$out/$name.json" >"$out/$name.txt" 2>"$out/$name.err" || rc=$?
-  cat "$out/$name.txt"
-  if [ "$rc" -ne 0 ]; then
-    echo "FAILED (exit $rc): $(cat "$out/$name.err")"
-    failed=$((failed + 1))
-  fi
-  [ -s "$out/$name.err" ] || rm -f "$out/$name.err"
-  runs+=("$name")
-}
+run() { suite_run "$@"; }
 
 for backend in ${backends//,/ }; do
   for p in $profiles; do
@@ -167,10 +127,7 @@ summary=$out/summary.md
   echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
   for name in "${runs[@]}"; do
     f=$out/$name.txt
-    if ! grep -q '^frames per second' "$f" 2>/dev/null; then
-      echo "| $name | failed: $(head -n 1 "$out/$name.err" 2>/dev/null) |||||||||||||"
-      continue
-    fi
+    if suite_failed_row "$name" 13; then continue; fi
     awk -v name="$name" '
       /^settings: / { res = $2; for (i = 3; i <= NF; ++i) if ($i ~ /^photons=/) { split($i, kv, "="); photons = kv[2] } }
       /^camera / { camera = $2 }

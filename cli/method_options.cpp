@@ -8,6 +8,8 @@ const std::vector<MethodEntry>& methods() {
       {"photon", "photon mapping with photon-differential footprints (Fabianowski & Dingliana 2009)",
        &add_photon_options},
       {"path", "reference path tracer with next-event estimation, the same BRDFs and bounces", &add_path_options},
+      {"radiosity", "vertex link radiosity over explicit visibility links (2008; docs/radiosity.md)",
+       &add_radiosity_options},
   };
   return table;
 }

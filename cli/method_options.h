@@ -32,5 +32,6 @@ std::vector<std::string> method_names();
 // Each method's options file.
 std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd);
 std::shared_ptr<MethodOptions> add_path_options(CLI::App* cmd);
+std::shared_ptr<MethodOptions> add_radiosity_options(CLI::App* cmd);
 
 }  // namespace pm::cli

@@ -17,6 +17,7 @@ enum class BufferGroup : int {
   scene,    // uploaded once per renderer
   frame,    // sized by the resolution: shading points and film
   photon,   // the photon-mapping method, sized by its photons per pass
+  radiosity,  // the vertex link radiosity method, sized by its elements and link batch
   backend,  // scratch a backend binds itself (the portable sort)
   test,     // bound by tests only
 };
@@ -30,6 +31,9 @@ struct BufferExtents {
   uint64_t hit_slots = 0;       // photons per pass * hit records per photon
   uint64_t bounds_tiles = 0;    // hit slots / PM_PHOTON_MAP_BOUNDS_TILE, rounded up
   uint64_t counters = 1;        // small fixed-size counter arrays
+  uint64_t elements = 0;        // radiosity elements
+  uint64_t link_batch = 0;      // radiosity elements per link batch
+  uint64_t link_scratch = 0;    // radiosity link batch entries: elements per batch * nC * 3
 };
 
 BufferGroup buffer_group(BufferSlot slot);

@@ -21,7 +21,8 @@
   X(scene, PointLight, lights, uploaded, 1)   /* re-uploaded when an animated light moves */               \
   /* S5 camera: one shading point per pixel and mirror depth, [depth * pixels + pixel] */                  \
   X(frame, float4, shade_position, shading_points, 1) /* xyz, w = material index as int bits, -1: none */  \
-  X(frame, float4, shade_normal, shading_points, 1)   /* xyz geometric normal facing the viewer */         \
+  X(frame, float4, shade_normal, shading_points, 1)   /* xyz geometric normal facing the viewer, w = the */ \
+                                                      /* hit triangle (leaf order) as int bits, -1: none */ \
   X(frame, float4, shade_outgoing, shading_points, 1) /* xyz direction towards the viewer */               \
   X(frame, float4, shade_weight, shading_points, 1)   /* rgb product of mirror reflectances on the path */ \
   /* S7 film: direct light once per frame; indirect and caustic summed over passes (rgb, w unused) */      \
@@ -72,6 +73,20 @@
   X(photon, uint, morton_slots, hit_slots, 1)  /* and their slots */                                     \
   X(photon, uint, sorted_keys, hit_slots, 1)   /* S4 output of the sort: keys ascending */               \
   X(photon, uint, sorted_slots, hit_slots, 1)  /* and their slots */                                     \
+  /* vertex link radiosity (render/radiosity/, docs/radiosity.md): the refined mesh, uploaded once */     \
+  X(radiosity, float4, rad_elements, uploaded, 1)   /* 2 per element: (position, material bits), normal */ \
+  X(radiosity, uint4, rad_element_ranges, uploaded, 1) /* elements + 1: first ring entry, neighbour, link word */\
+  X(radiosity, uint, rad_adjacency, uploaded, 1)    /* one-ring entries (triangle << 2 | corner), then */  \
+                                                    /* smoothing neighbours (element indices) */           \
+  X(radiosity, float4, rad_tree, uploaded, 1)       /* refinement tree, 2 per node (radiosity_mesh.h) */   \
+  X(radiosity, uint4, rad_triangles, uploaded, 1)   /* 2 per refined triangle: front, back elements */     \
+  X(radiosity, uint, rad_links, uploaded, 1)        /* merged links, one word each (radiosity_links.h) */ \
+  /* vertex link radiosity, the solution: per element, two halves [0, E) and [E, 2E) to ping-pong */      \
+  X(radiosity, float4, rad_radiance, elements, 2)   /* outgoing radiance of the last bounce, rgb */        \
+  X(radiosity, float4, rad_irradiance, elements, 2) /* gathered indirect irradiance I_total (eq. 3) */     \
+  /* vertex link radiosity, link build scratch: one batch of elements */                                  \
+  X(radiosity, uint, rad_batch_links, link_scratch, 2) /* (target, weight bits) per ray and corner */      \
+  X(radiosity, uint, rad_batch_counts, link_batch, 4)  /* link words, raw links, word offset, links */     \
   /* portable radix sort (OpenCL backend; CUDA uses CUB): bound by its driver to the pairs it sorts */   \
   X(backend, uint, sort_keys, uploaded, 1)                                                                \
   X(backend, uint, sort_values, uploaded, 1)                                                              \

@@ -1,6 +1,6 @@
 /* Stage S5 (paper section 7): one work item per pixel traces the eye ray, follows up to
    mirror_depth perfect-mirror bounces, adds direct light from every point light with a shadow
-   ray, and records a shading point per depth for the gather (S6). */
+   ray, and records a shading point per depth for the gather (S6) with the triangle it lies on. */
 #ifndef PM_CAMERA_PASS_H
 #define PM_CAMERA_PASS_H
 
@@ -102,7 +102,7 @@ PM_DEVICE void kernel_camera_pass(const KernelGlobals* kg, const LaunchParams* p
     float offset = ray_offset_distance(ray.origin, hit.t, p->ray_epsilon);
     radiance = vec3_add(radiance, vec3_mul(throughput, direct_light(kg, p, &m, pos, n, wo, offset)));
     kg->shade_position[record] = vec3_to_float4(pos, PM_AS_FLOAT(material_index));
-    kg->shade_normal[record] = vec3_to_float4(n, 0.0f);
+    kg->shade_normal[record] = vec3_to_float4(n, PM_AS_FLOAT(hit.triangle)); /* radiosity interpolates on it */
     kg->shade_outgoing[record] = vec3_to_float4(wo, 0.0f);
     kg->shade_weight[record] = vec3_to_float4(throughput, 0.0f);
 

@@ -18,6 +18,13 @@
   K(path_trace)        /* path tracer: paths from every shading point into film_indirect_sum */ \
   K(film_resolve)      /* S7: sums / passes; combined = direct + indirect + caustic, NaN guard */\
   K(film_error_tiles)  /* S7: per-tile sums for the error estimate from even and odd passes */ \
+  K(radiosity_link_trace)   /* radiosity: nC rays per element of a batch, barycentric links */ \
+  K(radiosity_link_merge)   /* radiosity: an element's links to one element combined */        \
+  K(radiosity_link_store)   /* radiosity: merged links, compact, at host-computed offsets */   \
+  K(radiosity_light_links)  /* radiosity: eq. 2 from every light, bounce-0 radiance */         \
+  K(radiosity_gather)       /* radiosity: one bounce over the links (eq. 3, 4) */              \
+  K(radiosity_smooth)       /* radiosity: one-ring smoothing within alpha_f (eq. 5, 6) */      \
+  K(radiosity_interpolate)  /* radiosity: vertex irradiance at the shading points, film */     \
   K(sort_histogram)    /* portable radix sort: per-tile digit counts */                      \
   K(sort_scan_chunks)  /* portable radix sort: exclusive scan within chunks of counts */     \
   K(sort_scan_totals)  /* portable radix sort: exclusive scan of chunk totals */             \

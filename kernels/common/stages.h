@@ -13,6 +13,10 @@
 #include "footprint_scale.h"
 #include "photon_map_stage.h"
 #include "photon_trace.h"
+#include "radiosity_gather.h"
+#include "radiosity_interpolate.h"
+#include "radiosity_light.h"
+#include "radiosity_links.h"
 #include "radix_sort.h"
 #include "layout_probe.h"
 

@@ -99,6 +99,16 @@ typedef struct LaunchParams {
   uint path_first_sample; /* path tracer: index of the pass's first path (random stream) */
   uint path_frame;        /* path tracer: the frame whose random numbers the paths draw */
   uint path_unused;       /* keeps the row 16 bytes */
+
+  uint element_count;    /* radiosity: elements (vertices split by side, feature edges and material) */
+  uint link_directions;  /* radiosity: nC, hemisphere directions shot per element */
+  uint batch_first;      /* radiosity link build: first element of the batch */
+  uint batch_count;      /* radiosity link build: elements in the batch */
+
+  uint radiosity_source; /* radiosity: which half of a ping-pong buffer holds the input (0 or 1) */
+  uint light_sampling;   /* radiosity: PM_RADIOSITY_LIGHT_* */
+  float feature_cos;     /* radiosity: cos alpha_f, the feature angle of the smoothing (eq. 6) */
+  uint radiosity_unused;
 } LaunchParams;
 
 /* Photon emission sequences (--photon-sequence). RANDOM: Philox keyed by (seed, photon_frame).
@@ -107,6 +117,16 @@ typedef struct LaunchParams {
    frame: the same lights give the same photons in every frame. */
 #define PM_PHOTON_SEQUENCE_RANDOM 0
 #define PM_PHOTON_SEQUENCE_HALTON 1
+
+/* Vertex link radiosity (docs/radiosity.md). An element index that does not exist (the back side
+   of a one-sided surface, an empty link slot). */
+#define PM_RADIOSITY_NONE 0xffffffffu
+/* Light links (section 3.3): the vertex alone, or the vertex and the midpoints of its one-ring
+   edges (the paper's 1:4 subdivision), weighted as a quadrature of the vertex's hat function. */
+#define PM_RADIOSITY_LIGHT_VERTEX 0
+#define PM_RADIOSITY_LIGHT_ONE_RING 1
+/* Deepest refinement tree (render/radiosity/mesh_refinement.h guarantees it). */
+#define PM_RADIOSITY_MAX_TREE_DEPTH 128
 
 #define PM_SORT_RADIX_BITS 4
 #define PM_SORT_RADIX (1 << PM_SORT_RADIX_BITS)

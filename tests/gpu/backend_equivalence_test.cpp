@@ -15,17 +15,10 @@
 namespace pm {
 namespace {
 
-std::unique_ptr<Device> open_opencl_preferring_gpu() {
-  for (const DeviceInfo& info : list_devices())
-    if (info.backend == "opencl" && info.platform.find("NVIDIA") != std::string::npos)
-      return create_device("opencl", info.index);
-  return test::open_first_device("opencl");
-}
-
 TEST(BackendEquivalence, CornellBoxCudaMatchesOpencl) {
   std::unique_ptr<Device> cuda = test::open_first_device("cuda");
   if (!cuda) GTEST_SKIP() << "no CUDA device on this machine";
-  std::unique_ptr<Device> opencl = open_opencl_preferring_gpu();
+  std::unique_ptr<Device> opencl = test::open_opencl_preferring_gpu();
   ASSERT_NE(opencl, nullptr);
 
   Scene scene = builtin_cornell_box();
@@ -58,7 +51,7 @@ TEST(BackendEquivalence, CornellBoxCudaMatchesOpencl) {
 TEST(BackendEquivalence, PathTracerCudaMatchesOpencl) {
   std::unique_ptr<Device> cuda = test::open_first_device("cuda");
   if (!cuda) GTEST_SKIP() << "no CUDA device on this machine";
-  std::unique_ptr<Device> opencl = open_opencl_preferring_gpu();
+  std::unique_ptr<Device> opencl = test::open_opencl_preferring_gpu();
   ASSERT_NE(opencl, nullptr);
 
   Scene scene = builtin_cornell_box();

@@ -32,6 +32,15 @@ inline Device& shared_opencl_device() {
   return *d;
 }
 
+// An OpenCL device on the same GPU as CUDA (NVIDIA's OpenCL driver) when there is one, else the
+// first OpenCL device: for comparing the backends on one GPU.
+inline std::unique_ptr<Device> open_opencl_preferring_gpu() {
+  for (const DeviceInfo& info : list_devices())
+    if (info.backend == "opencl" && info.platform.find("NVIDIA") != std::string::npos)
+      return create_device("opencl", info.index);
+  return open_first_device("opencl");
+}
+
 // The device compiler sees the shared structs exactly as the host does, and by-value launch
 // parameters arrive intact.
 inline void check_layout_agrees(Device& device) {

@@ -1,10 +1,11 @@
-// RenderSettings for the tests that render with photon mapping: the photon settings become the
-// renderer's method.
+// RenderSettings for the tests that render with photon mapping or radiosity: the method's
+// settings become the renderer's method.
 #pragma once
 
 #include <memory>
 
 #include "render/photon/photon_settings.h"
+#include "render/radiosity/radiosity_settings.h"
 #include "render/renderer.h"
 
 namespace pm::test {
@@ -13,6 +14,13 @@ inline RenderSettings photon_render_settings(const PhotonSettings& photons, uint
   RenderSettings settings;
   settings.passes = passes;
   settings.method = std::make_shared<PhotonSettings>(photons);
+  return settings;
+}
+
+// RenderSettings for the tests that render with vertex link radiosity.
+inline RenderSettings radiosity_render_settings(const RadiositySettings& radiosity) {
+  RenderSettings settings;
+  settings.method = std::make_shared<RadiositySettings>(radiosity);
   return settings;
 }
 

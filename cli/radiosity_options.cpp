@@ -1,0 +1,58 @@
+// Options of the vertex link radiosity method (render/radiosity/radiosity_settings.h):
+// registration in their own help group, and the settings they describe. --bounces is shared with
+// photon mapping (the same bounce semantics): registered once, read by both. Values are checked
+// by RadiositySettings::validate; names come from the library's name tables.
+#include <memory>
+
+#include "cli/method_options.h"
+#include "render/radiosity/radiosity_settings.h"
+
+namespace pm::cli {
+
+namespace {
+
+class RadiosityOptions final : public MethodOptions {
+ public:
+  RadiositySettings settings_;
+  std::string sides = "two";
+  std::string light_samples = "one-ring";
+  CLI::Option* bounces = nullptr;  // --bounces, whoever registered it
+
+  std::shared_ptr<const MethodSettings> settings() const override {
+    auto s = std::make_shared<RadiositySettings>(settings_);
+    value_of(kRadiositySidesNames, sides, &s->sides);
+    value_of(kRadiosityLightSamplesNames, light_samples, &s->light_samples);
+    if (bounces && bounces->count() > 0) s->bounces = bounces->as<int>();
+    s->validate();
+    return s;
+  }
+};
+
+}  // namespace
+
+std::shared_ptr<MethodOptions> add_radiosity_options(CLI::App* cmd) {
+  auto o = std::make_shared<RadiosityOptions>();
+  RadiositySettings& r = o->settings_;
+  const std::string group = "Vertex link radiosity (--method radiosity)";
+  o->bounces = cmd->get_option_no_throw("--bounces");
+  if (!o->bounces)
+    o->bounces = cmd->add_option("--bounces", r.bounces, "Diffuse bounces of indirect light")->capture_default_str()->group(group);
+  cmd->add_option("--directions", r.directions, "Hemisphere directions nC shot per element (link rays)")
+      ->capture_default_str()->group(group);
+  cmd->add_option("--max-edge", r.max_edge, "Longest triangle edge after refinement, metres (default: the scene "
+                                            "diagonal / 25)")->group(group);
+  cmd->add_option("--feature-angle", r.feature_angle, "Feature angle alpha_f, degrees: vertices split and smoothing "
+                                                      "stops where normals differ more")
+      ->capture_default_str()->group(group);
+  cmd->add_option("--smooth-passes", r.smooth_passes, "One-ring smoothing passes over the gathered light (0: none)")
+      ->capture_default_str()->group(group);
+  cmd->add_option("--sides", o->sides, "Elements on both sides of every surface (two) or on the winding's side (one)")
+      ->capture_default_str()->check(CLI::IsMember(names_of(kRadiositySidesNames)))->group(group);
+  cmd->add_option("--light-samples", o->light_samples, "Light links at the vertex only, or over its one-ring (1:4)")
+      ->capture_default_str()->check(CLI::IsMember(names_of(kRadiosityLightSamplesNames)))->group(group);
+  cmd->add_option("--link-batch", r.link_batch, "Elements per link-build batch (0: as many as 256 MiB of scratch hold)")
+      ->capture_default_str()->group(group);
+  return o;
+}
+
+}  // namespace pm::cli

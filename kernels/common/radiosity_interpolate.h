@@ -1,0 +1,52 @@
+/* Vertex link radiosity, the image (section 3.4): at every shading point of the camera pass the
+   gathered indirect irradiance is interpolated barycentrically from the corner elements of the
+   refined triangle the point lies on, on the side the viewer sees, and reflected diffusely:
+   L_indirect = shade_weight * rho_d / pi * sum_k w_k I_total(element_k). Direct light stays the
+   camera pass's exact ray-traced direct light (the paper used shadow maps). The result is
+   added into film_indirect_sum like a photon-mapping pass; the caustic layer gets nothing (the
+   method is diffuse only). */
+#ifndef PM_RADIOSITY_INTERPOLATE_H
+#define PM_RADIOSITY_INTERPOLATE_H
+
+#include "film.h"
+#include "pixel_order.h"
+#include "radiosity_mesh.h"
+
+/* Gathered irradiance at point x of scene triangle `leaf`, seen from the side of normal n. */
+PM_DEVICE Vec3 radiosity_irradiance_at(const KernelGlobals* kg, const LaunchParams* p, int leaf, Vec3 x, Vec3 n)
+{
+  PM_GLOBAL const float4* irradiance = kg->rad_irradiance + p->radiosity_source * p->element_count;
+  uint elements[3];
+  RadiosityLocation loc = radiosity_surface_point(kg, leaf, x, n, elements);
+  Vec3 sum = vec3_splat(0.0f);
+  for (int k = 0; k < 3; ++k)
+    if (elements[k] != PM_RADIOSITY_NONE) sum = vec3_madd(sum, vec3_from_float4(PM_LOAD(&irradiance[elements[k]])), loc.w[k]);
+  return sum;
+}
+
+/* One work item per pixel (in tile order, pixel_order.h), over its shading points (mirror depths). */
+PM_DEVICE void kernel_radiosity_interpolate(const KernelGlobals* kg, const LaunchParams* p, uint item)
+{
+  uint pixel;
+  if (!pixel_of_work_item(item, p->width, p->height, &pixel)) return;
+  uint pixels = p->width * p->height;
+  Vec3 indirect = vec3_splat(0.0f);
+  for (uint depth = 0; depth <= p->mirror_depth; ++depth) {
+    uint record = depth * pixels + pixel;
+    float4 pos = kg->shade_position[record];
+    int material_index = PM_AS_INT(pos.w);
+    if (material_index < 0) break;
+    Material m = material_load(kg->materials, material_index);
+    Vec3 rho = material_diffuse(&m);
+    if (rho.x <= 0.0f && rho.y <= 0.0f && rho.z <= 0.0f) continue;
+    float4 normal = kg->shade_normal[record];
+    int leaf = PM_AS_INT(normal.w);
+    if (leaf < 0) continue;
+    Vec3 e = radiosity_irradiance_at(kg, p, leaf, vec3_from_float4(pos), vec3_from_float4(normal));
+    Vec3 weight = vec3_from_float4(kg->shade_weight[record]);
+    indirect = vec3_add(indirect, vec3_mul(weight, vec3_scale(vec3_mul(rho, e), PM_INV_PI)));
+  }
+  film_add(kg, p, pixel, indirect, vec3_splat(0.0f));
+}
+
+#endif

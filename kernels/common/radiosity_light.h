@@ -1,0 +1,118 @@
+/* Vertex link radiosity, light links (section 3.3): explicit visibility from every point light to
+   every element, and the geometry term of eq. 2. For a point light of power Phi the light's side
+   of eq. 2 (cos theta_y dA_y) is its intensity Phi / (4 pi), so a surface point receives
+   E = Phi / (4 pi r^2) * cos theta_x * V, the same direct light the camera pass computes per
+   pixel. The element's outgoing radiance is initialised with rho_d / pi * E (the light it
+   received times its BRDF), and the gathered irradiance I_total is reset.
+
+   PM_RADIOSITY_LIGHT_VERTEX evaluates that at the vertex. It aliases (a shadow edge between two
+   vertices is missed) and, near a light, over-weights the vertex: a ceiling vertex 1 cm above
+   a lamp gets 1 / (4 pi 1e-4) of its power per m^2, and interpolation spreads that over its
+   whole one-ring, many times the power that really arrives there.
+   PM_RADIOSITY_LIGHT_ONE_RING (default) is the paper's oversampling of the visibility term over
+   the one-ring, with the geometry term integrated over it: eq. 2 integrated over a triangle is
+   Phi / (4 pi) times the solid angle the triangle subtends at the light (cos theta_x dA / r^2 =
+   d omega), exact for any distance. Each one-ring triangle gives its vertex a third of the power
+   it receives, times its visibility; the element's irradiance is that power over a third of
+   the one-ring's area, so the linearly interpolated irradiance carries exactly the power that
+   reaches the surface (unshadowed). Visibility is sampled at the points the paper's 1:4
+   subdivision adds around the vertex, the midpoints of its one-ring edges, and the vertex,
+   weighted 1 : 3/2 : 3/2 per triangle (the vertex's hat function integrated over the 1:4
+   sub-triangles with their corner averages: A/12 * (1, 3/2, 3/2)). Far from the light both
+   modes agree to O(h^2). */
+#ifndef PM_RADIOSITY_LIGHT_H
+#define PM_RADIOSITY_LIGHT_H
+
+#include "radiosity_mesh.h"
+
+/* 1 when the light is in front of the surface at x (normal n) and no triangle blocks it. */
+PM_DEVICE float radiosity_light_visible(const KernelGlobals* kg, const LaunchParams* p, Vec3 light_pos, Vec3 x, Vec3 n)
+{
+  Vec3 origin = offset_ray_origin(x, n, ray_offset_distance(x, 0.0f, p->ray_epsilon));
+  Vec3 to_light = vec3_sub(light_pos, origin);
+  float dist2 = vec3_dot(to_light, to_light);
+  if (!(dist2 > 0.0f) || vec3_dot(n, to_light) <= 0.0f) return 0.0f;
+  float dist = pm_sqrtf(dist2);
+  Ray shadow = ray_make(origin, vec3_scale(to_light, 1.0f / dist));
+  SceneHit blocker = scene_trace(kg->scene_nodes, kg->triangles, &shadow, 0.0f, dist * (1.0f - 1e-5f), 1);
+  return blocker.triangle >= 0 ? 0.0f : 1.0f;
+}
+
+/* Eq. 2 at a point for a light of unit power: cos theta_x / (4 pi r^2), unshadowed. */
+PM_DEVICE float radiosity_light_geometry(Vec3 light_pos, Vec3 x, Vec3 n)
+{
+  Vec3 to_light = vec3_sub(light_pos, x);
+  float dist2 = vec3_dot(to_light, to_light);
+  if (!(dist2 > 0.0f)) return 0.0f;
+  float cos_x = vec3_dot(n, to_light) / pm_sqrtf(dist2);
+  return cos_x > 0.0f ? cos_x / (4.0f * PM_PI * dist2) : 0.0f;
+}
+
+/* Solid angle of triangle (a, b, c) seen from o (Van Oosterom & Strackee 1983):
+   tan(omega / 2) = |a . (b x c)| / (|a||b||c| + (a.b)|c| + (a.c)|b| + (b.c)|a|), corners relative to o. */
+PM_DEVICE float radiosity_solid_angle(Vec3 o, Vec3 a, Vec3 b, Vec3 c)
+{
+  a = vec3_sub(a, o);
+  b = vec3_sub(b, o);
+  c = vec3_sub(c, o);
+  float la = vec3_length(a), lb = vec3_length(b), lc = vec3_length(c);
+  float num = pm_fabsf(vec3_dot(a, vec3_cross(b, c)));
+  float den = la * lb * lc + vec3_dot(a, b) * lc + vec3_dot(a, c) * lb + vec3_dot(b, c) * la;
+  return 2.0f * pm_atan2f(num, den);
+}
+
+/* Element e's irradiance from a light of unit power at light_pos (see above for the modes). */
+PM_DEVICE float radiosity_element_light(const KernelGlobals* kg, const LaunchParams* p, uint e, Vec3 light_pos)
+{
+  Vec3 v = radiosity_element_position(kg, e), n = radiosity_element_normal(kg, e);
+  if (p->light_sampling == PM_RADIOSITY_LIGHT_VERTEX) {
+    float g = radiosity_light_geometry(light_pos, v, n);
+    return g > 0.0f ? g * radiosity_light_visible(kg, p, light_pos, v, n) : 0.0f;
+  }
+  uint first = PM_LOAD(&kg->rad_element_ranges[e]).x, end = PM_LOAD(&kg->rad_element_ranges[e + 1u]).x;
+  float power = 0.0f, area = 0.0f;
+  float at_vertex = -1.0f; /* visibility at the vertex, traced once when first needed */
+  for (uint r = first; r < end; ++r) {
+    uint ring = PM_LOAD(&kg->rad_adjacency[r]);
+    uint tri = ring >> 2, corner = ring & 3u;
+    uint4 front = PM_LOAD(&kg->rad_triangles[2u * tri]);
+    uint4 back = PM_LOAD(&kg->rad_triangles[2u * tri + 1u]);
+    /* The other two corners' positions (either side's element has the vertex's position). */
+    uint ids[3];
+    ids[0] = front.x != PM_RADIOSITY_NONE ? front.x : back.x;
+    ids[1] = front.y != PM_RADIOSITY_NONE ? front.y : back.y;
+    ids[2] = front.z != PM_RADIOSITY_NONE ? front.z : back.z;
+    Vec3 b = radiosity_element_position(kg, ids[(corner + 1u) % 3u]);
+    Vec3 c = radiosity_element_position(kg, ids[(corner + 2u) % 3u]);
+    Vec3 cross = vec3_cross(vec3_sub(b, v), vec3_sub(c, v));
+    float twice_area = vec3_length(cross);
+    if (!(twice_area > 0.0f)) continue;
+    area += twice_area * (0.5f / 3.0f);
+    Vec3 face_n = vec3_scale(cross, 1.0f / twice_area);
+    if (vec3_dot(face_n, n) < 0.0f) face_n = vec3_neg(face_n); /* the element's side */
+    if (vec3_dot(face_n, vec3_sub(light_pos, v)) <= 0.0f) continue; /* lit from the other side */
+    if (at_vertex < 0.0f) at_vertex = radiosity_light_visible(kg, p, light_pos, v, n);
+    float visible = at_vertex;
+    visible += 1.5f * radiosity_light_visible(kg, p, light_pos, vec3_scale(vec3_add(v, b), 0.5f), face_n);
+    visible += 1.5f * radiosity_light_visible(kg, p, light_pos, vec3_scale(vec3_add(v, c), 0.5f), face_n);
+    power += (1.0f / 3.0f) * (0.25f * visible) * radiosity_solid_angle(light_pos, v, b, c) * (1.0f / (4.0f * PM_PI));
+  }
+  return area > 0.0f ? power / area : 0.0f;
+}
+
+/* One work item per element: direct irradiance from every light, outgoing radiance of bounce 0
+   into half 0 of rad_radiance, I_total (half 0 of rad_irradiance) reset. */
+PM_DEVICE void kernel_radiosity_light_links(const KernelGlobals* kg, const LaunchParams* p, uint e)
+{
+  Vec3 irradiance = vec3_splat(0.0f);
+  for (uint l = 0; l < p->light_count; ++l) {
+    PointLight light = kg->lights[l];
+    float g = radiosity_element_light(kg, p, e, vec3_from_float4(light.position));
+    irradiance = vec3_madd(irradiance, vec3_from_float4(light.power), g);
+  }
+  Vec3 radiance = vec3_scale(vec3_mul(radiosity_element_reflectance(kg, e), irradiance), PM_INV_PI);
+  kg->rad_radiance[e] = vec3_to_float4(radiance, 0.0f);
+  kg->rad_irradiance[e] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, 0.0f);
+}
+
+#endif

@@ -1,0 +1,154 @@
+/* Vertex link radiosity (the 2008 explicit-visibility link radiosity paper, section 3;
+   docs/radiosity.md): the refined mesh as the device sees it. Elements are the refined mesh's
+   vertices, one per side, feature-edge group and material; each refined triangle knows its
+   corner elements on both sides. The scene BVH still holds the original triangles: a point on
+   an original triangle is mapped to its refined triangle by the refinement tree, so link rays
+   and shading points need no second BVH. Also the hemisphere directions of the link rays. */
+#ifndef PM_RADIOSITY_MESH_H
+#define PM_RADIOSITY_MESH_H
+
+#include "brdf.h"
+#include "kernel_globals.h"
+#include "rng.h"
+#include "scene_traverse.h"
+
+#define PM_STREAM_RADIOSITY 0x52414449u /* "RADI": the azimuth of each element's directions */
+
+PM_DEVICE Vec3 radiosity_element_position(const KernelGlobals* kg, uint e)
+{
+  return vec3_from_float4(PM_LOAD(&kg->rad_elements[2u * e]));
+}
+
+PM_DEVICE int radiosity_element_material(const KernelGlobals* kg, uint e)
+{
+  return PM_AS_INT(PM_LOAD(&kg->rad_elements[2u * e]).w);
+}
+
+/* Unit normal on the element's side. */
+PM_DEVICE Vec3 radiosity_element_normal(const KernelGlobals* kg, uint e)
+{
+  return vec3_from_float4(PM_LOAD(&kg->rad_elements[2u * e + 1u]));
+}
+
+/* Diffuse reflectance rho_d of the element's material: the paper's f_d is rho_d / pi. */
+PM_DEVICE Vec3 radiosity_element_reflectance(const KernelGlobals* kg, uint e)
+{
+  Material m = material_load(kg->materials, radiosity_element_material(kg, e));
+  return material_diffuse(&m);
+}
+
+/* Barycentric coordinates (u, v) of p in triangle (a, b, c): p = (1 - u - v) a + u b + v c,
+   for p in the triangle's plane; (1/3, 1/3) for a degenerate triangle. */
+PM_DEVICE void radiosity_barycentrics(Vec3 p, Vec3 a, Vec3 b, Vec3 c, float* u, float* v)
+{
+  Vec3 e1 = vec3_sub(b, a), e2 = vec3_sub(c, a), d = vec3_sub(p, a);
+  float d00 = vec3_dot(e1, e1), d01 = vec3_dot(e1, e2), d11 = vec3_dot(e2, e2);
+  float d20 = vec3_dot(d, e1), d21 = vec3_dot(d, e2);
+  float denom = d00 * d11 - d01 * d01;
+  if (!(denom > 1e-30f * (d00 * d11))) { *u = 1.0f / 3.0f; *v = 1.0f / 3.0f; return; }
+  *u = (d11 * d20 - d01 * d21) / denom;
+  *v = (d00 * d21 - d01 * d20) / denom;
+}
+
+/* Barycentric weights of the point (u, v) of the original triangle's parameter plane in the
+   tree node's triangle, whose corners are given in that plane. */
+PM_DEVICE void radiosity_node_weights(float4 corners01, float4 corners2, float u, float v, float* w)
+{
+  float ax = corners01.x, ay = corners01.y, bx = corners01.z, by = corners01.w, cx = corners2.x, cy = corners2.y;
+  float det = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+  float px = u - ax, py = v - ay;
+  w[1] = (px * (cy - ay) - py * (cx - ax)) / det;
+  w[2] = ((bx - ax) * py - (by - ay) * px) / det;
+  w[0] = 1.0f - w[1] - w[2];
+}
+
+typedef struct RadiosityLocation {
+  uint triangle; /* refined triangle */
+  float w[3];    /* barycentric weights of its corners, each >= 0, summing to 1 */
+} RadiosityLocation;
+
+/* The refined triangle of original triangle `root` that holds parameter point (u, v), and the
+   point's weights there. Tree node n is rad_tree[2n], rad_tree[2n + 1]:
+     (u0, v0, u1, v1), (u2, v2, first child or refined triangle as uint bits, child count)
+   corners in the original triangle's (u, v) plane; nodes 0 .. T-1 are the original triangles.
+   Children tile their parent; a point on a shared edge goes to the child it is deepest in. */
+PM_DEVICE RadiosityLocation radiosity_locate(PM_GLOBAL const float4* tree, uint root, float u, float v)
+{
+  RadiosityLocation loc;
+  uint node = root;
+  for (int level = 0; level < PM_RADIOSITY_MAX_TREE_DEPTH; ++level) {
+    float4 b = PM_LOAD(&tree[2u * node + 1u]);
+    uint first = PM_AS_UINT(b.z), count = PM_AS_UINT(b.w);
+    if (count == 0u) break;
+    uint best = first;
+    float best_score = -1e30f;
+    for (uint c = 0; c < count; ++c) {
+      float w[3];
+      radiosity_node_weights(PM_LOAD(&tree[2u * (first + c)]), PM_LOAD(&tree[2u * (first + c) + 1u]), u, v, w);
+      float score = pm_fminf(w[0], pm_fminf(w[1], w[2]));
+      if (score > best_score) { best_score = score; best = first + c; }
+    }
+    node = best;
+  }
+  float4 a = PM_LOAD(&tree[2u * node]), b = PM_LOAD(&tree[2u * node + 1u]);
+  radiosity_node_weights(a, b, u, v, loc.w);
+  /* Rounding can leave a point a hair outside its triangle: clamp and renormalise. */
+  float sum = 0.0f;
+  for (int k = 0; k < 3; ++k) { loc.w[k] = pm_fmaxf(loc.w[k], 0.0f); sum += loc.w[k]; }
+  for (int k = 0; k < 3; ++k) loc.w[k] = sum > 0.0f ? loc.w[k] / sum : 1.0f / 3.0f;
+  loc.triangle = PM_AS_UINT(b.z);
+  return loc;
+}
+
+/* The elements at the corners of the refined triangle on the side the normal n faces, for the
+   point p on scene triangle `leaf` (BVH leaf order), with their barycentric weights. Corners
+   without an element (one-sided surfaces seen from behind) are PM_RADIOSITY_NONE. */
+PM_DEVICE RadiosityLocation radiosity_surface_point(const KernelGlobals* kg, int leaf, Vec3 p, Vec3 n, uint* elements)
+{
+  Vec3 a = scene_triangle_vertex(kg->triangles, leaf, 0);
+  Vec3 b = scene_triangle_vertex(kg->triangles, leaf, 1);
+  Vec3 c = scene_triangle_vertex(kg->triangles, leaf, 2);
+  uint original = PM_AS_UINT(PM_LOAD(&kg->triangles[3 * leaf + 1]).w);
+  float u, v;
+  radiosity_barycentrics(p, a, b, c, &u, &v);
+  RadiosityLocation loc = radiosity_locate(kg->rad_tree, original, u, v);
+  /* The winding normal tells which side: refined triangles keep the original winding. */
+  int front = vec3_dot(vec3_cross(vec3_sub(b, a), vec3_sub(c, a)), n) >= 0.0f;
+  uint4 corners = PM_LOAD(&kg->rad_triangles[2u * loc.triangle + (front ? 0u : 1u)]);
+  elements[0] = corners.x;
+  elements[1] = corners.y;
+  elements[2] = corners.z;
+  return loc;
+}
+
+/* Direction k of nC in the element's frame: cosine-weighted over the hemisphere by mapping an
+   area-uniform point of the unit disk straight up (Malley's method), the disk points on
+   Vogel's golden-angle spiral so that any nC covers the disk evenly (the paper maps a 16 x 16
+   grid with Shirley's concentric map; both are stratified). `rotation` turns the spiral
+   about the normal (radians). z is the normal axis. */
+PM_DEVICE Vec3 radiosity_direction(uint k, uint count, float rotation)
+{
+  float r2 = ((float)k + 0.5f) / (float)count;
+  float r = pm_sqrtf(r2);
+  float s, c;
+  pm_sincosf(2.39996322972865332f * (float)k + rotation, &s, &c);
+  return vec3(r * c, r * s, pm_sqrtf(pm_fmaxf(0.0f, 1.0f - r2)));
+}
+
+/* Each element turns its spiral by its own angle, so that neighbouring elements do not sample
+   the same directions (no banding); a pure function of the element, the same on every device. */
+PM_DEVICE float radiosity_rotation(uint element)
+{
+  return PM_TWO_PI * rng_uniform4(0u, 0u, element, 0u, PM_STREAM_RADIOSITY).u0;
+}
+
+/* Direction k of element e's link rays in world space. */
+PM_DEVICE Vec3 radiosity_world_direction(Vec3 n, uint e, uint k, uint count)
+{
+  Vec3 t, b;
+  vec3_onb(n, &t, &b);
+  Vec3 d = radiosity_direction(k, count, radiosity_rotation(e));
+  return vec3_normalize(vec3_add(vec3_add(vec3_scale(t, d.x), vec3_scale(b, d.y)), vec3_scale(n, d.z)));
+}
+
+#endif

@@ -1,0 +1,194 @@
+// Elements with feature-edge normals, their one-rings and smoothing neighbours, in Morton order
+// (radiosity_elements.h).
+#include "render/radiosity/radiosity_elements.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "render/errors.h"
+
+namespace pm {
+
+namespace {
+
+struct Dvec {
+  double x = 0, y = 0, z = 0;
+};
+Dvec sub(const Float3& a, const Float3& b) { return {double(a.x) - b.x, double(a.y) - b.y, double(a.z) - b.z}; }
+Dvec cross(const Dvec& a, const Dvec& b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+double dot(const Dvec& a, const Dvec& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+double length(const Dvec& a) { return std::sqrt(dot(a, a)); }
+Dvec scaled(const Dvec& a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+
+// 10 bits per axis, interleaved: the position's cell in the bounds, for element order.
+uint32_t morton3(const Float3& p, const Dvec& lo, const Dvec& extent) {
+  auto cell = [](double t) { return uint32_t(std::min(1023.0, std::max(0.0, t * 1024.0))); };
+  auto spread = [](uint32_t v) {
+    v = (v * 0x00010001u) & 0xFF0000FFu;
+    v = (v * 0x00000101u) & 0x0F00F00Fu;
+    v = (v * 0x00000011u) & 0xC30C30C3u;
+    v = (v * 0x00000005u) & 0x49249249u;
+    return v;
+  };
+  const uint32_t x = cell(extent.x > 0 ? (p.x - lo.x) / extent.x : 0);
+  const uint32_t y = cell(extent.y > 0 ? (p.y - lo.y) / extent.y : 0);
+  const uint32_t z = cell(extent.z > 0 ? (p.z - lo.z) / extent.z : 0);
+  return (spread(x) << 2) | (spread(y) << 1) | spread(z);
+}
+
+// One element as grouped at its vertex, before Morton ordering.
+struct Group {
+  Dvec seed;    // normal of the first triangle that formed the group
+  Dvec sum;     // angle-weighted normal sum
+  uint32_t material;
+  bool back;
+};
+
+}  // namespace
+
+RadiosityElements build_radiosity_elements(const Scene& scene, const RefinedMesh& mesh, float feature_angle_degrees,
+                                           bool two_sided) {
+  const size_t tris = mesh.triangle_count(), verts = mesh.positions.size();
+  const double cos_feature = std::cos(double(feature_angle_degrees) * M_PI / 180.0);
+
+  // Unit face normals of the scene's triangles (refined triangles lie in them); zero: degenerate.
+  std::vector<Dvec> face(scene.triangle_count());
+  for (size_t t = 0; t < scene.triangle_count(); ++t) {
+    const Float3& a = scene.positions[scene.indices[3 * t]];
+    const Dvec n = cross(sub(scene.positions[scene.indices[3 * t + 1]], a), sub(scene.positions[scene.indices[3 * t + 2]], a));
+    const double len = length(n);
+    face[t] = len > 0 ? scaled(n, 1.0 / len) : Dvec{};
+  }
+  auto usable = [&](size_t r) {
+    const uint32_t* v = &mesh.indices[3 * r];
+    return v[0] != v[1] && v[1] != v[2] && v[2] != v[0] && length(face[mesh.source[r]]) > 0;
+  };
+
+  // Incident corners per vertex (CSR).
+  std::vector<uint32_t> first(verts + 1, 0), corners;
+  for (size_t r = 0; r < tris; ++r)
+    if (usable(r))
+      for (int k = 0; k < 3; ++k) ++first[mesh.indices[3 * r + k] + 1];
+  std::partial_sum(first.begin(), first.end(), first.begin());
+  corners.resize(first[verts]);
+  {
+    std::vector<uint32_t> fill(first.begin(), first.end() - 1);
+    for (size_t r = 0; r < tris; ++r)
+      if (usable(r))
+        for (uint32_t k = 0; k < 3; ++k) corners[fill[mesh.indices[3 * r + k]]++] = uint32_t(r) << 2 | k;
+  }
+
+  // Greedy grouping per vertex and side: a corner joins the first group of its material whose
+  // seed normal is within alpha_f, else it starts a group.
+  std::vector<uint32_t> corner_element(2 * 3 * tris, PM_RADIOSITY_NONE);  // [side][3 r + k]
+  std::vector<Group> groups_all;
+  std::vector<uint32_t> group_vertex;
+  const int sides = two_sided ? 2 : 1;
+  RadiosityElements out;
+  for (size_t v = 0; v < verts; ++v) {
+    const size_t base = groups_all.size();
+    for (uint32_t i = first[v]; i < first[v + 1]; ++i) {
+      const uint32_t r = corners[i] >> 2, k = corners[i] & 3u;
+      const uint32_t* tri = &mesh.indices[3 * r];
+      // Corner angle weight (normals weighted by the angle a triangle spans at the vertex).
+      const Dvec e1 = sub(mesh.positions[tri[(k + 1) % 3]], mesh.positions[v]);
+      const Dvec e2 = sub(mesh.positions[tri[(k + 2) % 3]], mesh.positions[v]);
+      const double angle = std::atan2(length(cross(e1, e2)), dot(e1, e2));
+      const uint32_t material = scene.triangle_material[mesh.source[r]];
+      for (int s = 0; s < sides; ++s) {
+        const Dvec n = scaled(face[mesh.source[r]], s ? -1.0 : 1.0);
+        size_t g = base;
+        while (g < groups_all.size() &&
+               !(groups_all[g].material == material && groups_all[g].back == bool(s) && dot(groups_all[g].seed, n) >= cos_feature))
+          ++g;
+        if (g == groups_all.size()) {
+          groups_all.push_back(Group{n, Dvec{}, material, bool(s)});
+          group_vertex.push_back(uint32_t(v));
+        }
+        Group& group = groups_all[g];
+        group.sum = {group.sum.x + angle * n.x, group.sum.y + angle * n.y, group.sum.z + angle * n.z};
+        corner_element[size_t(s) * 3 * tris + 3 * r + k] = uint32_t(g);
+      }
+    }
+    if (groups_all.size() > base) ++out.vertices_with_elements;
+  }
+  const size_t count = groups_all.size();
+  if (count >= size_t(PM_RADIOSITY_NONE) / 4)
+    throw InputError(scene.source + ": " + std::to_string(count) + " radiosity elements are too many for 32-bit links");
+
+  // Morton order.
+  Dvec lo{1e300, 1e300, 1e300}, hi{-1e300, -1e300, -1e300};
+  for (const Float3& p : mesh.positions) {
+    lo = {std::min(lo.x, double(p.x)), std::min(lo.y, double(p.y)), std::min(lo.z, double(p.z))};
+    hi = {std::max(hi.x, double(p.x)), std::max(hi.y, double(p.y)), std::max(hi.z, double(p.z))};
+  }
+  const Dvec extent{hi.x - lo.x, hi.y - lo.y, hi.z - lo.z};
+  std::vector<uint32_t> code(count), order(count), rank(count);
+  for (size_t g = 0; g < count; ++g) code[g] = morton3(mesh.positions[group_vertex[g]], lo, extent);
+  std::iota(order.begin(), order.end(), 0u);
+  std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return code[a] < code[b]; });
+  for (size_t i = 0; i < count; ++i) rank[order[i]] = uint32_t(i);
+  for (uint32_t& e : corner_element)
+    if (e != PM_RADIOSITY_NONE) e = rank[e];
+
+  out.data.resize(2 * count);
+  out.vertex.resize(count);
+  out.back.resize(count);
+  for (size_t g = 0; g < count; ++g) {
+    const Group& group = groups_all[g];
+    const size_t e = rank[g];
+    const double len = length(group.sum);
+    const Dvec n = len > 0 ? scaled(group.sum, 1.0 / len) : group.seed;
+    const Float3& p = mesh.positions[group_vertex[g]];
+    out.data[2 * e] = float4{p.x, p.y, p.z, PM_AS_FLOAT(group.material)};
+    out.data[2 * e + 1] = float4{float(n.x), float(n.y), float(n.z), 0.0f};
+    out.vertex[e] = group_vertex[g];
+    out.back[e] = group.back;
+  }
+
+  out.triangles.resize(2 * tris);
+  for (size_t r = 0; r < tris; ++r) {
+    const uint32_t* f = &corner_element[3 * r];
+    const uint32_t* b = &corner_element[3 * tris + 3 * r];
+    out.triangles[2 * r] = uint4{f[0], f[1], f[2], mesh.source[r]};
+    out.triangles[2 * r + 1] = uint4{b[0], b[1], b[2], 0};
+  }
+
+  // One-ring entries grouped by element, then the deduplicated smoothing neighbours.
+  std::vector<uint32_t> ring_first(count + 1, 0);
+  for (size_t s = 0; s < size_t(sides); ++s)
+    for (size_t i = 0; i < 3 * tris; ++i)
+      if (corner_element[s * 3 * tris + i] != PM_RADIOSITY_NONE) ++ring_first[corner_element[s * 3 * tris + i] + 1];
+  std::partial_sum(ring_first.begin(), ring_first.end(), ring_first.begin());
+  out.adjacency.resize(ring_first[count]);
+  std::vector<uint32_t> fill(ring_first.begin(), ring_first.end() - 1);
+  for (size_t s = 0; s < size_t(sides); ++s)
+    for (size_t i = 0; i < 3 * tris; ++i) {
+      const uint32_t e = corner_element[s * 3 * tris + i];
+      if (e != PM_RADIOSITY_NONE) out.adjacency[fill[e]++] = uint32_t(i / 3) << 2 | uint32_t(i % 3);
+    }
+  out.ranges.assign(count + 1, uint4{0, 0, 0, 0});
+  std::vector<uint32_t> neighbours;
+  for (size_t e = 0; e < count; ++e) {
+    out.ranges[e].x = ring_first[e];
+    out.ranges[e].y = uint32_t(ring_first[count] + neighbours.size());
+    const size_t side_base = out.back[e] ? 3 * tris : 0;
+    const size_t start = neighbours.size();
+    for (uint32_t i = ring_first[e]; i < ring_first[e + 1]; ++i) {
+      const uint32_t r = out.adjacency[i] >> 2, k = out.adjacency[i] & 3u;
+      for (uint32_t step = 1; step < 3; ++step) {
+        const uint32_t other = corner_element[side_base + 3 * r + (k + step) % 3];
+        if (other != PM_RADIOSITY_NONE && other != e) neighbours.push_back(other);
+      }
+    }
+    std::sort(neighbours.begin() + start, neighbours.end());
+    neighbours.erase(std::unique(neighbours.begin() + start, neighbours.end()), neighbours.end());
+  }
+  out.ranges[count].x = ring_first[count];
+  out.ranges[count].y = uint32_t(ring_first[count] + neighbours.size());
+  out.adjacency.insert(out.adjacency.end(), neighbours.begin(), neighbours.end());
+  return out;
+}
+
+}  // namespace pm

@@ -1,0 +1,71 @@
+// Vertex link radiosity settings: name tables, validation, scene-dependent defaults and description.
+#include "render/radiosity/radiosity_settings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "render/errors.h"
+#include "render/radiosity/vertex_link_radiosity.h"
+
+namespace pm {
+
+const NameTable kRadiositySidesNames = {{"one", 1}, {"two", 2}};
+const NameTable kRadiosityLightSamplesNames = {{"vertex", PM_RADIOSITY_LIGHT_VERTEX},
+                                               {"one-ring", PM_RADIOSITY_LIGHT_ONE_RING}};
+
+namespace {
+
+// The link build's scratch when link_batch is 0 (auto).
+constexpr uint64_t kLinkScratchBudget = uint64_t(256) << 20;
+
+}  // namespace
+
+void RadiositySettings::validate() const {
+  if (directions < 1 || directions > 16384)
+    throw SettingError("directions", "expected 1 to 16384 directions per element, got " + std::to_string(directions));
+  if (bounces < 0 || bounces > 16) throw SettingError("bounces", "expected 0 to 16, got " + std::to_string(bounces));
+  if (!(max_edge >= 0) || !std::isfinite(max_edge))
+    throw SettingError("max-edge", "must be a positive length in metres (or 0: automatic)");
+  if (!(feature_angle > 0) || !(feature_angle <= 180))
+    throw SettingError("feature-angle", "expected more than 0 and at most 180 degrees, got " + std::to_string(feature_angle));
+  if (smooth_passes < 0 || smooth_passes > 64)
+    throw SettingError("smooth-passes", "expected 0 to 64, got " + std::to_string(smooth_passes));
+  if (std::string(name_of(kRadiositySidesNames, sides)) == "?")
+    throw SettingError("sides", "expected " + names_list(kRadiositySidesNames));
+  if (std::string(name_of(kRadiosityLightSamplesNames, light_samples)) == "?")
+    throw SettingError("light-samples", "expected " + names_list(kRadiosityLightSamplesNames));
+  // One launch traces batch * nC rays, indexed with 32 bits.
+  if (uint64_t(link_batch) * directions > 0x7fffffffull)
+    throw SettingError("link-batch", std::to_string(link_batch) + " elements of " + std::to_string(directions) +
+                                         " directions exceed 2^31 rays per launch");
+}
+
+RadiositySettings RadiositySettings::resolved(const SceneMeasures& measures) const {
+  RadiositySettings s = *this;
+  if (s.max_edge == 0) s.max_edge = float(measures.diagonal / 25.0);
+  if (!(s.max_edge > 0)) s.max_edge = 1.0f;  // an empty or point-sized scene: nothing to refine
+  return s;
+}
+
+uint32_t RadiositySettings::batch_elements(uint64_t elements) const {
+  uint64_t batch = link_batch > 0 ? link_batch : kLinkScratchBudget / radiosity_scratch_bytes_per_element(directions);
+  batch = std::min<uint64_t>(batch, 0x7fffffffull / directions);
+  return uint32_t(std::max<uint64_t>(1, std::min(batch, std::max<uint64_t>(elements, 1))));
+}
+
+std::string RadiositySettings::describe() const {
+  std::ostringstream s;
+  s << "directions=" << directions << " bounces=" << bounces << " max_edge=" << max_edge
+    << " feature_angle=" << feature_angle << " smooth_passes=" << smooth_passes
+    << " sides=" << name_of(kRadiositySidesNames, sides)
+    << " light_samples=" << name_of(kRadiosityLightSamplesNames, light_samples)
+    << " link_batch=" << (link_batch > 0 ? std::to_string(link_batch) : "auto");
+  return s.str();
+}
+
+std::unique_ptr<IndirectMethod> RadiositySettings::create(const MethodContext& context) const {
+  return std::make_unique<VertexLinkRadiosity>(context, *this);
+}
+
+}  // namespace pm

@@ -1,0 +1,45 @@
+// Settings of the vertex link radiosity method (the 2008 explicit-visibility link radiosity
+// paper; docs/radiosity.md), their name tables, validation and scene-dependent defaults. Each
+// setting's name in messages is its command-line option's without the dashes.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "render/indirect_method.h"
+#include "render/kernel_abi.h"
+#include "render/named_values.h"
+
+namespace pm {
+
+extern const NameTable kRadiositySidesNames;         // one, two
+extern const NameTable kRadiosityLightSamplesNames;  // vertex, one-ring (PM_RADIOSITY_LIGHT_*)
+
+class RadiositySettings final : public MethodSettings {
+ public:
+  uint32_t directions = 256;  // nC: cosine-weighted hemisphere directions per element (section 3.2)
+  int bounces = 2;            // nB: gathering iterations, one bounce each (eq. 3, 4), as --bounces
+  float max_edge = 0.0f;      // refinement: longest triangle edge, metres; 0: the scene diagonal / 25
+  float feature_angle = 40.0f;  // alpha_f, degrees: normals split and smoothing stops beyond it (eq. 6)
+  int smooth_passes = 1;      // one-ring smoothing passes (eq. 5); 0: none
+  int sides = 2;              // 2: an element on each side of every surface; 1: the winding's side only
+  int light_samples = PM_RADIOSITY_LIGHT_ONE_RING;  // light links at the vertex, or oversampled (1:4)
+  uint32_t link_batch = 0;    // elements per link batch; 0: as many as 256 MiB of scratch holds
+
+  const char* method_name() const override { return "radiosity"; }
+  void validate() const override;
+  std::unique_ptr<IndirectMethod> create(const MethodContext& context) const override;
+
+  // The defaults that depend on the scene (max_edge) filled in.
+  RadiositySettings resolved(const SceneMeasures& measures) const;
+  // Elements per link batch for `elements` elements: link_batch, or what the scratch budget holds.
+  uint32_t batch_elements(uint64_t elements) const;
+  // One line: every setting, as resolved.
+  std::string describe() const;
+};
+
+// Scratch bytes of the link build per element of a batch: 3 nC (target, weight) entries.
+constexpr uint64_t radiosity_scratch_bytes_per_element(uint32_t directions) { return uint64_t(directions) * 3 * 8; }
+
+}  // namespace pm

@@ -1,0 +1,70 @@
+// The vertex link radiosity method (the 2008 explicit-visibility link radiosity paper, sections
+// 3-4; docs/radiosity.md) behind the IndirectMethod interface. Geometry is static, so the work
+// splits by what a frame changes:
+//   first frame   refine the mesh, build the elements (host), then trace the links on the
+//                 device in batches of elements with bounded scratch ("prepare");
+//   lights moved  light links (eq. 2), nB gathering bounces (eq. 3, 4), smoothing (eq. 5, 6);
+//   camera moved  nothing: the vertex irradiance stays on the device (--no-reuse: relight anyway);
+// and every frame's single pass interpolates the vertex irradiance at the camera pass's
+// shading points into the indirect layer. The method is deterministic: one pass per frame.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "render/indirect_method.h"
+#include "render/radiosity/radiosity_settings.h"
+
+namespace pm {
+
+class VertexLinkRadiosity final : public IndirectMethod {
+ public:
+  VertexLinkRadiosity(const MethodContext& context, const RadiositySettings& settings);
+
+  std::string describe() const override { return settings_.describe(); }
+  uint32_t max_passes() const override { return 1; }
+  void begin_frame(const FrameContext& frame, const FrameChange& change) override;
+  void run_pass(const FrameContext& frame, uint32_t pass) override;
+  MethodStats stats() const override { return stats_; }
+  std::vector<StageInfo> stages(const FrameContext& frame) const override;
+  std::pair<std::string, double> work_per_pass() const override { return {"element", double(element_count_)}; }
+
+  // The settings as resolved for the scene (max_edge filled in).
+  const RadiositySettings& settings() const { return settings_; }
+  uint32_t element_count() const { return element_count_; }
+  // Merged links and how many times links were built / light links run on this renderer.
+  uint64_t link_count() const { return links_; }
+  uint64_t link_builds() const { return link_builds_; }
+  uint64_t light_link_runs() const { return light_link_runs_; }
+
+ private:
+  LaunchParams launch_params(const FrameContext& frame) const;
+  void prepare(StageTimer* timer);
+  void build_links(LaunchParams params, StageTimer* timer);
+  void resize_links(uint64_t words, uint64_t used);
+  void solve(LaunchParams params, StageTimer* timer);
+  void update_stats(bool built, bool lit);
+
+  Device& device_;
+  BufferTable& buffers_;
+  const Scene& scene_;
+  RadiositySettings settings_;
+  uint32_t pixels_ = 0;
+
+  bool prepared_ = false;
+  bool solved_ = false;
+  uint32_t element_count_ = 0;
+  uint32_t final_source_ = 0;       // the half of rad_irradiance the interpolation reads
+  std::vector<uint4> ranges_;       // host copy of rad_element_ranges (link offsets filled by the build)
+  uint64_t link_capacity_ = 0;      // words rad_links holds
+  uint64_t links_ = 0, link_words_ = 0, raw_links_ = 0;
+  uint32_t link_batches_ = 0, batch_elements_ = 0;
+  uint64_t light_samples_ = 0;      // light-link shadow rays per light and run
+  uint64_t link_builds_ = 0, light_link_runs_ = 0;
+  MethodStats mesh_stats_;          // the refinement's and elements' figures, fixed after prepare
+  MethodStats stats_;
+};
+
+}  // namespace pm

@@ -1,0 +1,50 @@
+// Vertex link radiosity on CUDA and on OpenCL from the same kernels: the same scene gives the same
+// elements and links and the same image within a stated tolerance (CUDA is built with
+// --use_fast_math, so a link ray grazing an edge may hit the neighbouring triangle; the solution
+// is deterministic otherwise). Skipped without a CUDA device.
+#include <gtest/gtest.h>
+
+#include "render/renderer.h"
+#include "scene_io/cornell_box.h"
+#include "scene_io/scene_file.h"
+#include "support/device_checks.h"
+#include "support/image_stats.h"
+#include "support/paths.h"
+#include "support/render_settings.h"
+
+namespace pm {
+namespace {
+
+void expect_backends_agree(const Scene& scene, int frame, int width, int height) {
+  std::unique_ptr<Device> cuda = test::open_first_device("cuda");
+  if (!cuda) GTEST_SKIP() << "no CUDA device on this machine";
+  std::unique_ptr<Device> opencl = test::open_opencl_preferring_gpu();
+  ASSERT_NE(opencl, nullptr);
+  RenderSettings settings = test::radiosity_render_settings(RadiositySettings{});  // nC 256, two bounces
+  settings.width = width;
+  settings.height = height;
+  Renderer a(*cuda, scene, settings), b(*opencl, scene, settings);
+  FrameStats sa, sb;
+  FrameImage ia = a.render_frame(frame, &sa), ib = b.render_frame(frame, &sb);
+  EXPECT_EQ(sa.method.get("elements"), sb.method.get("elements"));
+  EXPECT_NEAR(sa.method.get("links") / sb.method.get("links"), 1.0, 1e-3);
+  test::ImageDifference indirect = test::compare_rgb(ia.find("indirect")->rgb, ib.find("indirect")->rgb);
+  test::ImageDifference combined = test::compare_rgb(ia.find("")->rgb, ib.find("")->rgb);
+  std::printf("%s: %g elements, %g links; CUDA (%s) vs OpenCL (%s): indirect mean relative difference %.3g, "
+              "combined %.3g; %.1f ms vs %.1f ms\n",
+              scene.name.c_str(), sa.method.get("elements"), sa.method.get("links"), cuda->info().name.c_str(),
+              opencl->info().name.c_str(), indirect.mean_relative, combined.mean_relative, sa.render_ms, sb.render_ms);
+  EXPECT_GT(indirect.mean_value, 1e-4);
+  EXPECT_LT(indirect.mean_relative, 0.01);
+  EXPECT_NEAR(test::mean(ia.find("indirect")->rgb) / test::mean(ib.find("indirect")->rgb), 1.0, 0.002);
+  EXPECT_LT(combined.mean_relative, 0.005);
+}
+
+TEST(RadiosityBackends, CornellBoxCudaMatchesOpencl) { expect_backends_agree(builtin_cornell_box(), 0, 256, 256); }
+
+TEST(RadiosityBackends, MovingRoomCudaMatchesOpencl) {
+  expect_backends_agree(load_scene_file(test::test_data_dir() + "/animation/moving_room.json"), 6, 320, 240);
+}
+
+}  // namespace
+}  // namespace pm
