@@ -63,7 +63,7 @@ void check_photon_extras(const RenderSettings& settings, bool leaf_sweep, bool r
 Json print_radius_histogram(Device& device, const Renderer& renderer, int frame) {
   const auto* method = dynamic_cast<const PhotonMapping*>(renderer.method());
   if (!method) throw InputError("--radius-histogram: needs --method photon");
-  const FootprintHistogram h = footprint_radius_histogram(device, renderer.buffers());
+  const FootprintHistogram h = footprint_radius_histogram(device, renderer.buffers(), method->last_hit_count());
   const double rmax = method->settings().rmax;
   std::printf("\nfootprint radii sqrt(area/pi), metres, frame %d, last pass (after the --rmax clamp, rmax = %g m):\n",
               frame, rmax);

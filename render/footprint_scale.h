@@ -32,7 +32,7 @@ float auto_smoothing(double area_at_s1, double scene_area, double overlap = kAut
 
 // Runs the photon_footprint_scale reduction over the batch's hit records (params as for the
 // footprint stage, `tiles` tiles of PM_PHOTON_MAP_BOUNDS_TILE slots, partials bound to
-// footprint_partials) and returns the batch's automatic s. *area_at_s1 (if not null) gets A1.
+// map_partials) and returns the batch's automatic s. *area_at_s1 (if not null) gets A1.
 float batch_auto_smoothing(Device& device, const DeviceBuffer& partials, const LaunchParams& params, uint32_t tiles,
                            double scene_area, double* area_at_s1 = nullptr);
 

@@ -37,42 +37,33 @@
   /* photon mapping, S1 emitters: per light (first photon of the pass, photon count, 0, 0) */              \
   X(photon, uint4, photon_emitters, uploaded, 1)                                                            \
   /* photon mapping, S2 hits: slot order [photon * hit_slots_per_photon + k] */                            \
-  X(photon, float4, hit_position, hit_slots, 1)  /* xyz */                                                  \
+  X(photon, float4, hit_position, hit_slots, 1)  /* xyz, w = PM_HIT_* flags as uint bits */             \
   X(photon, float4, hit_normal, hit_slots, 1)    /* xyz facing the photon's side, w = PM_HIT_* flags */     \
   X(photon, float4, hit_incident, hit_slots, 1)  /* xyz unit direction back to its origin, w = Delta */     \
   X(photon, float4, hit_flux, hit_slots, 1)      /* rgb watts */                                            \
   X(photon, float4, hit_dp_u, hit_slots, 1)      /* positional differentials (eq. 8 scaling) */             \
   X(photon, float4, hit_dp_v, hit_slots, 1)                                                                 \
-  /* photon mapping, S3 footprints: slot order */                                                          \
-  X(photon, float4, footprint_lo, hit_slots, 1)      /* AABB of the footprint ellipsoid; lo.w = area */     \
-  X(photon, float4, footprint_hi, hit_slots, 1)                                                             \
-  X(photon, float4, footprint_center, hit_slots, 1)  /* xyz hit position, w = flags */                      \
-  X(photon, float4, footprint_row_u, hit_slots, 1)   /* rows of the inverse ellipsoid basis */              \
-  X(photon, float4, footprint_row_v, hit_slots, 1)                                                          \
-  X(photon, float4, footprint_row_n, hit_slots, 1)                                                          \
-  X(photon, float4, footprint_power, hit_slots, 1)   /* rgb flux / footprint area */                        \
-  X(photon, float4, footprint_cut, hit_slots, 1)     /* second cut (mu, mv, t) of a clipped footprint */    \
-  X(photon, float4, footprint_partials, bounds_tiles, 2) /* per tile: (lo, area sum), (hi, count) */        \
-  /* photon mapping, S4 photon map: sorted order */                                                        \
-  X(photon, float4, map_nodes, hit_slots, 4)   /* 4 float4 per inner node, photon_map.h */                  \
-  X(photon, uint, map_node_parent, hit_slots, 1)                                                            \
-  X(photon, uint, map_leaf_parent, hit_slots, 1)                                                            \
-  X(photon, uint, map_visits, hit_slots, 1)                                                                 \
-  X(photon, float4, map_lo, hit_slots, 1)      /* sorted footprint AABBs */                                 \
-  X(photon, float4, map_hi, hit_slots, 1)                                                                   \
-  X(photon, float4, map_center, hit_slots, 1)  /* sorted copies of the footprint_* gather data */           \
-  X(photon, float4, map_row_u, hit_slots, 1)                                                                \
-  X(photon, float4, map_row_v, hit_slots, 1)                                                                \
-  X(photon, float4, map_row_n, hit_slots, 1)                                                                \
-  X(photon, float4, map_power, hit_slots, 1)                                                                \
-  X(photon, float4, map_incident, hit_slots, 1)                                                             \
-  X(photon, float4, map_cut, hit_slots, 1)                                                                  \
+  /* photon mapping, S3 footprints and S4 photon map: the valid hits in sorted order */                     \
+  X(photon, float4, map_partials, bounds_tiles, 2) /* per tile: (lo, area sum), (hi, count) */              \
+  X(photon, float4, map_nodes, map_hits, 4)   /* 4 float4 per inner node, photon_map.h */                  \
+  X(photon, uint, map_node_parent, map_hits, 1)                                                             \
+  X(photon, uint, map_leaf_parent, map_hits, 1)                                                             \
+  X(photon, uint, map_visits, map_hits, 1)                                                                  \
+  X(photon, float4, map_lo, map_hits, 1)       /* footprint AABB; lo.w = footprint area */                  \
+  X(photon, float4, map_hi, map_hits, 1)                                                                    \
+  X(photon, float4, map_center, map_hits, 1)   /* hit position, w = flags */                                \
+  X(photon, float4, map_row_u, map_hits, 1)    /* rows of the inverse ellipsoid basis, w: the first cut */  \
+  X(photon, float4, map_row_v, map_hits, 1)                                                                 \
+  X(photon, float4, map_row_n, map_hits, 1)                                                                 \
+  X(photon, float4, map_power, map_hits, 1)    /* rgb flux / (footprint area x kept kernel) */              \
+  X(photon, float4, map_incident, map_hits, 1)                                                              \
+  X(photon, float4, map_cut, map_hits, 1)      /* second cut of a clipped footprint (footprint_clip.h) */   \
   X(photon, uint, gather_stats, counters, 2)   /* [0] hits accepted, [1] shading points (collect_stats) */ \
   X(photon, uint, map_tile_offsets, bounds_tiles, 1) /* S4: first compacted key of each tile's valid hits */\
-  X(photon, uint, morton_keys, hit_slots, 1)   /* S4 input of the sort: Morton keys of the valid hits */ \
-  X(photon, uint, morton_slots, hit_slots, 1)  /* and their slots */                                     \
-  X(photon, uint, sorted_keys, hit_slots, 1)   /* S4 output of the sort: keys ascending */               \
-  X(photon, uint, sorted_slots, hit_slots, 1)  /* and their slots */                                     \
+  X(photon, uint, morton_keys, map_hits, 1)    /* S4 input of the sort: Morton keys of the valid hits */ \
+  X(photon, uint, morton_slots, map_hits, 1)   /* and their slots */                                     \
+  X(photon, uint, sorted_keys, map_hits, 1)    /* S4 output of the sort: keys ascending */               \
+  X(photon, uint, sorted_slots, map_hits, 1)   /* and their slots */                                     \
   /* vertex link radiosity (render/radiosity/, docs/radiosity.md): the refined mesh, uploaded once */     \
   X(radiosity, float4, rad_elements, uploaded, 1)   /* 2 per element: (position, material bits), normal */ \
   X(radiosity, uint4, rad_element_ranges, uploaded, 1) /* elements + 1: first ring entry, neighbour, link word */\

@@ -11,7 +11,7 @@
 #include "kernel_globals.h"
 #include "photon_map.h"
 
-/* Work item = tile of PM_PHOTON_MAP_BOUNDS_TILE slots. Writes footprint_partials[2 tile] =
+/* Work item = tile of PM_PHOTON_MAP_BOUNDS_TILE slots. Writes map_partials[2 tile] =
    (area sum at s = 1, 0, 0, 0); [2 tile + 1] is left alone. */
 PM_DEVICE void kernel_photon_footprint_scale(const KernelGlobals* kg, const LaunchParams* p, uint tile)
 {
@@ -29,7 +29,7 @@ PM_DEVICE void kernel_photon_footprint_scale(const KernelGlobals* kg, const Laun
     if (!pm_isfinite(a)) continue;
     area += a;
   }
-  kg->footprint_partials[2 * tile] = PM_MAKE_FLOAT4(area, 0.0f, 0.0f, 0.0f);
+  kg->map_partials[2 * tile] = PM_MAKE_FLOAT4(area, 0.0f, 0.0f, 0.0f);
 }
 
 #endif

@@ -8,12 +8,12 @@
   K(camera_pass)       /* S5: eye rays, mirror recursion, direct light, shading points */    \
   K(photon_trace)      /* S1+S2: emit, trace, record hits with differentials */              \
   K(photon_footprint_scale) /* S3: per-tile footprint area at s = 1 (automatic smoothing) */ \
-  K(photon_footprint)  /* S3: footprint ellipsoids, AABBs, gather data, per-hit area */      \
-  K(photon_reduce)     /* S3: per-tile hit bounds, footprint area and hit count */           \
+  K(photon_footprint)  /* S3: footprints of the sorted hits: AABBs, gather data, area */    \
+  K(photon_reduce)     /* S4: per-tile hit bounds and count (Morton bounds, compaction) */  \
   K(photon_morton)     /* S4: 30-bit Morton keys (empty slots sort last) */                  \
   K(photon_map_nodes)  /* S4: Karras radix tree inner nodes */                               \
   K(photon_map_bottom_up) /* S4: boxes, counts, leaf fusion under T */                       \
-  K(photon_map_reorder)   /* S4: gather data into sorted order */                             \
+  K(photon_map_area)      /* S3: per-tile footprint area of the sorted hits (T_auto) */       \
   K(gather)            /* S6: indirect and caustic radiance at every shading point */        \
   K(path_trace)        /* path tracer: paths from every shading point into film_indirect_sum */ \
   K(film_resolve)      /* S7: sums / passes; combined = direct + indirect + caustic, NaN guard */\

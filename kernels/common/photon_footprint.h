@@ -2,9 +2,9 @@
    at the geometry around the hit (footprint_clip.h), and stores what the photon map and the
    gather need: the ellipsoid's AABB, the rows of its inverse basis (so the gather's containment
    test is three dot products), and flux / area. The radius estimator uses the same path with a
-   sphere of the fixed radius, knn a disc of r_max as the photon's reach. A tile reduction
-   then gives the hits' bounds, their count and the total footprint area
-   (photon_map_stage.h). */
+   sphere of the fixed radius, knn a disc of r_max as the photon's reach. It runs after the sort,
+   over the valid hits only, in sorted order; a tile reduction then gives the total footprint
+   area for T_auto (photon_map_stage.h). */
 #ifndef PM_PHOTON_FOOTPRINT_H
 #define PM_PHOTON_FOOTPRINT_H
 
@@ -13,8 +13,6 @@
 #include "kernel_globals.h"
 #include "photon_map.h"
 #include "photon_trace.h"
-
-PM_DEVICE int hit_is_valid(float4 normal) { return (PM_AS_UINT(normal.w) & PM_HIT_VALID) != 0u; }
 
 /* Footprint of one hit under the estimator in use, before clipping: the photon-differential
    ellipsoid (pd), a sphere of the fixed radius (radius, the multi-pass paper's gather), or, for
@@ -44,21 +42,17 @@ PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p
                                       delta, p->smoothing, p->rmax, caustic);
 }
 
-/* The gather data of a hit: the footprint clipped at the geometry around it (footprint_clip.h),
+/* Work item = sorted position k < hit_count: the gather data of hit sorted_slots[k], written at
+   k, so the photon map's leaves and the gather read contiguous memory. The gather data of a hit: the footprint clipped at the geometry around it (footprint_clip.h),
    its bounds, the rows of the inverse of its basis, whose w hold the first cut (mu, mv, t): the
    gather accepts x where mu (row_u . (x - hit)) + mv (row_v . (x - hit)) <= t, a second cut in
-   footprint_cut (flagged PM_HIT_SECOND_CUT), and flux / (area * kept fraction of the kernel). For
+   map_cut (flagged PM_HIT_SECOND_CUT), and flux / (area * kept fraction of the kernel). For
    knn the bounds are the point box hit +- r_max the knn traversal expects, and the power is the
    flux (the knn gather divides by its own area). */
-PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchParams* p, uint slot)
+PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchParams* p, uint k)
 {
+  uint slot = kg->sorted_slots[k];
   float4 n4 = kg->hit_normal[slot];
-  if (!hit_is_valid(n4)) {
-    kg->footprint_lo[slot] = PM_MAKE_FLOAT4(1e30f, 1e30f, 1e30f, 0.0f);
-    kg->footprint_hi[slot] = PM_MAKE_FLOAT4(-1e30f, -1e30f, -1e30f, 0.0f);
-    kg->footprint_center[slot] = n4; /* w carries the (empty) flags */
-    return;
-  }
   Vec3 center = vec3_from_float4(kg->hit_position[slot]);
   Footprint f = hit_footprint(kg, p, slot);
   /* Progressive shrink (docs/progressive.md): every footprint of this pass scaled alike (knn's
@@ -91,14 +85,15 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     area = 0.0f; /* no footprint area: T_auto stays at 1 for the knn map, as before clipping */
   }
   uint flags = PM_AS_UINT(n4.w) | (cut.t[1] < 1.0f ? PM_HIT_SECOND_CUT : 0u);
-  kg->footprint_lo[slot] = vec3_to_float4(lo, area);
-  kg->footprint_hi[slot] = vec3_to_float4(hi, 0.0f);
-  kg->footprint_center[slot] = vec3_to_float4(center, PM_UINT_AS_FLOAT(flags));
-  kg->footprint_row_u[slot] = vec3_to_float4(vec3_scale(c_vn, inv_det), cut.mu[0]);
-  kg->footprint_row_v[slot] = vec3_to_float4(vec3_scale(c_nu, inv_det), cut.mv[0]);
-  kg->footprint_row_n[slot] = vec3_to_float4(vec3_scale(c_uv, inv_det), cut.t[0]);
-  kg->footprint_cut[slot] = PM_MAKE_FLOAT4(cut.mu[1], cut.mv[1], cut.t[1], 0.0f);
-  kg->footprint_power[slot] = vec3_to_float4(power, 0.0f);
+  kg->map_lo[k] = vec3_to_float4(lo, area);
+  kg->map_hi[k] = vec3_to_float4(hi, 0.0f);
+  kg->map_center[k] = vec3_to_float4(center, PM_UINT_AS_FLOAT(flags));
+  kg->map_row_u[k] = vec3_to_float4(vec3_scale(c_vn, inv_det), cut.mu[0]);
+  kg->map_row_v[k] = vec3_to_float4(vec3_scale(c_nu, inv_det), cut.mv[0]);
+  kg->map_row_n[k] = vec3_to_float4(vec3_scale(c_uv, inv_det), cut.t[0]);
+  kg->map_cut[k] = PM_MAKE_FLOAT4(cut.mu[1], cut.mv[1], cut.t[1], 0.0f);
+  kg->map_power[k] = vec3_to_float4(power, 0.0f);
+  kg->map_incident[k] = kg->hit_incident[slot];
 }
 
 #endif

@@ -15,7 +15,8 @@
         broken by sorted position below, which is exactly "augment the key with the index").
      4. photon_map_build_node      i < n - 1: Karras's range + split of inner node i; parent links;
                                    zeroes the visit counter of node i.
-     5. photon_map_bottom_up       k < n: sorted leaf boxes, child boxes, counts and leaf fusion.
+     5. photon_map_bottom_up       k < n: child boxes, counts and leaf fusion, from the leaf boxes
+                                   in sorted order.
      6. photon_map_query_begin / photon_map_query_next per shading point (gather, S6).
 
    Node layout (4 float4 per inner node p = 0 .. n-2, root = 0; both CHILD boxes live in the
@@ -30,10 +31,11 @@
    The array keeps all n - 1 nodes (no compaction): nodes inside a fused subtree are written but
    never reached. The root is always an inner node, so when n <= T the root's two children are
    the leaves. n == 1 has no node at all; the query scans hit 0 directly.
-   The sorted positions index sorted_lo/sorted_hi (written by step 5) and, through the sorted
-   index array, the original hit records. Section 6.3 marks a leaf's end with a flag on its last
-   hit; here (first, count) sits in the parent's slot instead, since the counts are needed for
-   fusion anyway and the hit arrays stay untouched. n == 0: the host skips the stage. */
+   The sorted positions index sorted_lo/sorted_hi and the gather data, all in sorted order (the
+   footprint stage writes them so, photon_footprint.h). Section 6.3 marks a leaf's end with a
+   flag on its last hit; here (first, count) sits in the parent's slot instead, since the counts
+   are needed for fusion anyway and the hit arrays stay untouched. n == 0: the host skips the
+   stage. */
 #ifndef PM_PHOTON_MAP_H
 #define PM_PHOTON_MAP_H
 
@@ -61,8 +63,9 @@ PM_DEVICE uint photon_map_bounds_tile_count(uint count)
 
 /* Work item = tile of slots [tile * TILE, min(count, (tile + 1) * TILE)): bounds of the valid
    hits' positions (centers[i].w holds PM_HIT_* flags), the sum of their footprint areas
-   (area_in[i].w) and their count, into partials[2 tile] = (lo, area), [2 tile + 1] = (hi, count
-   as uint bits). A tile without valid hits gives the empty box (+1e30, -1e30). */
+   (area_in[i].w; none when area_in is null) and their count, into partials[2 tile] = (lo, area),
+   [2 tile + 1] = (hi, count as uint bits). A tile without valid hits gives the empty box
+   (+1e30, -1e30). */
 PM_DEVICE void photon_map_bounds_tile(uint tile, uint count, PM_GLOBAL const float4* centers,
                                       PM_GLOBAL const float4* area_in, PM_GLOBAL float4* partials)
 {
@@ -77,7 +80,7 @@ PM_DEVICE void photon_map_bounds_tile(uint tile, uint count, PM_GLOBAL const flo
     Vec3 x = vec3_from_float4(c);
     lo = vec3_min(lo, x);
     hi = vec3_max(hi, x);
-    area += PM_LOAD(&area_in[i]).w;
+    if (area_in) area += PM_LOAD(&area_in[i]).w;
     ++valid;
   }
   partials[2 * tile] = vec3_to_float4(lo, area);
@@ -201,24 +204,19 @@ PM_DEVICE void photon_map_build_node(uint i, uint n, PM_GLOBAL const uint* codes
 
 /* ---- 5. bottom-up boxes, counts and leaf fusion (section 6.2) ---- */
 
-/* Work item = leaf k < n (sorted position). Stores the hit's AABB at sorted_lo/hi[k], then walks
-   up: at each parent it writes its subtree's slot (box, ref, count), and only the second work
-   item to arrive at a node (atomic visit counter) goes on, with the union of both slots. A slot
-   whose count <= threshold is written as a leaf interval, which undoes the splits below T. Every
-   slot of every node is written exactly once whatever the arrival order, so the result does not
-   depend on scheduling. Needs the visit counters zeroed (step 4 does that); for n == 1 only the
-   sorted box is written. */
-PM_DEVICE void photon_map_bottom_up(uint k, uint n, uint leaf_threshold, PM_GLOBAL const uint* sorted_index,
-                                    PM_GLOBAL const float4* hit_lo, PM_GLOBAL const float4* hit_hi,
-                                    PM_GLOBAL const uint* node_parent, PM_GLOBAL const uint* leaf_parent,
-                                    PM_GLOBAL uint* visits, PM_GLOBAL float4* nodes, PM_GLOBAL float4* sorted_lo,
-                                    PM_GLOBAL float4* sorted_hi)
+/* Work item = leaf k < n (sorted position), whose AABB sorted_lo/hi[k] holds (the footprint
+   stage writes the boxes in sorted order). Walks up: at each parent it writes its subtree's slot
+   (box, ref, count), and only the second work item to arrive at a node (atomic visit counter) goes
+   on, with the union of both slots. A slot whose count <= threshold is written as a leaf interval,
+   which undoes the splits below T. Every slot of every node is written exactly once whatever the
+   arrival order, so the result does not depend on scheduling. Needs the visit counters zeroed
+   (step 4 does that); for n == 1 there is nothing to do. */
+PM_DEVICE void photon_map_bottom_up(uint k, uint n, uint leaf_threshold, PM_GLOBAL const float4* sorted_lo,
+                                    PM_GLOBAL const float4* sorted_hi, PM_GLOBAL const uint* node_parent,
+                                    PM_GLOBAL const uint* leaf_parent, PM_GLOBAL uint* visits, PM_GLOBAL float4* nodes)
 {
-  uint hit = PM_LOAD(&sorted_index[k]);
-  Vec3 lo = vec3_from_float4(PM_LOAD(&hit_lo[hit]));
-  Vec3 hi = vec3_from_float4(PM_LOAD(&hit_hi[hit]));
-  sorted_lo[k] = vec3_to_float4(lo, 0.0f);
-  sorted_hi[k] = vec3_to_float4(hi, 0.0f);
+  Vec3 lo = vec3_from_float4(PM_LOAD(&sorted_lo[k]));
+  Vec3 hi = vec3_from_float4(PM_LOAD(&sorted_hi[k]));
   if (n < 2) return;
 
   uint threshold = leaf_threshold > 1u ? leaf_threshold : 1u;

@@ -45,7 +45,7 @@ PM_DEVICE void photon_store_hit(const KernelGlobals* kg, uint slot, const Photon
                                 uint flags)
 {
   if (vec3_dot(n, ray->direction) > 0.0f) n = vec3_neg(n); /* the side the photon arrived on */
-  kg->hit_position[slot] = vec3_to_float4(ray->origin, 0.0f);
+  kg->hit_position[slot] = vec3_to_float4(ray->origin, PM_UINT_AS_FLOAT(flags));
   kg->hit_normal[slot] = vec3_to_float4(n, PM_UINT_AS_FLOAT(flags));
   kg->hit_incident[slot] = vec3_to_float4(vec3_neg(ray->direction), delta);
   kg->hit_flux[slot] = vec3_to_float4(flux, 0.0f);
@@ -146,8 +146,10 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
       start = offset_ray_origin(ray.origin, side, ray_offset_distance(start, hit.t, p->ray_epsilon));
     }
   }
-  for (uint k = stored; k < p->hit_slots_per_photon; ++k)
+  for (uint k = stored; k < p->hit_slots_per_photon; ++k) {
+    kg->hit_position[first_slot + k] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_UINT_AS_FLOAT(0u));
     kg->hit_normal[first_slot + k] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_UINT_AS_FLOAT(0u));
+  }
 }
 
 #endif

@@ -1,5 +1,5 @@
-// Footprint radius histogram from the footprint buffers (area in footprint_lo.w, flags in
-// footprint_center.w; kernels/common/buffers.h).
+// Footprint radius histogram from the photon map's buffers (area in map_lo.w, flags in
+// map_center.w; kernels/common/buffers.h).
 #include "render/photon/footprint_histogram.h"
 
 #include <algorithm>
@@ -19,11 +19,11 @@ std::string FootprintHistogram::bin_label(int bin) {
   return text;
 }
 
-FootprintHistogram footprint_radius_histogram(Device& device, const BufferTable& buffers) {
-  const DeviceBuffer& lo = buffers[BufferSlot::footprint_lo];
-  const DeviceBuffer& center = buffers[BufferSlot::footprint_center];
+FootprintHistogram footprint_radius_histogram(Device& device, const BufferTable& buffers, uint32_t hits) {
+  const DeviceBuffer& lo = buffers[BufferSlot::map_lo];
+  const DeviceBuffer& center = buffers[BufferSlot::map_center];
   if (!lo || !center) throw DeviceError("footprint histogram: no photon footprints on the device");
-  const size_t slots = std::min(lo.bytes(), center.bytes()) / sizeof(float4);
+  const size_t slots = std::min<size_t>(hits, std::min(lo.bytes(), center.bytes()) / sizeof(float4));
   std::vector<float4> areas(slots), flags(slots);
   device.download(lo, areas.data(), slots * sizeof(float4));
   device.download(center, flags.data(), slots * sizeof(float4));

@@ -21,7 +21,7 @@ struct FootprintHistogram {
   static std::string bin_label(int bin);  // "0.00 - 0.05", ..., "> 1.00"
 };
 
-// Radii sqrt(area / pi) of the footprints the photon group's buffers hold now (the last pass).
-FootprintHistogram footprint_radius_histogram(Device& device, const BufferTable& buffers);
+// Radii sqrt(area / pi) of the `hits` footprints the photon map holds now (the last pass).
+FootprintHistogram footprint_radius_histogram(Device& device, const BufferTable& buffers, uint32_t hits);
 
 }  // namespace pm

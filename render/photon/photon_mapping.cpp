@@ -40,10 +40,10 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
   scene_area_ = context.measures.surface_area;
   photons_per_pass_ = uint32_t(settings_.photons);
   shading_points_ = context.shading_points;
-  BufferExtents extents;
-  extents.hit_slots = hit_slots();
-  extents.bounds_tiles = (extents.hit_slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
-  buffers_.allocate(BufferGroup::photon, extents);
+  extents_.hit_slots = hit_slots();
+  extents_.bounds_tiles = (extents_.hit_slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
+  buffers_.allocate(BufferGroup::photon, extents_);
+  reserve_map(photons_per_pass_);
   share_photons(context.scene.lights);
 }
 
@@ -63,7 +63,7 @@ std::vector<StageInfo> PhotonMapping::stages(const FrameContext& frame) const {
   const double photons = double(photons_per_pass_);
   const char* emitted = "photons emitted per pass";
   std::vector<StageInfo> list;
-  for (const char* stage : {"photon trace", "footprints", "map: morton", "map: sort", "map: tree"})
+  for (const char* stage : {"photon trace", "map: morton", "map: sort", "footprints", "map: tree"})
     list.push_back({stage, photons, "photons/s", emitted});
   list.push_back({"gather", stats_.get("shading_points", double(shading_points_)), "shading points/s",
                   "shading points gathered per pass"});
@@ -152,36 +152,34 @@ void PhotonMapping::gather(const LaunchParams& params, StageTimer* timer) {
   device_.launch(KernelId::gather, pixel_work_items(params.width, params.height), params);
 }
 
-// The VVH alternative to the device LBVH: the valid hits' footprint boxes go to the host, the
-// tree comes back in the same node layout with its hit order as the sorted slots, so the
-// reorder kernel and the gather run unchanged.
+void PhotonMapping::reserve_map(uint32_t hits) {
+  if (hits <= map_capacity_) return;
+  // Room for the valid hits of a pass, grown with a margin so that passes of about the same
+  // count do not reallocate; the hit records (slot-sized) stay as they are.
+  map_capacity_ = std::min<uint64_t>(std::max<uint64_t>(uint64_t(hits) * 5 / 4, photons_per_pass_), hit_slots());
+  BufferExtents extents = extents_;
+  extents.map_hits = map_capacity_;
+  buffers_.allocate(BufferGroup::photon, extents);
+  buffers_.bind_all();
+}
+
+// The VVH alternative to the device LBVH: the hits' footprints, computed in slot order, go to
+// the host; the tree comes back in the same node layout with its own hit order, into which the
+// gather data is permuted, so the gather runs unchanged.
 void PhotonMapping::build_vvh_map(const LaunchParams& params) {
-  const size_t slots = hit_slots();
-  std::vector<float4> lo(slots), hi(slots), center(slots);
-  device_.download(buffers_[BufferSlot::footprint_lo], lo.data(), slots * sizeof(float4));
-  device_.download(buffers_[BufferSlot::footprint_hi], hi.data(), slots * sizeof(float4));
-  device_.download(buffers_[BufferSlot::footprint_center], center.data(), slots * sizeof(float4));
-  std::vector<uint32_t> valid;
-  std::vector<float4> valid_lo, valid_hi;
-  for (uint32_t i = 0; i < slots; ++i) {
-    uint32_t flags;
-    std::memcpy(&flags, &center[i].w, 4);
-    if (!(flags & PM_HIT_VALID)) continue;
-    valid.push_back(i);
-    valid_lo.push_back(lo[i]);
-    valid_hi.push_back(hi[i]);
+  const uint32_t n = params.hit_count;
+  std::vector<float4> lo(n), hi(n);
+  device_.download(buffers_[BufferSlot::map_lo], lo.data(), n * sizeof(float4));
+  device_.download(buffers_[BufferSlot::map_hi], hi.data(), n * sizeof(float4));
+  VvhPhotonMap map = build_vvh_photon_map(lo, hi, params.leaf_threshold);
+  for (BufferSlot slot : {BufferSlot::map_lo, BufferSlot::map_hi, BufferSlot::map_center, BufferSlot::map_row_u,
+                          BufferSlot::map_row_v, BufferSlot::map_row_n, BufferSlot::map_power, BufferSlot::map_incident,
+                          BufferSlot::map_cut}) {
+    std::vector<float4> data(n), permuted(n);
+    device_.download(buffers_[slot], data.data(), n * sizeof(float4));
+    for (uint32_t k = 0; k < n; ++k) permuted[k] = data[map.order[k]];
+    device_.upload(buffers_[slot], permuted.data(), n * sizeof(float4));
   }
-  VvhPhotonMap map = build_vvh_photon_map(valid_lo, valid_hi, params.leaf_threshold);
-  std::vector<uint32_t> sorted_slots(valid.size());
-  std::vector<float4> sorted_lo(valid.size()), sorted_hi(valid.size());
-  for (size_t k = 0; k < valid.size(); ++k) {
-    sorted_slots[k] = valid[map.order[k]];
-    sorted_lo[k] = valid_lo[map.order[k]];
-    sorted_hi[k] = valid_hi[map.order[k]];
-  }
-  device_.upload(buffers_[BufferSlot::sorted_slots], sorted_slots.data(), sorted_slots.size() * sizeof(uint32_t));
-  device_.upload(buffers_[BufferSlot::map_lo], sorted_lo.data(), sorted_lo.size() * sizeof(float4));
-  device_.upload(buffers_[BufferSlot::map_hi], sorted_hi.data(), sorted_hi.size() * sizeof(float4));
   device_.upload(buffers_[BufferSlot::map_nodes], map.nodes.data(), map.nodes.size() * sizeof(float4));
 }
 
@@ -192,36 +190,30 @@ void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
     StageScope scope(timer, "photon trace");
     device_.launch(KernelId::photon_trace, photons_per_pass_, params);
   }
-  // Bounds, count and footprint area: one small read-back per pass.
   const uint32_t tiles = photon_map_bounds_tile_count(slots);
   std::vector<float4> partials(2 * size_t(tiles));
-  {
+  if (!(settings_.smoothing > 0)) {
     StageScope scope(timer, "footprints");
-    if (!(settings_.smoothing > 0))
-      params.smoothing =
-          batch_auto_smoothing(device_, buffers_[BufferSlot::footprint_partials], params, tiles, scene_area_);
-    device_.launch(KernelId::photon_footprint, slots, params);
-    device_.launch(KernelId::photon_reduce, tiles, params);
+    params.smoothing = batch_auto_smoothing(device_, buffers_[BufferSlot::map_partials], params, tiles, scene_area_);
   }
-  device_.download(buffers_[BufferSlot::footprint_partials], partials.data(), partials.size() * sizeof(float4));
-  const PhotonMapBounds bounds = photon_map_combine_partials(partials.data(), tiles);
-  params.leaf_threshold = settings_.leaf_threshold > 0
-                              ? uint32_t(settings_.leaf_threshold)
-                              : photon_map_auto_leaf_size(float(bounds.area), float(scene_area_), settings_.leaf_c);
+  // Bounds and count of the valid hits, per tile: one small read-back per pass.
+  PhotonMapBounds bounds;
+  {
+    StageScope scope(timer, "map: morton");
+    device_.launch(KernelId::photon_reduce, tiles, params);
+    device_.download(buffers_[BufferSlot::map_partials], partials.data(), partials.size() * sizeof(float4));
+    bounds = photon_map_combine_partials(partials.data(), tiles);
+  }
   params.hit_bounds_lo = bounds.lo;
   params.hit_bounds_hi = bounds.hi;
   params.hit_count = bounds.count;
-  map_footprint_area_ = bounds.area;
   map_smoothing_ = params.smoothing;
+  map_footprint_area_ = 0;
   map_params_ = params;
   if (bounds.count == 0) return;  // every photon escaped or was absorbed before a recorded hit
+  reserve_map(bounds.count);
 
-  if (settings_.builder == kPhotonMapVvh) {
-    StageScope scope(timer, "map: tree");
-    build_vvh_map(params);
-    device_.launch(KernelId::photon_map_reorder, bounds.count, params);
-    return;
-  }
+  // The valid hits' Morton keys, compacted at each tile's offset, sorted (VVH: kept in slot order).
   {
     StageScope scope(timer, "map: morton");
     std::vector<uint32_t> first_out(tiles);
@@ -231,16 +223,33 @@ void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
   }
   {
     StageScope scope(timer, "map: sort");
-    device_.sort_pairs(buffers_[BufferSlot::morton_keys], buffers_[BufferSlot::morton_slots],
-                       buffers_[BufferSlot::sorted_keys], buffers_[BufferSlot::sorted_slots], bounds.count,
-                       PM_MORTON_SORT_BITS);
+    if (settings_.builder == kPhotonMapVvh)
+      device_.copy(buffers_[BufferSlot::morton_slots], buffers_[BufferSlot::sorted_slots], bounds.count * sizeof(uint32_t));
+    else
+      device_.sort_pairs(buffers_[BufferSlot::morton_keys], buffers_[BufferSlot::morton_slots],
+                         buffers_[BufferSlot::sorted_keys], buffers_[BufferSlot::sorted_slots], bounds.count,
+                         PM_MORTON_SORT_BITS);
   }
+  // S3 in sorted order, then the footprints' total area for T_auto.
+  const uint32_t map_tiles = photon_map_bounds_tile_count(bounds.count);
   {
-    StageScope scope(timer, "map: tree");
-    if (bounds.count >= 2) device_.launch(KernelId::photon_map_nodes, bounds.count - 1, params);
-    device_.launch(KernelId::photon_map_bottom_up, bounds.count, params);
-    device_.launch(KernelId::photon_map_reorder, bounds.count, params);
+    StageScope scope(timer, "footprints");
+    device_.launch(KernelId::photon_footprint, bounds.count, params);
+    device_.launch(KernelId::photon_map_area, map_tiles, params);
   }
+  device_.download(buffers_[BufferSlot::map_partials], partials.data(), 2 * size_t(map_tiles) * sizeof(float4));
+  map_footprint_area_ = photon_map_combine_partials(partials.data(), map_tiles).area;
+  params.leaf_threshold = settings_.leaf_threshold > 0 ? uint32_t(settings_.leaf_threshold)
+                                                       : photon_map_auto_leaf_size(float(map_footprint_area_),
+                                                                                   float(scene_area_), settings_.leaf_c);
+  map_params_ = params;
+  StageScope scope(timer, "map: tree");
+  if (settings_.builder == kPhotonMapVvh) {
+    build_vvh_map(params);
+    return;
+  }
+  if (bounds.count >= 2) device_.launch(KernelId::photon_map_nodes, bounds.count - 1, params);
+  device_.launch(KernelId::photon_map_bottom_up, bounds.count, params);
 }
 
 }  // namespace pm

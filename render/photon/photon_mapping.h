@@ -41,6 +41,8 @@ class PhotonMapping final : public IndirectMethod {
   void share_photons(const std::vector<LightDesc>& lights);
   void trace_and_build(LaunchParams params, StageTimer* timer);
   void build_vvh_map(const LaunchParams& params);
+  // Photon map buffers (sorted hits, footprints, nodes) for at least `hits` valid hits.
+  void reserve_map(uint32_t hits);
   void gather(const LaunchParams& params, StageTimer* timer);
 
   Device& device_;
@@ -49,6 +51,8 @@ class PhotonMapping final : public IndirectMethod {
   double scene_area_ = 0;
   uint32_t photons_per_pass_ = 0;
   uint32_t shading_points_ = 0;
+  BufferExtents extents_;      // the photon group's sizes; map_hits grows with reserve_map
+  uint32_t map_capacity_ = 0;  // valid hits the photon map buffers hold room for
 
   int photon_frame_ = 0;  // the frame number keying this frame's photons
   // The photon map on the device: valid after a pass went through, for the photons of

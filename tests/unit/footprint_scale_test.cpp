@@ -44,7 +44,7 @@ struct HostHits {
     kg.hit_incident = incident.data();
     kg.hit_dp_u = dp_u.data();
     kg.hit_dp_v = dp_v.data();
-    kg.footprint_partials = partials.data();
+    kg.map_partials = partials.data();
   }
 
   // The batch's s = 1 area as the host sums the kernel's tiles.

@@ -113,10 +113,14 @@ inline HostPhotonMap build_from_sorted(std::vector<uint> codes, std::vector<uint
   run_items(inner, order, seed, [&](uint i) {
     photon_map_build_node(i, m.n, m.codes.data(), m.node_parent.data(), m.leaf_parent.data(), m.visits.data());
   });
+  // The footprint stage writes the boxes in sorted order (photon_footprint.h).
+  for (uint k = 0; k < m.n; ++k) {
+    m.sorted_lo[k] = lo[m.sorted_index[k]];
+    m.sorted_hi[k] = hi[m.sorted_index[k]];
+  }
   run_items(m.n, order, seed + 1, [&](uint k) {
-    photon_map_bottom_up(k, m.n, threshold, m.sorted_index.data(), lo.data(), hi.data(), m.node_parent.data(),
-                         m.leaf_parent.data(), m.visits.data(), m.nodes.data(), m.sorted_lo.data(),
-                         m.sorted_hi.data());
+    photon_map_bottom_up(k, m.n, threshold, m.sorted_lo.data(), m.sorted_hi.data(), m.node_parent.data(),
+                         m.leaf_parent.data(), m.visits.data(), m.nodes.data());
   });
   return m;
 }
