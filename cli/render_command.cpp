@@ -19,6 +19,7 @@
 #include "animations/frame_spec.h"
 #include "animations/scene_animation.h"
 #include "cli/commands.h"
+#include "cli/number_parsing.h"
 #include "cli/render_options.h"
 #include "render/device.h"
 #include "render/errors.h"
@@ -266,15 +267,15 @@ int run_render(const RenderCommandOptions& o) {
 }  // namespace
 
 void parse_resolution(const std::string& text, int* width, int* height) {
-  std::istringstream in(text);
-  int w = 0, h = 0;
-  char x = 0;
-  std::string rest;
-  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> rest) || w <= 0 || h <= 0 || w > 16384 ||
-      h > 16384)
-    throw InputError("--resolution: expected WIDTHxHEIGHT with each from 1 to 16384, got '" + text + "'");
-  *width = w;
-  *height = h;
+  const size_t x = text.find_first_of("xX");
+  try {
+    if (x == std::string::npos) throw InputError("");
+    *width = int(parse_unsigned("--resolution", text.substr(0, x), 1, 16384));
+    *height = int(parse_unsigned("--resolution", text.substr(x + 1), 1, 16384));
+  } catch (const InputError&) {
+    throw InputError("--resolution: expected WIDTHxHEIGHT with each a whole number from 1 to 16384, got '" + text +
+                     "'");
+  }
 }
 
 Run add_render_command(CLI::App& app) {
@@ -290,7 +291,7 @@ Run add_render_command(CLI::App& app) {
       cmd->add_option("--frames", options->frames,
                       "Frames to render, e.g. 1-30,47,100-200:2 (default: the scene's whole sequence)");
   options->frame_option =
-      cmd->add_option("--frame", options->frame, "One frame to render (the same as --frames N)")->check(CLI::NonNegativeNumber);
+      cmd->add_option("--frame", options->frame, "One frame to render (the same as --frames N)")->transform(integer_in(0, kMaxFrameNumber));
   cmd->add_flag("--resume", options->resume, "Skip frames whose output file is already complete");
   cmd->add_option("--photon-sequence", options->photon_sequence,
                   "random, or halton: emission directions from a Halton sequence, the same in every frame")
