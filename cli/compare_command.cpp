@@ -11,6 +11,7 @@
 
 #include "cli/commands.h"
 #include "cli/number_parsing.h"
+#include "cli/output_checks.h"
 #include "render/errors.h"
 #include "render/exr_io.h"
 #include "render/image_metrics.h"
@@ -62,6 +63,10 @@ int run_compare(const CompareOptions& o) {
   const double threshold = given ? o.threshold : default_threshold(chosen);
   if (!std::isfinite(threshold) || threshold < 0) throw InputError("--threshold: must be a finite number >= 0");
 
+  if (!o.diff.empty()) {
+    check_output_paths("--diff", {o.diff}, ".exr");
+    check_not_an_input("--diff", o.diff, {{"reference", o.reference}, {"test", o.test}});
+  }
   const FrameImage reference = read_exr(o.reference);
   const FrameImage test = read_exr(o.test);
   const ImageLayer& ref_layer = require_layer(reference, o.layer, o.reference);

@@ -20,6 +20,7 @@
 #include "animations/scene_animation.h"
 #include "cli/commands.h"
 #include "cli/number_parsing.h"
+#include "cli/output_checks.h"
 #include "cli/render_options.h"
 #include "render/device.h"
 #include "render/errors.h"
@@ -162,8 +163,6 @@ int run_render(const RenderCommandOptions& o) {
   settings.photons.sequence =
       o.photon_sequence == "halton" ? PM_PHOTON_SEQUENCE_HALTON : PM_PHOTON_SEQUENCE_RANDOM;
   settings.reuse_photons = !o.no_photon_reuse;
-  if (!o.preview.empty() && !preview_available())
-    throw InputError("--preview needs OpenImageIO, which this build does not have");
   const std::string pattern = o.output.empty() ? default_output_pattern(scene.name) : o.output;
 
   const std::vector<int> frames = select_frames(o, scene);
@@ -186,13 +185,17 @@ int run_render(const RenderCommandOptions& o) {
   if (o.verbose)
     for (int f : skipped) std::printf("skipped %s (complete)\n", expand_output_pattern(pattern, f).c_str());
 
+  std::vector<std::string> targets, previews;
+  for (int f : todo) targets.push_back(expand_output_pattern(pattern, f));
+  for (int f : todo) if (!o.preview.empty()) previews.push_back(expand_output_pattern(o.preview, f));
+  check_output_paths("-o", targets, ".exr");
+  check_output_paths("--preview", previews, ".png");
+
   std::unique_ptr<Device> device;
   std::unique_ptr<Renderer> renderer;
   if (!todo.empty()) {
     device = create_device(o.render.backend, o.render.device);
     renderer = std::make_unique<Renderer>(*device, scene, settings);
-    std::vector<std::string> targets;
-    for (int f : todo) targets.push_back(expand_output_pattern(pattern, f));
     remove_stale_temporaries(targets, o.verbose);
   }
   // Input is valid from here on: say what loading tolerated, then render.
@@ -286,7 +289,7 @@ Run add_render_command(CLI::App& app) {
   cmd->add_option("-o,--output", options->output, "Output pattern; runs of # are the zero-padded frame number")
       ->default_str("out/<scene>_####.exr");
   cmd->add_flag("--float", options->full_float, "Write 32-bit float channels instead of half");
-  cmd->add_option("--preview", options->preview, "Also write a tone-mapped PNG here (needs OpenImageIO; # as in -o)");
+  cmd->add_option("--preview", options->preview, "Also write a tone-mapped 8-bit PNG of the combined layer here (# as in -o)");
   options->frames_option =
       cmd->add_option("--frames", options->frames,
                       "Frames to render, e.g. 1-30,47,100-200:2 (default: the scene's whole sequence)");

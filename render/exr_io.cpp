@@ -3,9 +3,6 @@
 // OpenEXR; host code only, never compiled by nvcc.
 #include "render/exr_io.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfCompression.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -18,8 +15,6 @@
 
 #include <algorithm>
 #include <array>
-#include <atomic>
-#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -31,7 +26,9 @@
 #include <string>
 #include <vector>
 
+#include "render/atomic_file.h"
 #include "render/errors.h"
+#include "render/interruption.h"
 
 namespace pm {
 namespace {
@@ -48,8 +45,6 @@ std::string channel_name(const std::string& layer, const char* component) {
 std::string layer_label(const std::string& layer) {
   return layer.empty() ? "combined" : "'" + layer + "'";
 }
-
-std::string errno_text(const std::string& what) { return what + ": " + std::strerror(errno); }
 
 // A malformed image is a bug in the caller; catch it before anything touches the disk.
 void check_image_shape(const std::string& path, const FrameImage& image) {
@@ -85,92 +80,42 @@ void check_finite(const std::string& path, const FrameImage& image) {
   }
 }
 
-// Writes through a plain file descriptor rather than std::ofstream so that the data can be
-// fsync'ed before the rename, and so that no error is lost: OutputFile's destructor writes the
-// line offset table and swallows any exception doing so, hence the remembered first error.
-class DescriptorOStream : public Imf::OStream {
+// Writes through AtomicFile rather than std::ofstream so that the data can be fsync'ed before
+// the rename, and so that no error is lost: OutputFile's destructor writes the line offset table
+// and swallows any exception doing so, hence the remembered first error.
+class AtomicFileOStream : public Imf::OStream {
  public:
-  DescriptorOStream(const std::string& path, int fd) : Imf::OStream(path.c_str()), fd_(fd) {}
+  explicit AtomicFileOStream(AtomicFile& file) : Imf::OStream(file.temporary_path().c_str()), file_(file) {}
 
   void write(const char c[], int n) override {
-    while (n > 0) {
-      const ssize_t written = ::write(fd_, c, size_t(n));
-      if (written < 0) {
-        if (errno == EINTR) continue;
-        fail(errno_text("write"));
-      }
-      c += written;
-      n -= int(written);
-      position_ += uint64_t(written);
+    try {
+      file_.write(c, size_t(n));
+    } catch (const std::exception& e) {
+      remember(e.what());
+      throw;
     }
+    position_ += uint64_t(n);
   }
   uint64_t tellp() override { return position_; }
   void seekp(uint64_t pos) override {
-    if (::lseek(fd_, off_t(pos), SEEK_SET) < 0) fail(errno_text("seek"));
+    try {
+      file_.seek(size_t(pos));
+    } catch (const std::exception& e) {
+      remember(e.what());
+      throw;
+    }
     position_ = pos;
   }
   const std::string& first_error() const { return first_error_; }
 
  private:
-  [[noreturn]] void fail(const std::string& message) {
+  void remember(const std::string& message) {
     if (first_error_.empty()) first_error_ = message;
-    throw std::runtime_error(message);
   }
-  int fd_;
+  AtomicFile& file_;
   uint64_t position_ = 0;
   std::string first_error_;
 };
-
-// A hidden file next to the target (same folder, so the final rename cannot cross file systems).
-// Removed by the destructor unless renamed onto the target.
-class TemporaryFile {
- public:
-  explicit TemporaryFile(const fs::path& target) {
-    // pid and counter keep concurrent writers, in this process or others, off each other's file.
-    static std::atomic<unsigned> counter{0};
-    path_ = target.parent_path() / ("." + target.filename().string() + ".tmp-" +
-                                    std::to_string(::getpid()) + "-" + std::to_string(counter++));
-    fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-    if (fd_ < 0) throw std::runtime_error(errno_text("cannot create '" + path_.string() + "'"));
-  }
-  ~TemporaryFile() {
-    if (fd_ >= 0) ::close(fd_);
-    if (!renamed_) ::unlink(path_.c_str());
-  }
-  TemporaryFile(const TemporaryFile&) = delete;
-  TemporaryFile& operator=(const TemporaryFile&) = delete;
-
-  const fs::path& path() const { return path_; }
-  int fd() const { return fd_; }
-
-  // fsync first: without it a crash soon after the rename can leave an empty target on some
-  // file systems, which is exactly the partial file the rename is meant to avoid.
-  void sync_and_close() {
-    if (::fsync(fd_) != 0) throw std::runtime_error(errno_text("fsync"));
-    const int fd = fd_;
-    fd_ = -1;
-    if (::close(fd) != 0) throw std::runtime_error(errno_text("close"));
-  }
-  void rename_onto(const fs::path& target) {
-    if (std::rename(path_.c_str(), target.c_str()) != 0) {
-      throw std::runtime_error(errno_text("cannot rename '" + path_.string() + "' onto it"));
-    }
-    renamed_ = true;
-  }
-
- private:
-  fs::path path_;
-  int fd_ = -1;
-  bool renamed_ = false;
-};
-
-// Makes the rename itself durable. Best effort: some file systems refuse fsync on folders.
-void sync_folder(const fs::path& folder) {
-  const int fd = ::open(folder.empty() ? "." : folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (fd < 0) return;
-  ::fsync(fd);
-  ::close(fd);
-}
 
 void write_exr_atomically(const std::string& path, const FrameImage& image, bool full_float) {
   const Imf::PixelType type = full_float ? Imf::FLOAT : Imf::HALF;
@@ -205,27 +150,16 @@ void write_exr_atomically(const std::string& path, const FrameImage& image, bool
     }
   }
 
-  const fs::path target(path);
-  if (!target.parent_path().empty()) {
-    std::error_code error;
-    fs::create_directories(target.parent_path(), error);
-    if (error) {
-      throw std::runtime_error("cannot create folder '" + target.parent_path().string() +
-                               "': " + error.message());
-    }
-  }
-
-  TemporaryFile temporary(target);
-  DescriptorOStream stream(temporary.path().string(), temporary.fd());
+  AtomicFile file(path);
+  AtomicFileOStream stream(file);
   {
-    Imf::OutputFile file(stream, header);
-    file.setFrameBuffer(frame_buffer);
-    file.writePixels(image.height);
+    Imf::OutputFile output(stream, header);
+    output.setFrameBuffer(frame_buffer);
+    output.writePixels(image.height);
   }  // the destructor writes the offset table; its errors only show in the stream
+  throw_if_interrupted();
   if (!stream.first_error().empty()) throw std::runtime_error(stream.first_error());
-  temporary.sync_and_close();
-  temporary.rename_onto(target);
-  sync_folder(target.parent_path());
+  file.commit();
 }
 
 FrameImage read_exr_layers(const std::string& path) {
@@ -299,6 +233,8 @@ void write_exr(const std::string& path, const FrameImage& image, bool full_float
   try {
     write_exr_atomically(path, image, full_float);
   } catch (const std::exception& e) {
+    // OpenEXR may rewrap the exception a stopped write threw; the request itself is what counts.
+    if (interruption_signal() != 0) throw Interrupted();
     throw DeviceError("cannot write EXR file '" + path + "': " + e.what());
   }
 }
