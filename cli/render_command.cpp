@@ -21,10 +21,12 @@
 #include "cli/commands.h"
 #include "cli/number_parsing.h"
 #include "cli/output_checks.h"
+#include "cli/signals.h"
 #include "cli/render_options.h"
 #include "render/device.h"
 #include "render/errors.h"
 #include "render/exr_io.h"
+#include "render/interruption.h"
 #include "render/output_pattern.h"
 #include "render/preview_png.h"
 #include "render/renderer.h"
@@ -207,13 +209,15 @@ int run_render(const RenderCommandOptions& o) {
   std::vector<int> failed;
   size_t rendered = 0, reused = 0;
   const auto start = std::chrono::steady_clock::now();
-  for (size_t i = 0; i < todo.size(); ++i) {
+  install_interrupt_handlers();
+  for (size_t i = 0; i < todo.size() && interruption_signal() == 0; ++i) {
     const int f = todo[i];
     const std::string path = expand_output_pattern(pattern, f);
     const auto frame_start = std::chrono::steady_clock::now();
     try {
       FrameStats stats;
       FrameImage image = renderer->render_frame(f, &stats);
+      throw_if_interrupted();  // the frame in progress is abandoned
       progress.clear();
       if (stats.repaired_pixels > 0)
         std::fprintf(stderr, "pmrender: warning: frame %d: %d pixel(s) were not finite and were written as black\n", f,
@@ -238,6 +242,8 @@ int run_render(const RenderCommandOptions& o) {
                     info.backend.c_str(), info.name.c_str(), stats.render_ms, stats.photons_reused ? ", photons reused" : "");
         std::fflush(stdout);
       }
+    } catch (const Interrupted&) {
+      break;
     } catch (const std::exception& e) {
       if (todo.size() == 1 && frames.size() == 1) throw;  // a single frame: main() reports it as before
       progress.clear();
@@ -249,6 +255,7 @@ int run_render(const RenderCommandOptions& o) {
                   std::chrono::duration<double>(now - start).count() / double(i + 1));
   }
   progress.clear();
+  if (interruption_signal() != 0) return report_interruption(rendered, todo.size());
   const double total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   if (sequence && !o.quiet) {
