@@ -19,6 +19,7 @@
 #include "animations/frame_spec.h"
 #include "animations/scene_animation.h"
 #include "cli/commands.h"
+#include "cli/frame_warnings.h"
 #include "cli/number_parsing.h"
 #include "cli/output_checks.h"
 #include "cli/signals.h"
@@ -209,6 +210,7 @@ int run_render(const RenderCommandOptions& o) {
   std::vector<int> failed;
   size_t rendered = 0, reused = 0;
   const auto start = std::chrono::steady_clock::now();
+  FrameWarnings warnings(o.full_float);
   install_interrupt_handlers();
   for (size_t i = 0; i < todo.size() && interruption_signal() == 0; ++i) {
     const int f = todo[i];
@@ -219,9 +221,7 @@ int run_render(const RenderCommandOptions& o) {
       FrameImage image = renderer->render_frame(f, &stats);
       throw_if_interrupted();  // the frame in progress is abandoned
       progress.clear();
-      if (stats.repaired_pixels > 0)
-        std::fprintf(stderr, "pmrender: warning: frame %d: %d pixel(s) were not finite and were written as black\n", f,
-                     stats.repaired_pixels);
+      warnings.check(f, image, stats.repaired_pixels);
       const DeviceInfo& info = device->info();
       image.attributes = {{"pmrender/version", PMRENDER_VERSION},
                           {"pmrender/scene", scene.name + " (" + scene.source + ")"},

@@ -239,6 +239,21 @@ void write_exr(const std::string& path, const FrameImage& image, bool full_float
   }
 }
 
+HalfRangeLoss half_range_loss(const FrameImage& image) {
+  const float kSmallestHalfStep = 5.9604645e-8f;  // 2^-24, the smallest positive (subnormal) half
+  HalfRangeLoss loss;
+  for (const ImageLayer& layer : image.layers) {
+    loss.values += layer.rgb.size();
+    for (float v : layer.rgb) {
+      const float magnitude = std::fabs(v);
+      loss.nonzero += magnitude != 0;
+      loss.clamped += magnitude > kHalfMax;
+      loss.flushed_to_zero += magnitude != 0 && magnitude < 0.5f * kSmallestHalfStep;
+    }
+  }
+  return loss;
+}
+
 FrameImage read_exr(const std::string& path) {
   try {
     return read_exr_layers(path);
