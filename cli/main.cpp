@@ -2,6 +2,7 @@
 // (0 success, 1 render or device failure, 2 bad usage or bad input).
 #include <cstdio>
 #include <iostream>
+#include <new>
 
 #include "cli/commands.h"
 #include "cli/parse_errors.h"
@@ -30,6 +31,9 @@ int main(int argc, char** argv) {
   } catch (const pm::InputError& e) {
     std::cerr << "pmrender: " << e.what() << "\n";
     return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "pmrender: out of host memory; lower --resolution or --batch (pmrender render -v prints what a run used)\n";
+    return 1;
   } catch (const pm::DeviceError& e) {
     std::cerr << "pmrender: " << e.what() << "\n";
     return 1;

@@ -20,6 +20,7 @@
 #include "animations/scene_animation.h"
 #include "cli/commands.h"
 #include "cli/frame_warnings.h"
+#include "cli/memory.h"
 #include "cli/number_parsing.h"
 #include "cli/output_checks.h"
 #include "cli/signals.h"
@@ -193,12 +194,16 @@ int run_render(const RenderCommandOptions& o) {
   for (int f : todo) if (!o.preview.empty()) previews.push_back(expand_output_pattern(o.preview, f));
   check_output_paths("-o", targets, ".exr");
   check_output_paths("--preview", previews, ".png");
+  const int width = settings.width > 0 ? settings.width : scene.camera.width;
+  const int height = settings.height > 0 ? settings.height : scene.camera.height;
+  if (!todo.empty()) check_host_memory_for_frame(width, height);
 
   std::unique_ptr<Device> device;
   std::unique_ptr<Renderer> renderer;
   if (!todo.empty()) {
     device = create_device(o.render.backend, o.render.device);
     renderer = std::make_unique<Renderer>(*device, scene, settings);
+    check_device_memory(device->allocated_bytes(), device->info(), width, height);  // before PoCL commits it
     remove_stale_temporaries(targets, o.verbose);
   }
   // Input is valid from here on: say what loading tolerated, then render.
@@ -244,6 +249,8 @@ int run_render(const RenderCommandOptions& o) {
       }
     } catch (const Interrupted&) {
       break;
+    } catch (const std::bad_alloc&) {
+      throw;  // not this frame's fault: main() reports it and the run ends
     } catch (const std::exception& e) {
       if (todo.size() == 1 && frames.size() == 1) throw;  // a single frame: main() reports it as before
       progress.clear();
@@ -266,6 +273,10 @@ int run_render(const RenderCommandOptions& o) {
     if (!failed.empty()) std::printf(", %zu failed", failed.size());
     std::printf("\n");
   }
+  if (o.verbose && device)
+    std::printf("memory: host peak %s (now %s), device %s held (peak %s)\n", bytes_text(peak_host_rss_bytes()).c_str(),
+                bytes_text(host_rss_bytes()).c_str(), bytes_text(device->allocated_bytes()).c_str(),
+                bytes_text(device->peak_allocated_bytes()).c_str());
   if (!failed.empty()) {
     std::fprintf(stderr, "pmrender: %zu of %zu frames failed: %s\n", failed.size(), frames.size(),
                  frame_list(failed).c_str());
@@ -310,7 +321,7 @@ Run add_render_command(CLI::App& app) {
   cmd->add_flag("--no-photon-reuse", options->no_photon_reuse,
                 "Trace photons in every frame, keyed by its own frame number, also over camera-only motion");
   cmd->add_flag("-q,--quiet", options->quiet, "Print nothing on success (no progress, no summary)");
-  cmd->add_flag("-v,--verbose", options->verbose, "Also list skipped frames and removed stale temporaries");
+  cmd->add_flag("-v,--verbose", options->verbose, "Also list skipped frames and removed stale temporaries, and print host and device memory at the end");
   return [options] { return run_render(*options); };
 }
 
