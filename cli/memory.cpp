@@ -96,10 +96,18 @@ void check_device_memory(uint64_t device_bytes, const DeviceInfo& device, int wi
 uint64_t host_rss_bytes() { return proc_kb_field("/proc/self/status", "VmRSS"); }
 uint64_t peak_host_rss_bytes() { return proc_kb_field("/proc/self/status", "VmHWM"); }
 
+void print_memory_summary(const MemorySnapshot& first, const Device& device) {
+  std::printf("memory: host %s after the first frame, %s at the end (peak %s); device %s after the first frame, %s at "
+              "the end (peak %s)\n",
+              bytes_text(first.host_rss_bytes).c_str(), bytes_text(host_rss_bytes()).c_str(),
+              bytes_text(peak_host_rss_bytes()).c_str(), bytes_text(first.device_bytes).c_str(),
+              bytes_text(device.allocated_bytes()).c_str(), bytes_text(device.peak_allocated_bytes()).c_str());
+}
+
 std::string bytes_text(uint64_t bytes) {
   char text[32];
   if (bytes >= (uint64_t(1) << 30)) std::snprintf(text, sizeof(text), "%.1f GiB", double(bytes) / double(1u << 30));
-  else if (bytes >= (uint64_t(1) << 20)) std::snprintf(text, sizeof(text), "%.0f MiB", double(bytes) / double(1u << 20));
+  else if (bytes >= (uint64_t(1) << 20)) std::snprintf(text, sizeof(text), "%.1f MiB", double(bytes) / double(1u << 20));
   else std::snprintf(text, sizeof(text), "%.0f KiB", double(bytes) / 1024.0);
   return text;
 }

@@ -38,7 +38,17 @@ void check_device_memory(uint64_t device_bytes, const DeviceInfo& device, int wi
 uint64_t host_rss_bytes();
 uint64_t peak_host_rss_bytes();
 
-// "1.5 GiB", "310 MiB", "12 KiB".
+// What a run held at one moment, for print_memory_summary.
+struct MemorySnapshot {
+  uint64_t host_rss_bytes = 0;
+  uint64_t device_bytes = 0;
+};
+
+// --verbose's last line: host resident memory and device memory held after the first frame
+// (`first`) and at the end, with their peaks, so that growth over a sequence shows.
+void print_memory_summary(const MemorySnapshot& first, const Device& device);
+
+// "1.5 GiB", "310.2 MiB", "12 KiB".
 std::string bytes_text(uint64_t bytes);
 
 }  // namespace pm::cli

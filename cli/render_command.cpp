@@ -216,6 +216,7 @@ int run_render(const RenderCommandOptions& o) {
   size_t rendered = 0, reused = 0;
   const auto start = std::chrono::steady_clock::now();
   FrameWarnings warnings(o.full_float);
+  MemorySnapshot first_frame_memory;
   install_interrupt_handlers();
   for (size_t i = 0; i < todo.size() && interruption_signal() == 0; ++i) {
     const int f = todo[i];
@@ -240,7 +241,7 @@ int run_render(const RenderCommandOptions& o) {
                           {"pmrender/render_ms", std::to_string(stats.render_ms)}};
       write_exr(path, image, o.full_float);
       if (!o.preview.empty()) write_preview_png(expand_output_pattern(o.preview, f), image);
-      ++rendered;
+      if (++rendered == 1) first_frame_memory = {host_rss_bytes(), device->allocated_bytes()};
       reused += stats.photons_reused;
       if (!o.quiet) {
         std::printf("wrote %s (frame %d, %dx%d, %s: %s, %.2f ms%s)\n", path.c_str(), f, image.width, image.height,
@@ -273,10 +274,7 @@ int run_render(const RenderCommandOptions& o) {
     if (!failed.empty()) std::printf(", %zu failed", failed.size());
     std::printf("\n");
   }
-  if (o.verbose && device)
-    std::printf("memory: host peak %s (now %s), device %s held (peak %s)\n", bytes_text(peak_host_rss_bytes()).c_str(),
-                bytes_text(host_rss_bytes()).c_str(), bytes_text(device->allocated_bytes()).c_str(),
-                bytes_text(device->peak_allocated_bytes()).c_str());
+  if (o.verbose && device) print_memory_summary(first_frame_memory, *device);
   if (!failed.empty()) {
     std::fprintf(stderr, "pmrender: %zu of %zu frames failed: %s\n", failed.size(), frames.size(),
                  frame_list(failed).c_str());

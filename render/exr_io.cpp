@@ -35,6 +35,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
+constexpr int64_t kMaxReadSide = 16384;  // the largest --resolution
 constexpr float kHalfMax = 65504.0f;  // largest finite half; anything above would become Inf
 constexpr std::array<const char*, 3> kComponents = {"R", "G", "B"};
 
@@ -169,6 +170,10 @@ FrameImage read_exr_layers(const std::string& path) {
   const int64_t width = int64_t(window.max.x) - window.min.x + 1;
   const int64_t height = int64_t(window.max.y) - window.min.y + 1;
   if (width <= 0 || height <= 0) throw InputError("EXR file '" + path + "' has an empty image");
+  // Larger than anything pmrender renders: a hostile header would otherwise size the allocation.
+  if (width > kMaxReadSide || height > kMaxReadSide)
+    throw InputError("EXR file '" + path + "' is " + std::to_string(width) + "x" + std::to_string(height) +
+                     ", larger than " + std::to_string(kMaxReadSide) + "x" + std::to_string(kMaxReadSide));
 
   // Which of R, G, B each prefix has. std::map sorts "" (the combined layer) first.
   std::map<std::string, std::array<bool, 3>> groups;

@@ -41,7 +41,7 @@ HalfRangeLoss half_range_loss(const FrameImage& image);
 // other layers follow in channel-list (alphabetical) order. Groups with none of R, G, B (e.g. a
 // lone "A" or "Z") are ignored. Every string attribute of the header is returned, including
 // standard ones such as "owner" when present. Values are returned as read; no finiteness check.
-// A missing or unreadable file, a non-EXR file, a layer lacking one of R, G, B, or a file with no
+// A missing or unreadable file, a non-EXR file, an image wider or taller than 16384, a layer lacking one of R, G, B, or a file with no
 // RGB layer at all is a pm::InputError naming the file.
 FrameImage read_exr(const std::string& path);
 

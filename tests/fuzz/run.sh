@@ -11,11 +11,11 @@ seconds=${1:-30}
 shift || true
 cmake -S "$root" -B "$build" -G Ninja -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DPMRENDER_CUDA=OFF \
       -DPMRENDER_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-cmake --build "$build" --target pm_fuzz_scene pm_fuzz_frame_spec
+cmake --build "$build" --target pm_fuzz_scene pm_fuzz_frame_spec pm_fuzz_gltf pm_fuzz_exr
 # The scene fuzzer writes its inputs to files: on tmpfs it runs about 10x faster.
 if [ -z "${TMPDIR:-}" ] && [ -d /dev/shm ] && [ -w /dev/shm ]; then export TMPDIR=/dev/shm; fi
 status=0
-for target in scene frame_spec; do
+for target in ${PM_FUZZ_TARGETS:-scene frame_spec gltf exr}; do
   work=$(mktemp -d)
   dict=()
   [ -f "$root/tests/fuzz/$target.dict" ] && dict=(-dict="$root/tests/fuzz/$target.dict")
