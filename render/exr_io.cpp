@@ -15,11 +15,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <set>
 #include <stdexcept>
@@ -164,6 +166,7 @@ void write_exr_atomically(const std::string& path, const FrameImage& image, bool
 }
 
 FrameImage read_exr_layers(const std::string& path) {
+  check_exr_header(path);
   Imf::InputFile file(path.c_str());
   const Imf::Header& header = file.header();
   const Imath::Box2i window = header.dataWindow();
@@ -244,6 +247,47 @@ void write_exr(const std::string& path, const FrameImage& image, bool full_float
   }
 }
 
+void check_exr_header(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot read EXR file '" + path + "': " + std::strerror(errno));
+  in.seekg(0, std::ios::end);
+  const int64_t file_size = int64_t(in.tellg());
+  in.seekg(0);
+  auto fail = [&](const std::string& why) { throw InputError("EXR file '" + path + "': " + why); };
+  unsigned char start[8];
+  if (!in.read(reinterpret_cast<char*>(start), 8) || start[0] != 0x76 || start[1] != 0x2f || start[2] != 0x31 ||
+      start[3] != 0x01)
+    fail("not an OpenEXR file");
+  const bool multipart = start[5] & 0x10;  // version flags (bits 8-31 of the version field)
+  // Reads a NUL-terminated name of at most 255 characters; false at end of file.
+  auto read_name = [&](std::string* name) {
+    name->clear();
+    for (char c; in.get(c);) {
+      if (c == '\0') return true;
+      if (name->size() == 255) fail("a header name is longer than 255 characters");
+      *name += c;
+    }
+    return false;
+  };
+  for (int header = 0;; ++header) {
+    std::string name, type;
+    int attributes = 0;
+    while (true) {
+      if (!read_name(&name)) fail("the header is cut short");
+      if (name.empty()) break;
+      int32_t size = 0;
+      if (!read_name(&type) || !in.read(reinterpret_cast<char*>(&size), 4)) fail("the header is cut short");
+      if (size < 0 || int64_t(in.tellg()) + size > file_size)
+        fail("header attribute '" + name.substr(0, 40) + "' declares " + std::to_string(size) +
+             " bytes, more than the file holds");
+      in.seekg(size, std::ios::cur);
+      ++attributes;
+    }
+    // A multi-part file ends its list of headers with an empty one.
+    if (!multipart || attributes == 0) break;
+  }
+}
+
 HalfRangeLoss half_range_loss(const FrameImage& image) {
   const float kSmallestHalfStep = 5.9604645e-8f;  // 2^-24, the smallest positive (subnormal) half
   HalfRangeLoss loss;
@@ -271,6 +315,7 @@ FrameImage read_exr(const std::string& path) {
 
 bool exr_is_complete(const std::string& path) {
   try {
+    check_exr_header(path);
     Imf::InputFile file(path.c_str());
     if (!file.isComplete()) return false;
     // isComplete() only checks the line offset table, which sits near the start of the file,
