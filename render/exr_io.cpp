@@ -233,6 +233,108 @@ FrameImage read_exr_layers(const std::string& path) {
   return image;
 }
 
+// Walks EXR headers the way OpenEXR 3.1's Header::readFrom reads them: each attribute's value
+// is read by its type's own reader, which for most types ignores the declared size (a chlist
+// reads channels up to an empty name, a box2i reads 16 bytes), so the walk follows the same
+// rules to stay where OpenEXR will be. Every length a reader would allocate is checked against
+// the bytes left in the file.
+class ExrHeaderWalk {
+ public:
+  explicit ExrHeaderWalk(const std::string& path) : path_(path), in_(path, std::ios::binary) {
+    if (!in_) throw InputError("cannot read EXR file '" + path + "': " + std::strerror(errno));
+    in_.seekg(0, std::ios::end);
+    size_ = int64_t(in_.tellg());
+    in_.seekg(0);
+  }
+
+  void check() {
+    unsigned char start[8];
+    if (!in_.read(reinterpret_cast<char*>(start), 8) || start[0] != 0x76 || start[1] != 0x2f || start[2] != 0x31 ||
+        start[3] != 0x01)
+      fail("not an OpenEXR file");
+    // Version flags, bits 8-31 of the version field: long names (bit 10), multi-part (bit 12).
+    max_name_ = (start[5] & 0x04) ? 255 : 31;
+    const bool multipart = start[5] & 0x10;
+    while (true) {
+      const int attributes = walk_header();
+      if (!multipart || attributes == 0) break;  // a multi-part file ends with an empty header
+    }
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& why) const { throw InputError("EXR file '" + path_ + "': " + why); }
+  int64_t left() { return size_ - int64_t(in_.tellg()); }
+  void need(int64_t bytes, const std::string& what) {
+    if (bytes < 0 || bytes > left()) fail(what + " declares " + std::to_string(bytes) + " bytes, more than the file holds");
+  }
+  void skip(int64_t bytes, const std::string& what) {
+    need(bytes, what);
+    in_.seekg(bytes, std::ios::cur);
+  }
+  int32_t read_int(const std::string& what) {
+    int32_t v = 0;
+    if (!in_.read(reinterpret_cast<char*>(&v), 4)) fail(what + " is cut short");
+    return v;
+  }
+  std::string read_name(const std::string& what) {
+    std::string name;
+    for (char c; in_.get(c);) {
+      if (c == '\0') return name;
+      if (int(name.size()) == max_name_) fail(what + " is longer than " + std::to_string(max_name_) + " characters");
+      name += c;
+    }
+    fail("the header is cut short");
+  }
+
+  int walk_header() {
+    int attributes = 0;
+    while (true) {
+      const std::string name = read_name("an attribute name");
+      if (name.empty()) return attributes;
+      const std::string type = read_name("an attribute type");
+      const std::string what = "header attribute '" + name.substr(0, 40) + "'";
+      const int32_t size = read_int(what);
+      if (size < 0) fail(what + " has a negative size");
+      walk_value(type, size, what);
+      ++attributes;
+    }
+  }
+
+  void walk_value(const std::string& type, int32_t size, const std::string& what) {
+    static const std::map<std::string, int> kFixedSizes = {
+        {"box2i", 16}, {"box2f", 16}, {"chromaticities", 32}, {"compression", 1}, {"deepImageState", 1},
+        {"double", 8}, {"envmap", 1}, {"float", 4}, {"int", 4}, {"keycode", 28}, {"lineOrder", 1},
+        {"m33f", 36}, {"m33d", 72}, {"m44f", 64}, {"m44d", 128}, {"rational", 8}, {"tiledesc", 9},
+        {"timecode", 8}, {"v2i", 8}, {"v2f", 8}, {"v2d", 16}, {"v3i", 12}, {"v3f", 12}, {"v3d", 24}};
+    const auto fixed = kFixedSizes.find(type);
+    if (fixed != kFixedSizes.end()) {
+      skip(fixed->second, what);
+    } else if (type == "chlist") {
+      // Channels: a name, then pixel type, pLinear + 3 reserved bytes, x and y sampling.
+      while (!read_name("a channel name").empty()) skip(16, what);
+    } else if (type == "preview") {
+      const uint32_t width = uint32_t(read_int(what)), height = uint32_t(read_int(what));
+      skip(int64_t(width) * int64_t(height) * 4, what);
+    } else if (type == "stringvector") {
+      need(size, what);
+      for (int64_t read = 0; read < size;) {
+        const int32_t length = read_int(what);
+        skip(length, what);
+        read += 4 + int64_t(length);
+      }
+    } else if (type == "idmanifest") {
+      fail(what + " is an ID manifest, which pmrender does not read");
+    } else {
+      skip(size, what);  // string, floatvector and unknown types: exactly the declared size
+    }
+  }
+
+  std::string path_;
+  std::ifstream in_;
+  int64_t size_ = 0;
+  int max_name_ = 31;
+};
+
 }  // namespace
 
 void write_exr(const std::string& path, const FrameImage& image, bool full_float) {
@@ -248,44 +350,7 @@ void write_exr(const std::string& path, const FrameImage& image, bool full_float
 }
 
 void check_exr_header(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot read EXR file '" + path + "': " + std::strerror(errno));
-  in.seekg(0, std::ios::end);
-  const int64_t file_size = int64_t(in.tellg());
-  in.seekg(0);
-  auto fail = [&](const std::string& why) { throw InputError("EXR file '" + path + "': " + why); };
-  unsigned char start[8];
-  if (!in.read(reinterpret_cast<char*>(start), 8) || start[0] != 0x76 || start[1] != 0x2f || start[2] != 0x31 ||
-      start[3] != 0x01)
-    fail("not an OpenEXR file");
-  const bool multipart = start[5] & 0x10;  // version flags (bits 8-31 of the version field)
-  // Reads a NUL-terminated name of at most 255 characters; false at end of file.
-  auto read_name = [&](std::string* name) {
-    name->clear();
-    for (char c; in.get(c);) {
-      if (c == '\0') return true;
-      if (name->size() == 255) fail("a header name is longer than 255 characters");
-      *name += c;
-    }
-    return false;
-  };
-  for (int header = 0;; ++header) {
-    std::string name, type;
-    int attributes = 0;
-    while (true) {
-      if (!read_name(&name)) fail("the header is cut short");
-      if (name.empty()) break;
-      int32_t size = 0;
-      if (!read_name(&type) || !in.read(reinterpret_cast<char*>(&size), 4)) fail("the header is cut short");
-      if (size < 0 || int64_t(in.tellg()) + size > file_size)
-        fail("header attribute '" + name.substr(0, 40) + "' declares " + std::to_string(size) +
-             " bytes, more than the file holds");
-      in.seekg(size, std::ios::cur);
-      ++attributes;
-    }
-    // A multi-part file ends its list of headers with an empty one.
-    if (!multipart || attributes == 0) break;
-  }
+  ExrHeaderWalk(path).check();
 }
 
 HalfRangeLoss half_range_loss(const FrameImage& image) {
