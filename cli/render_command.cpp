@@ -3,7 +3,8 @@
 // with one Renderer (scene BVH built once, photons reused over camera-only motion), writing each
 // as OpenEXR (temporary name, then rename). --resume skips frames whose file is complete. A frame
 // that fails is reported and the others still render; the exit code is then 1
-// (docs/animation.md, "Batch rendering").
+// (docs/animation.md, "Batch rendering"). Output paths and memory are checked before the device
+// opens (output_checks.h, memory.h); SIGINT/SIGTERM stop between frames (signals.h).
 #include <unistd.h>
 
 #include <cerrno>
@@ -14,7 +15,6 @@
 #include <map>
 #include <memory>
 #include <set>
-#include <sstream>
 
 #include "animations/frame_spec.h"
 #include "animations/scene_animation.h"
@@ -190,8 +190,10 @@ int run_render(const RenderCommandOptions& o) {
     for (int f : skipped) std::printf("skipped %s (complete)\n", expand_output_pattern(pattern, f).c_str());
 
   std::vector<std::string> targets, previews;
-  for (int f : todo) targets.push_back(expand_output_pattern(pattern, f));
-  for (int f : todo) if (!o.preview.empty()) previews.push_back(expand_output_pattern(o.preview, f));
+  for (int f : todo) {
+    targets.push_back(expand_output_pattern(pattern, f));
+    if (!o.preview.empty()) previews.push_back(expand_output_pattern(o.preview, f));
+  }
   check_output_paths("-o", targets, ".exr");
   check_output_paths("--preview", previews, ".png");
   const int width = settings.width > 0 ? settings.width : scene.camera.width;
