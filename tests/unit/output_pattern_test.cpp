@@ -59,7 +59,7 @@ TEST(OutputPattern, DefaultPatternIsOneSafeFileNameForAnySceneName) {
   EXPECT_EQ(default_output_pattern(".."), "out/___####.exr");
   EXPECT_EQ(default_output_pattern("../../etc/x"), "out/______etc_x_####.exr");
   EXPECT_EQ(default_output_pattern(".hidden"), "out/_hidden_####.exr");
-  EXPECT_EQ(default_output_pattern("K\xc3\xbcche 2"), "out/K\xc3\xbcche 2_####.exr");  // UTF-8 and blanks stay
+  EXPECT_EQ(default_output_pattern("K\xc3\xbc" "che 2"), "out/K\xc3\xbc" "che 2_####.exr");  // UTF-8 and blanks stay
   // Long names are cut (at a character boundary) so the file name fits beside its temporary.
   std::string long_name;
   for (int i = 0; i < 200; ++i) long_name += "\xc3\xbc";
