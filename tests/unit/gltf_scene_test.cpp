@@ -100,7 +100,7 @@ class GltfBuilder {
   int triangle_mesh(json extra = json::object()) {
     json primitive = {{"attributes", {{"POSITION", floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3")}}}};
     primitive.update(extra);
-    return mesh({primitive});
+    return mesh(json::array({primitive}));  // {primitive} alone is a copy, not an array, for clang
   }
   void animate(int node, const std::string& path, const std::vector<float>& times, const std::vector<float>& values,
                const std::string& interpolation = "LINEAR") {
@@ -117,7 +117,7 @@ class GltfBuilder {
   // The document with the given buffers instead of the embedded one (bytes() is its content).
   std::string gltf_text_with_buffer(const json& buffer) {
     json doc = doc_;
-    doc["buffers"] = {buffer};
+    doc["buffers"] = json::array({buffer});
     return doc.dump(1);
   }
   const std::string& bytes() const { return bytes_; }
