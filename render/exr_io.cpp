@@ -37,7 +37,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int64_t kMaxReadSide = 16384;  // the largest --resolution
+constexpr int64_t kMaxReadSide = 16384;  // the largest --resolution; larger EXR files are refused
 constexpr float kHalfMax = 65504.0f;  // largest finite half; anything above would become Inf
 constexpr std::array<const char*, 3> kComponents = {"R", "G", "B"};
 
@@ -173,10 +173,6 @@ FrameImage read_exr_layers(const std::string& path) {
   const int64_t width = int64_t(window.max.x) - window.min.x + 1;
   const int64_t height = int64_t(window.max.y) - window.min.y + 1;
   if (width <= 0 || height <= 0) throw InputError("EXR file '" + path + "' has an empty image");
-  // Larger than anything pmrender renders: a hostile header would otherwise size the allocation.
-  if (width > kMaxReadSide || height > kMaxReadSide)
-    throw InputError("EXR file '" + path + "' is " + std::to_string(width) + "x" + std::to_string(height) +
-                     ", larger than " + std::to_string(kMaxReadSide) + "x" + std::to_string(kMaxReadSide));
 
   // Which of R, G, B each prefix has. std::map sorts "" (the combined layer) first.
   std::map<std::string, std::array<bool, 3>> groups;
@@ -248,6 +244,29 @@ class ExrHeaderWalk {
   }
 
   void check() {
+    walk();
+    // Checked once the whole header is read: OpenEXR sizes its line buffers from these.
+    if (window_seen_) {
+      if (width_ < 1 || height_ < 1 || width_ > kMaxReadSide || height_ > kMaxReadSide)
+        fail("the data window is " + std::to_string(width_) + "x" + std::to_string(height_) + ", not within 1x1 to " +
+             std::to_string(kMaxReadSide) + "x" + std::to_string(kMaxReadSide));
+      // Tiled files decode a tile at a time, scanline files a chunk of lines.
+      const int64_t line_buffer = tile_width_ > 0 ? tile_width_ * tile_height_ * bytes_per_pixel_
+                                                  : width_ * bytes_per_pixel_ * lines_per_chunk();
+      if (line_buffer > kMaxLineBufferBytes)
+        fail("its " + std::to_string(channels_) + " channels make decoding buffers of " + std::to_string(line_buffer) +
+             " bytes, more than " + std::to_string(kMaxLineBufferBytes));
+    }
+  }
+
+ private:
+  // Scanlines OpenEXR decompresses at once, by compression (ImfCompression.h order).
+  int64_t lines_per_chunk() const {
+    static const int kLines[] = {1, 1, 1, 16, 32, 16, 32, 32, 32, 256};  // NONE RLE ZIPS ZIP PIZ PXR24 B44 B44A DWAA DWAB
+    return compression_ < 10 ? kLines[compression_] : 256;
+  }
+
+  void walk() {
     unsigned char start[8];
     if (!in_.read(reinterpret_cast<char*>(start), 8) || start[0] != 0x76 || start[1] != 0x2f || start[2] != 0x31 ||
         start[3] != 0x01)
@@ -295,23 +314,44 @@ class ExrHeaderWalk {
       const std::string what = "header attribute '" + name.substr(0, 40) + "'";
       const int32_t size = read_int(what);
       if (size < 0) fail(what + " has a negative size");
-      walk_value(type, size, what);
+      walk_value(name, type, size, what);
       ++attributes;
     }
   }
 
-  void walk_value(const std::string& type, int32_t size, const std::string& what) {
+  void walk_value(const std::string& name, const std::string& type, int32_t size, const std::string& what) {
     static const std::map<std::string, int> kFixedSizes = {
         {"box2i", 16}, {"box2f", 16}, {"chromaticities", 32}, {"compression", 1}, {"deepImageState", 1},
         {"double", 8}, {"envmap", 1}, {"float", 4}, {"int", 4}, {"keycode", 28}, {"lineOrder", 1},
         {"m33f", 36}, {"m33d", 72}, {"m44f", 64}, {"m44d", 128}, {"rational", 8}, {"tiledesc", 9},
         {"timecode", 8}, {"v2i", 8}, {"v2f", 8}, {"v2d", 16}, {"v3i", 12}, {"v3f", 12}, {"v3d", 24}};
     const auto fixed = kFixedSizes.find(type);
-    if (fixed != kFixedSizes.end()) {
+    if (name == "dataWindow" && type == "box2i") {
+      const int64_t x0 = read_int(what), y0 = read_int(what), x1 = read_int(what), y1 = read_int(what);
+      width_ = x1 - x0 + 1;
+      height_ = y1 - y0 + 1;
+      window_seen_ = true;
+    } else if (name == "tiles" && type == "tiledesc") {
+      tile_width_ = uint32_t(read_int(what));
+      tile_height_ = uint32_t(read_int(what));
+      skip(1, what);  // level and rounding mode
+    } else if (name == "compression" && type == "compression") {
+      char c = 0;
+      if (!in_.get(c)) fail(what + " is cut short");
+      compression_ = static_cast<unsigned char>(c);
+    } else if (fixed != kFixedSizes.end()) {
       skip(fixed->second, what);
     } else if (type == "chlist") {
-      // Channels: a name, then pixel type, pLinear + 3 reserved bytes, x and y sampling.
-      while (!read_name("a channel name").empty()) skip(16, what);
+      // Channels: a name, then pixel type (UINT, HALF, FLOAT), pLinear + 3 reserved bytes, x and y
+      // sampling.
+      while (!read_name("a channel name").empty()) {
+        const int32_t pixel_type = read_int(what);
+        skip(4, what);
+        const int32_t x_sampling = read_int(what);
+        skip(4, what);
+        bytes_per_pixel_ += (pixel_type == 1 ? 2 : 4) / std::max(1, x_sampling) + 1;
+        ++channels_;
+      }
     } else if (type == "preview") {
       const uint32_t width = uint32_t(read_int(what)), height = uint32_t(read_int(what));
       skip(int64_t(width) * int64_t(height) * 4, what);
@@ -329,10 +369,15 @@ class ExrHeaderWalk {
     }
   }
 
+  static constexpr int64_t kMaxLineBufferBytes = int64_t(256) << 20;
+
   std::string path_;
   std::ifstream in_;
   int64_t size_ = 0;
   int max_name_ = 31;
+  bool window_seen_ = false;
+  int64_t width_ = 0, height_ = 0, bytes_per_pixel_ = 0, channels_ = 0, tile_width_ = 0, tile_height_ = 0;
+  unsigned compression_ = 0;
 };
 
 }  // namespace
