@@ -45,12 +45,6 @@ HalfRangeLoss half_range_loss(const FrameImage& image);
 // RGB layer at all is a pm::InputError naming the file.
 FrameImage read_exr(const std::string& path);
 
-// Walks the header(s) of an EXR file without OpenEXR and throws InputError naming the file when
-// an attribute declares more bytes than the file holds (or the header is cut short). OpenEXR
-// allocates whatever an attribute declares: a 1 KB file could ask for gigabytes. read_exr and
-// exr_is_complete call this first.
-void check_exr_header(const std::string& path);
-
 // True when the file opens as an EXR and every scanline chunk of it can be read, i.e. it was
 // written to the end (used by --resume to skip finished frames). Decodes the pixels of one
 // channel to be sure, so it costs about one image read. Never throws; any problem is "false".

@@ -12,6 +12,7 @@
 
 #include "fuzz_support.h"
 #include "render/errors.h"
+#include "render/exr_header_check.h"
 #include "render/exr_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
