@@ -37,7 +37,11 @@ class ExrHeaderWalk {
       if (width_ < 1 || height_ < 1 || width_ > kMaxReadSide || height_ > kMaxReadSide)
         fail("the data window is " + std::to_string(width_) + "x" + std::to_string(height_) + ", not within 1x1 to " +
              std::to_string(kMaxReadSide) + "x" + std::to_string(kMaxReadSide));
-      // Tiled files decode a tile at a time, scanline files a chunk of lines.
+      if (tile_width_ > kMaxReadSide || tile_height_ > kMaxReadSide)
+        fail("its tiles are " + std::to_string(tile_width_) + "x" + std::to_string(tile_height_) + ", larger than " +
+             std::to_string(kMaxReadSide) + "x" + std::to_string(kMaxReadSide));
+      // Tiled files decode a tile at a time, scanline files a chunk of lines. At most 16384 x
+      // 16384 x (5 bytes a channel, channels bounded by the file size): no overflow.
       const int64_t line_buffer = tile_width_ > 0 ? tile_width_ * tile_height_ * bytes_per_pixel_
                                                   : width_ * bytes_per_pixel_ * lines_per_chunk();
       if (line_buffer > kMaxLineBufferBytes)
@@ -140,7 +144,9 @@ class ExrHeaderWalk {
         ++channels_;
       }
     } else if (type == "preview") {
+      // width x height RGBA bytes follow; divided rather than multiplied, which could overflow.
       const uint32_t width = uint32_t(read_int(what)), height = uint32_t(read_int(what));
+      if (width > 0 && uint64_t(height) > uint64_t(left()) / 4 / width) fail(what + ": the preview is larger than the file");
       skip(int64_t(width) * int64_t(height) * 4, what);
     } else if (type == "stringvector") {
       need(size, what);
