@@ -3,12 +3,15 @@
 // optionally a per-pixel error map. Exit codes: 0 at or under the threshold, 1 over it, 2 on bad
 // input (unreadable file, different sizes, missing layer, NaN or Inf: the message names the file
 // and, for non-finite values, the pixel).
+#include <cfloat>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
 
 #include "cli/commands.h"
+#include "cli/number_parsing.h"
+#include "cli/output_checks.h"
 #include "render/errors.h"
 #include "render/exr_io.h"
 #include "render/image_metrics.h"
@@ -60,6 +63,10 @@ int run_compare(const CompareOptions& o) {
   const double threshold = given ? o.threshold : default_threshold(chosen);
   if (!std::isfinite(threshold) || threshold < 0) throw InputError("--threshold: must be a finite number >= 0");
 
+  if (!o.diff.empty()) {
+    check_output_paths("--diff", {o.diff}, ".exr");
+    check_not_an_input("--diff", o.diff, {{"reference", o.reference}, {"test", o.test}});
+  }
   const FrameImage reference = read_exr(o.reference);
   const FrameImage test = read_exr(o.test);
   const ImageLayer& ref_layer = require_layer(reference, o.layer, o.reference);
@@ -108,12 +115,13 @@ Run add_compare_command(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::IsMember({"flip", "rmse", "relmse", "mean"}));
   options->threshold_option = cmd->add_option("--threshold", options->threshold,
-                  "Pass at or under this value (default: flip 0.05, rmse 0.01, relmse 0.01, mean 0.01)");
+                  "Pass at or under this value (default: flip 0.05, rmse 0.01, relmse 0.01, mean 0.01)")
+      ->transform(finite_in(0, DBL_MAX));
   cmd->add_option("--diff", options->diff, "Write the per-pixel error of the chosen metric here (EXR, grey)");
   cmd->add_option("--layer", options->layer, "Layer to compare: combined, direct, indirect, caustic, ...")
       ->capture_default_str();
   cmd->add_option("--ppd", options->ppd, "FLIP viewing condition: pixels per degree of visual angle")
-      ->capture_default_str();
+      ->capture_default_str()->transform(positive_in(DBL_MAX));
   return [options] { return run_compare(*options); };
 }
 

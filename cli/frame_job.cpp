@@ -118,6 +118,7 @@ FrameOutcome FrameJob::run(int frame, const std::string& path, const std::string
   FrameImage image = renderer_.read_image(&stats);
   outcome.render_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   outcome.repaired_pixels = stats.repaired_pixels;
+  if (image_check_) image_check_(frame, image, stats.repaired_pixels);
   outcome.photons_reused = method && method->stats().get("photons_reused") != 0;
   image.attributes = attributes(frame, outcome.result, outcome.result.stopped_by);
   image.attributes.push_back({"pmrender/render_ms", number_text(outcome.render_ms)});

@@ -3,6 +3,7 @@
 // the EXR (and preview) with the header attributes that say how it was made.
 #pragma once
 
+#include <functional>
 #include <string>
 
 #include "cli/progress_line.h"
@@ -36,6 +37,10 @@ class FrameJob {
   FrameOutcome run(int frame, const std::string& path, const std::string& preview, ProgressLine& progress);
   // Whether run() draws the pass progress inside a frame (only where one frame renders at a time).
   void set_pass_progress(bool on) { pass_progress_ = on; }
+  // Called with each finished frame's image before it is written (warnings about what the file
+  // cannot hold).
+  using ImageCheck = std::function<void(int frame, const FrameImage& image, int repaired_pixels)>;
+  void set_image_check(ImageCheck check) { image_check_ = std::move(check); }
 
   int width() const { return renderer_.width(); }
   int height() const { return renderer_.height(); }
@@ -53,6 +58,7 @@ class FrameJob {
   FrameJobOptions options_;
   std::string fingerprint_;
   bool pass_progress_ = false;
+  ImageCheck image_check_;
 };
 
 }  // namespace pm::cli

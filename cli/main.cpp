@@ -2,8 +2,10 @@
 // (0 success, 1 render or device failure, 2 bad usage or bad input).
 #include <cstdio>
 #include <iostream>
+#include <new>
 
 #include "cli/commands.h"
+#include "cli/parse_errors.h"
 #include "render/errors.h"
 
 int main(int argc, char** argv) {
@@ -22,8 +24,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    return pm::cli::report_parse_error(app, e, argc, argv);
   }
 
   try {
@@ -42,6 +43,9 @@ int main(int argc, char** argv) {
   } catch (const pm::InputError& e) {
     std::cerr << "pmrender: " << e.what() << "\n";
     return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "pmrender: out of host memory; lower --resolution or --photons (pmrender render -v prints what a run used)\n";
+    return 1;
   } catch (const pm::DeviceError& e) {
     std::cerr << "pmrender: " << e.what() << "\n";
     return 1;

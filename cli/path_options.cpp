@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cli/method_options.h"
+#include "cli/number_parsing.h"
 #include "render/path/path_settings.h"
 
 namespace pm::cli {
@@ -29,11 +30,11 @@ std::shared_ptr<MethodOptions> add_path_options(CLI::App* cmd) {
   auto o = std::make_shared<PathOptions>();
   const std::string group = "Path tracing (--method path)";
   cmd->add_option("--spp", o->settings_.samples, "Paths per pixel and pass (the image averages --passes of them)")
-      ->capture_default_str()->group(group);
+      ->capture_default_str()->transform(any_unsigned32())->group(group);
   o->bounces = cmd->get_option_no_throw("--bounces");
   if (!o->bounces)
     o->bounces = cmd->add_option("--bounces", o->settings_.bounces, "Diffuse bounces of indirect light")
-                     ->capture_default_str()->group(group);
+                     ->capture_default_str()->transform(any_int32())->group(group);
   return o;
 }
 

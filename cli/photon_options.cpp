@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "cli/method_options.h"
+#include "cli/number_parsing.h"
 #include "render/errors.h"
 #include "render/footprint_scale.h"
 #include "render/photon/photon_settings.h"
@@ -69,9 +70,9 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
   auto o = std::make_shared<PhotonOptions>();
   PhotonSettings& ph = o->settings_;
   const std::string group = "Photon mapping (--method photon)";
-  cmd->add_option("--photons", ph.photons, "Photons emitted per pass (0: direct light only)")
+  cmd->add_option("--photons", ph.photons, "Photons emitted per pass (0: direct light only)")->transform(any_unsigned64())
       ->capture_default_str()->group(group);
-  cmd->add_option("--bounces", ph.bounces, "Diffuse bounces of indirect light (also --method path)")->capture_default_str()->group(group);
+  cmd->add_option("--bounces", ph.bounces, "Diffuse bounces of indirect light (also --method path)")->capture_default_str()->transform(any_int32())->group(group);
   cmd->add_option("--estimator", o->estimator, "pd (photon differentials), knn or radius")
       ->capture_default_str()->check(CLI::IsMember(names_of(kEstimatorNames)))->group(group);
   cmd->add_option("--kernel", o->kernel, "Density estimation kernel: constant or epanechnikov")
@@ -83,10 +84,10 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
                       "(section 4.3)")
       ->capture_default_str()->group(group);
   cmd->add_option("--rmax", ph.rmax, "Largest footprint semiaxis and k-NN search radius, metres "
-                                     "(default: 10% of the scene diagonal)")->group(group);
-  cmd->add_option("--radius", ph.radius, "Gather radius of --estimator radius, metres (default: 5% of the scene diagonal)")
+                                     "(default: 10% of the scene diagonal)")->transform(finite_float())->group(group);
+  cmd->add_option("--radius", ph.radius, "Gather radius of --estimator radius, metres (default: 5% of the scene diagonal)")->transform(finite_float())
       ->group(group);
-  cmd->add_option("--k", ph.knn_k, "Neighbours of --estimator knn")->capture_default_str()->group(group);
+  cmd->add_option("--k", ph.knn_k, "Neighbours of --estimator knn")->capture_default_str()->transform(any_int32())->group(group);
   cmd->add_option("--leaf", o->leaf, "Photon map leaf threshold T: auto or a number")->capture_default_str()->group(group);
   cmd->add_option("--photon-bvh", o->photon_bvh, "Photon map builder: lbvh (device, per pass) or vvh (voxel volume "
                                                  "heuristic on the host, for comparison)")
@@ -99,7 +100,7 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
                   "shrink (footprints and radii shrink from pass to pass: bias and noise both vanish; "
                   "docs/progressive.md)")
       ->capture_default_str()->check(CLI::IsMember(names_of(kProgressiveNames)))->group(group);
-  cmd->add_option("--alpha", ph.alpha, "shrink: r_i^2 = r_(i-1)^2 (i + alpha) / (i + 1), 0 < alpha < 1")
+  cmd->add_option("--alpha", ph.alpha, "shrink: r_i^2 = r_(i-1)^2 (i + alpha) / (i + 1), 0 < alpha < 1")->transform(finite_float())
       ->capture_default_str()->group(group);
   return o;
 }

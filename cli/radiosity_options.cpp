@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "cli/method_options.h"
+#include "cli/number_parsing.h"
 #include "render/radiosity/radiosity_settings.h"
 
 namespace pm::cli {
@@ -36,22 +37,22 @@ std::shared_ptr<MethodOptions> add_radiosity_options(CLI::App* cmd) {
   const std::string group = "Vertex link radiosity (--method radiosity)";
   o->bounces = cmd->get_option_no_throw("--bounces");
   if (!o->bounces)
-    o->bounces = cmd->add_option("--bounces", r.bounces, "Diffuse bounces of indirect light")->capture_default_str()->group(group);
+    o->bounces = cmd->add_option("--bounces", r.bounces, "Diffuse bounces of indirect light")->capture_default_str()->transform(any_int32())->group(group);
   cmd->add_option("--directions", r.directions, "Hemisphere directions nC shot per element (link rays)")
-      ->capture_default_str()->group(group);
+      ->capture_default_str()->transform(any_unsigned32())->group(group);
   cmd->add_option("--max-edge", r.max_edge, "Longest triangle edge after refinement, metres (default: the scene "
-                                            "diagonal / 25)")->group(group);
+                                            "diagonal / 25)")->transform(finite_float())->group(group);
   cmd->add_option("--feature-angle", r.feature_angle, "Feature angle alpha_f, degrees: vertices split and smoothing "
                                                       "stops where normals differ more")
-      ->capture_default_str()->group(group);
+      ->capture_default_str()->transform(finite_float())->group(group);
   cmd->add_option("--smooth-passes", r.smooth_passes, "One-ring smoothing passes over the gathered light (0: none)")
-      ->capture_default_str()->group(group);
+      ->capture_default_str()->transform(any_int32())->group(group);
   cmd->add_option("--sides", o->sides, "Elements on both sides of every surface (two) or on the winding's side (one)")
       ->capture_default_str()->check(CLI::IsMember(names_of(kRadiositySidesNames)))->group(group);
   cmd->add_option("--light-samples", o->light_samples, "Light links at the vertex only, or over its one-ring (1:4)")
       ->capture_default_str()->check(CLI::IsMember(names_of(kRadiosityLightSamplesNames)))->group(group);
   cmd->add_option("--link-batch", r.link_batch, "Elements per link-build batch (0: as many as 256 MiB of scratch hold)")
-      ->capture_default_str()->group(group);
+      ->capture_default_str()->transform(any_unsigned32())->group(group);
   return o;
 }
 

@@ -3,7 +3,8 @@
 // with one Renderer (scene BVH built once, photons reused over camera-only motion), writing each
 // as OpenEXR (temporary name, then rename). --resume skips frames whose file is complete. A frame
 // that fails is reported and the others still render; the exit code is then 1
-// (docs/animation.md, "Batch rendering").
+// (docs/animation.md, "Batch rendering"). Output paths and memory are checked before the device
+// opens (output_checks.h, memory.h); SIGINT/SIGTERM stop between frames (signals.h).
 #include <unistd.h>
 
 #include <algorithm>
@@ -22,11 +23,17 @@
 
 #include "cli/commands.h"
 #include "cli/frame_job.h"
+#include "cli/frame_warnings.h"
+#include "cli/memory.h"
+#include "cli/number_parsing.h"
+#include "cli/output_checks.h"
 #include "cli/progress_line.h"
+#include "cli/signals.h"
 #include "cli/render_options.h"
 #include "render/device.h"
 #include "render/errors.h"
 #include "render/exr_io.h"
+#include "render/interruption.h"
 #include "render/output_pattern.h"
 #include "render/preview_png.h"
 #include "render/renderer.h"
@@ -154,10 +161,6 @@ int run_render(const RenderCommandOptions& o) {
   SceneLoadReport report;
   Scene scene = o.render.scene_path.empty() ? builtin_cornell_box() : load_scene_file(o.render.scene_path, &report);
   const RenderSettings settings = render_settings(o.render);
-  if (!(o.seconds >= 0) || !std::isfinite(o.seconds)) throw InputError("--time: expected seconds >= 0");
-  if (!(o.target_error >= 0) || !(o.target_error < 1)) throw InputError("--target-error: expected a fraction from 0 to 1, e.g. 0.01");
-  if (!o.preview.empty() && !preview_available())
-    throw InputError("--preview needs OpenImageIO, which this build does not have");
   const std::string pattern = o.output.empty() ? default_output_pattern(scene.name) : o.output;
 
   const std::vector<int> frames = select_frames(o, scene);
@@ -180,6 +183,18 @@ int run_render(const RenderCommandOptions& o) {
   }
   if (o.verbose)
     for (int f : skipped) std::printf("skipped %s (complete)\n", expand_output_pattern(pattern, f).c_str());
+
+  // Every output target and the host memory of a frame, before any device work.
+  std::vector<std::string> targets, previews;
+  for (int f : todo) {
+    targets.push_back(expand_output_pattern(pattern, f));
+    if (!o.preview.empty()) previews.push_back(expand_output_pattern(o.preview, f));
+  }
+  check_output_paths("-o", targets, ".exr");
+  check_output_paths("--preview", previews, ".png");
+  const int width = settings.width > 0 ? settings.width : scene.camera.width;
+  const int height = settings.height > 0 ? settings.height : scene.camera.height;
+  if (!todo.empty()) check_host_memory_for_frame(width, height);
 
   FrameJobOptions job_options;
   job_options.budget.max_passes = settings.passes;
@@ -210,9 +225,9 @@ int run_render(const RenderCommandOptions& o) {
       for (Device* d : all) pools.push_back(std::make_unique<RendererPool>(std::vector<Device*>{d}, scene, settings));
     else
       pools.push_back(std::make_unique<RendererPool>(all, scene, settings));
+    for (auto& d : devices)  // before PoCL commits the buffers: a refusal instead of an abort
+      check_device_memory(d->allocated_bytes(), d->info(), width, height);
     for (auto& pool : pools) jobs.push_back(std::make_unique<FrameJob>(*pool, scene, job_options));
-    std::vector<std::string> targets;
-    for (int f : todo) targets.push_back(expand_output_pattern(pattern, f));
     remove_stale_temporaries(targets, o.verbose);
   }
   // Input is valid from here on: say what loading tolerated, then render.
@@ -222,9 +237,18 @@ int run_render(const RenderCommandOptions& o) {
   const bool sequence = frames.size() > 1;
   ProgressLine progress(!o.quiet);
   std::mutex output;  // progress, messages and the counts below, across device threads
+  FrameWarnings warnings(o.full_float);
+  for (auto& job : jobs)
+    job->set_image_check([&](int f, const FrameImage& image, int repaired) {
+      std::lock_guard<std::mutex> lock(output);
+      progress.clear();
+      warnings.check(f, image, repaired);
+    });
+  MemorySnapshot first_frame_memory;
   std::vector<int> failed;
   size_t rendered = 0, reused = 0, done = 0;
   const auto start = std::chrono::steady_clock::now();
+  install_interrupt_handlers();
   auto render_frame = [&](FrameJob& job, int f) {
     const std::string path = expand_output_pattern(pattern, f);
     try {
@@ -232,10 +256,7 @@ int run_render(const RenderCommandOptions& o) {
           job.run(f, path, o.preview.empty() ? "" : expand_output_pattern(o.preview, f), progress);
       std::lock_guard<std::mutex> lock(output);
       progress.clear();
-      if (outcome.repaired_pixels > 0)
-        std::fprintf(stderr, "pmrender: warning: frame %d: %d pixel(s) were not finite and were written as black\n", f,
-                     outcome.repaired_pixels);
-      ++rendered;
+      if (++rendered == 1) first_frame_memory = {host_rss_bytes(), devices.front()->allocated_bytes()};
       reused += outcome.photons_reused ? 1 : 0;
       if (!o.quiet) {
         std::printf("wrote %s (frame %d, %dx%d, %s, %.2f ms", path.c_str(), f, job.width(), job.height(),
@@ -248,6 +269,10 @@ int run_render(const RenderCommandOptions& o) {
         std::printf(")\n");
         std::fflush(stdout);
       }
+    } catch (const Interrupted&) {
+      return;  // the frame in progress is abandoned (its checkpoint, if any, stays)
+    } catch (const std::bad_alloc&) {
+      throw;  // not this frame's fault: main() reports it and the run ends
     } catch (const std::exception& e) {
       if (todo.size() == 1 && frames.size() == 1) throw;  // a single frame: main() reports it as before
       std::lock_guard<std::mutex> lock(output);
@@ -261,19 +286,29 @@ int run_render(const RenderCommandOptions& o) {
   };
   if (jobs.size() <= 1) {
     if (!jobs.empty()) jobs.front()->set_pass_progress(true);  // one frame at a time: its passes may show
-    for (int f : todo) render_frame(*jobs.front(), f);
+    for (size_t i = 0; i < todo.size() && interruption_signal() == 0; ++i) render_frame(*jobs.front(), todo[i]);
   } else {
     // Contiguous runs of frames, one per device, each on its own thread.
     std::vector<std::thread> threads;
+    std::exception_ptr failure;
     const size_t per_device = (todo.size() + jobs.size() - 1) / jobs.size();
     for (size_t d = 0; d < jobs.size(); ++d)
       threads.emplace_back([&, d] {
-        for (size_t i = d * per_device; i < std::min(todo.size(), (d + 1) * per_device); ++i) render_frame(*jobs[d], todo[i]);
+        try {
+          for (size_t i = d * per_device; i < std::min(todo.size(), (d + 1) * per_device) && interruption_signal() == 0;
+               ++i)
+            render_frame(*jobs[d], todo[i]);
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(output);
+          if (!failure) failure = std::current_exception();
+        }
       });
     for (std::thread& t : threads) t.join();
+    if (failure) std::rethrow_exception(failure);
     std::sort(failed.begin(), failed.end());
   }
   progress.clear();
+  if (interruption_signal() != 0) return report_interruption(rendered, todo.size());
   const double total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
   if (sequence && !o.quiet) {
@@ -284,6 +319,7 @@ int run_render(const RenderCommandOptions& o) {
     if (!failed.empty()) std::printf(", %zu failed", failed.size());
     std::printf("\n");
   }
+  if (o.verbose && !devices.empty()) print_memory_summary(first_frame_memory, *devices.front());
   if (!failed.empty()) {
     std::fprintf(stderr, "pmrender: %zu of %zu frames failed: %s\n", failed.size(), frames.size(),
                  frame_list(failed).c_str());
@@ -303,15 +339,15 @@ std::vector<int> parse_frames_option(const std::string& spec, int first, int las
 }
 
 void parse_resolution(const std::string& text, int* width, int* height) {
-  std::istringstream in(text);
-  int w = 0, h = 0;
-  char x = 0;
-  std::string rest;
-  if (!(in >> w >> x >> h) || (x != 'x' && x != 'X') || (in >> rest) || w <= 0 || h <= 0 || w > 16384 ||
-      h > 16384)
-    throw InputError("--resolution: expected WIDTHxHEIGHT with each from 1 to 16384, got '" + text + "'");
-  *width = w;
-  *height = h;
+  const size_t x = text.find_first_of("xX");
+  try {
+    if (x == std::string::npos) throw InputError("");
+    *width = int(parse_unsigned("--resolution", text.substr(0, x), 1, 16384));
+    *height = int(parse_unsigned("--resolution", text.substr(x + 1), 1, 16384));
+  } catch (const InputError&) {
+    throw InputError("--resolution: expected WIDTHxHEIGHT with each a whole number from 1 to 16384, got '" + text +
+                     "'");
+  }
 }
 
 Run add_render_command(CLI::App& app) {
@@ -322,26 +358,29 @@ Run add_render_command(CLI::App& app) {
   cmd->add_option("-o,--output", options->output, "Output pattern; runs of # are the zero-padded frame number")
       ->default_str("out/<scene>_####.exr");
   cmd->add_flag("--float", options->full_float, "Write 32-bit float channels instead of half");
-  cmd->add_option("--preview", options->preview, "Also write a tone-mapped PNG here (needs OpenImageIO; # as in -o)");
+  cmd->add_option("--preview", options->preview, "Also write a tone-mapped 8-bit PNG of the combined layer here (# as in -o)");
   options->frames_option =
       cmd->add_option("--frames", options->frames,
                       "Frames to render, e.g. 1-30,47,100-200:2 (default: the scene's whole sequence)");
   options->frame_option =
-      cmd->add_option("--frame", options->frame, "One frame to render (the same as --frames N)")->check(CLI::NonNegativeNumber);
+      cmd->add_option("--frame", options->frame, "One frame to render (the same as --frames N)")->transform(integer_in(0, kMaxFrameNumber));
   cmd->add_flag("--resume", options->resume,
                 "Skip frames whose output file is already complete; continue checkpointed frames from their checkpoint");
   cmd->add_option("--time", options->seconds,
-                  "Per frame: stop after the pass that reaches this many seconds (--passes, if given, stays a cap)");
+                  "Per frame: stop after the pass that reaches this many seconds (--passes, if given, stays a cap)")
+      ->transform(non_negative_float());
   cmd->add_option("--target-error", options->target_error,
                   "Per frame: stop when the estimated relative error of the indirect light falls to this, e.g. 0.01 "
-                  "(from 4 passes on; docs/progressive.md)");
+                  "(from 4 passes on; docs/progressive.md)")
+      ->transform(finite_in(0, 1));
   cmd->add_option("--devices", options->devices,
                   "Render on several devices of the backend: 'all' or indices like 0,1. A sequence's frames are "
                   "shared out; a single frame's passes are");
   cmd->add_option("--checkpoint-every", options->checkpoint_every,
-                  "Write the frame so far every N passes (a normal EXR plus <file>.pmstate); --resume continues it");
+                  "Write the frame so far every N passes (a normal EXR plus <file>.pmstate); --resume continues it")
+      ->transform(any_unsigned32());
   cmd->add_flag("-q,--quiet", options->quiet, "Print nothing on success (no progress, no summary)");
-  cmd->add_flag("-v,--verbose", options->verbose, "Also list skipped frames and removed stale temporaries");
+  cmd->add_flag("-v,--verbose", options->verbose, "Also list skipped frames and removed stale temporaries, and print host and device memory at the end");
   return [options] { return run_render(*options); };
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cli/commands.h"
+#include "cli/number_parsing.h"
 #include "render/errors.h"
 
 #include "scene_io/cornell_box.h"
@@ -15,13 +16,15 @@ void add_render_options(CLI::App* cmd, RenderOptions& o) {
   cmd->add_option("scene", o.scene_path, "Scene file (.json, .gltf or .glb; see docs/scene-format.md); default: the Cornell box");
   cmd->add_option("--backend", o.backend, "auto, cuda or opencl (auto: CUDA when a CUDA device exists)")
       ->check(CLI::IsMember({"auto", "cuda", "opencl"}));
-  cmd->add_option("--device", o.device, "Device index within the backend (see 'pmrender devices')");
+  cmd->add_option("--device", o.device, "Device index within the backend (see 'pmrender devices')")
+      ->transform(integer_in(0, 1023));
   cmd->add_option("--resolution", o.resolution, "WIDTHxHEIGHT, overrides the scene camera's");
-  cmd->add_option("--mirror-depth", o.mirror_depth, "Perfect-mirror bounces followed from the eye")->capture_default_str();
-  cmd->add_option("--seed", o.seed, "Random seed")->capture_default_str();
+  cmd->add_option("--mirror-depth", o.mirror_depth, "Perfect-mirror bounces followed from the eye")
+      ->capture_default_str()->transform(any_int32());
+  cmd->add_option("--seed", o.seed, "Random seed")->capture_default_str()->transform(any_unsigned32());
   o.passes_option = cmd->add_option("--passes", o.passes, "Passes of the indirect-light method per frame, summed in the film "
                                         "(photon mapping: independent photon batches; memory is one pass's)")
-      ->capture_default_str();
+      ->capture_default_str()->transform(any_unsigned32());
   std::string method_help = "Indirect-light method:";
   for (const MethodEntry& m : methods()) method_help += std::string(" ") + m.name + " (" + m.summary + ")";
   cmd->add_option("--method", o.method, method_help)->capture_default_str()->check(CLI::IsMember(method_names()));

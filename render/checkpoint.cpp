@@ -29,7 +29,7 @@ void write_checkpoint(const std::string& path, const FrameCheckpoint& c) {
          << "fingerprint " << c.fingerprint << "\n"
          << "end\n";
   const std::string text = header.str();
-  AtomicFile file{std::filesystem::path(path)};
+  AtomicFile file(path);
   file.write(text.data(), text.size());
   for (const std::vector<float4>* sum : {&c.sums.indirect, &c.sums.caustic, &c.sums.odd})
     file.write(sum->data(), sum->size() * sizeof(float4));

@@ -3,9 +3,6 @@
 // file that talks to OpenEXR; host code only, never compiled by nvcc.
 #include "render/exr_io.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfCompression.h>
 #include <OpenEXR/ImfFrameBuffer.h>
@@ -32,6 +29,8 @@
 
 #include "render/atomic_file.h"
 #include "render/errors.h"
+#include "render/exr_header_check.h"
+#include "render/interruption.h"
 
 namespace pm {
 
@@ -51,7 +50,6 @@ std::string channel_name(const std::string& layer, const char* component) {
 std::string layer_label(const std::string& layer) {
   return layer.empty() ? "combined" : "'" + layer + "'";
 }
-
 
 // A malformed image is a bug in the caller; catch it before anything touches the disk.
 void check_image_shape(const std::string& path, const FrameImage& image) {
@@ -87,38 +85,39 @@ void check_finite(const std::string& path, const FrameImage& image) {
   }
 }
 
-// Writes through a plain file descriptor rather than std::ofstream so that the data can be
-// fsync'ed before the rename, and so that no error is lost: OutputFile's destructor writes the
-// line offset table and swallows any exception doing so, hence the remembered first error.
-class DescriptorOStream : public Imf::OStream {
+// Writes through AtomicFile rather than std::ofstream so that the data can be fsync'ed before
+// the rename, and so that no error is lost: OutputFile's destructor writes the line offset table
+// and swallows any exception doing so, hence the remembered first error.
+class AtomicFileOStream : public Imf::OStream {
  public:
-  DescriptorOStream(const std::string& path, int fd) : Imf::OStream(path.c_str()), fd_(fd) {}
+  explicit AtomicFileOStream(AtomicFile& file) : Imf::OStream(file.temporary_path().c_str()), file_(file) {}
 
   void write(const char c[], int n) override {
-    while (n > 0) {
-      const ssize_t written = ::write(fd_, c, size_t(n));
-      if (written < 0) {
-        if (errno == EINTR) continue;
-        fail(errno_text("write"));
-      }
-      c += written;
-      n -= int(written);
-      position_ += uint64_t(written);
+    try {
+      file_.write(c, size_t(n));
+    } catch (const std::exception& e) {
+      remember(e.what());
+      throw;
     }
+    position_ += uint64_t(n);
   }
   uint64_t tellp() override { return position_; }
   void seekp(uint64_t pos) override {
-    if (::lseek(fd_, off_t(pos), SEEK_SET) < 0) fail(errno_text("seek"));
+    try {
+      file_.seek(size_t(pos));
+    } catch (const std::exception& e) {
+      remember(e.what());
+      throw;
+    }
     position_ = pos;
   }
   const std::string& first_error() const { return first_error_; }
 
  private:
-  [[noreturn]] void fail(const std::string& message) {
+  void remember(const std::string& message) {
     if (first_error_.empty()) first_error_ = message;
-    throw std::runtime_error(message);
   }
-  int fd_;
+  AtomicFile& file_;
   uint64_t position_ = 0;
   std::string first_error_;
 };
@@ -156,18 +155,20 @@ void write_exr_atomically(const std::string& path, const FrameImage& image, bool
     }
   }
 
-  AtomicFile temporary{fs::path(path)};
-  DescriptorOStream stream(temporary.temporary_path().string(), temporary.fd());
+  AtomicFile file(path);
+  AtomicFileOStream stream(file);
   {
-    Imf::OutputFile file(stream, header);
-    file.setFrameBuffer(frame_buffer);
-    file.writePixels(image.height);
+    Imf::OutputFile output(stream, header);
+    output.setFrameBuffer(frame_buffer);
+    output.writePixels(image.height);
   }  // the destructor writes the offset table; its errors only show in the stream
+  throw_if_interrupted();
   if (!stream.first_error().empty()) throw std::runtime_error(stream.first_error());
-  temporary.commit();
+  file.commit();
 }
 
 FrameImage read_exr_layers(const std::string& path) {
+  check_exr_header(path);
   Imf::InputFile file(path.c_str());
   const Imf::Header& header = file.header();
   const Imath::Box2i window = header.dataWindow();
@@ -238,8 +239,25 @@ void write_exr(const std::string& path, const FrameImage& image, bool full_float
   try {
     write_exr_atomically(path, image, full_float);
   } catch (const std::exception& e) {
+    // OpenEXR may rewrap the exception a stopped write threw; the request itself is what counts.
+    if (interruption_signal() != 0) throw Interrupted();
     throw DeviceError("cannot write EXR file '" + path + "': " + e.what());
   }
+}
+
+HalfRangeLoss half_range_loss(const FrameImage& image) {
+  const float kSmallestHalfStep = 5.9604645e-8f;  // 2^-24, the smallest positive (subnormal) half
+  HalfRangeLoss loss;
+  for (const ImageLayer& layer : image.layers) {
+    loss.values += layer.rgb.size();
+    for (float v : layer.rgb) {
+      const float magnitude = std::fabs(v);
+      loss.nonzero += magnitude != 0;
+      loss.clamped += magnitude > kHalfMax;
+      loss.flushed_to_zero += magnitude != 0 && magnitude < 0.5f * kSmallestHalfStep;
+    }
+  }
+  return loss;
 }
 
 FrameImage read_exr(const std::string& path) {
@@ -279,6 +297,7 @@ ExrFileCheck check_exr_file(const std::string& path) {
   if (got < sizeof(magic)) return fail(ExrFileState::truncated, "cut short inside the magic number");
 
   try {
+    check_exr_header(path);
     Imf::InputFile file(path.c_str());
     const Imf::Header& header = file.header();
     const Imath::Box2i window = header.dataWindow();

@@ -25,12 +25,23 @@ namespace pm {
 //   pm::DeviceError: it is a bug in the caller, not the user's input.
 void write_exr(const std::string& path, const FrameImage& image, bool full_float);
 
+// What writing the image with half channels loses (write_exr without full_float): values beyond
+// +-65504, which are clamped, and non-zero values below half's smallest step (2^-24; anything
+// under half of it rounds to 0), which become 0. Counted over every value of every layer.
+struct HalfRangeLoss {
+  size_t values = 0;          // all values of all layers
+  size_t nonzero = 0;         // of which not 0
+  size_t clamped = 0;         // |v| > 65504
+  size_t flushed_to_zero = 0; // 0 < |v| < 2^-25
+};
+HalfRangeLoss half_range_loss(const FrameImage& image);
+
 // Reads every RGB layer of the file's first part. Channels are grouped by the text before their
 // last '.'; R, G, B without a prefix form the combined layer "", which comes first in layers;
 // other layers follow in channel-list (alphabetical) order. Groups with none of R, G, B (e.g. a
 // lone "A" or "Z") are ignored. Every string attribute of the header is returned, including
 // standard ones such as "owner" when present. Values are returned as read; no finiteness check.
-// A missing or unreadable file, a non-EXR file, a layer lacking one of R, G, B, or a file with no
+// A missing or unreadable file, a non-EXR file, an image wider or taller than 16384, a layer lacking one of R, G, B, or a file with no
 // RGB layer at all is a pm::InputError naming the file.
 FrameImage read_exr(const std::string& path);
 

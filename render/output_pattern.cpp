@@ -36,9 +36,20 @@ bool pattern_has_frame_field(const std::string& pattern) {
 }
 
 std::string default_output_pattern(const std::string& scene_name) {
+  // The name comes from the scene file: anything there must not make folders ('/', '\\', ".."),
+  // hide the file (a leading '.'), cut the path (NUL), break a line, or become a frame field.
   std::string safe_name = scene_name.empty() ? "frame" : scene_name;
   for (char& c : safe_name) {
-    if (c == '#' || c == '/' || c == '\\') c = '_';
+    const unsigned char u = static_cast<unsigned char>(c);
+    if (u < 0x20 || u == 0x7f || c == '#' || c == '/' || c == '\\' || c == '.') c = '_';
+  }
+  // Short enough that the file name and its writer's temporary name fit any folder (255 bytes);
+  // cut before a UTF-8 continuation byte, never inside a character.
+  const size_t kMaxNameBytes = 119;
+  if (safe_name.size() > kMaxNameBytes) {
+    size_t cut = kMaxNameBytes;
+    while (cut > 0 && (static_cast<unsigned char>(safe_name[cut]) & 0xC0) == 0x80) --cut;
+    safe_name.resize(cut);
   }
   return "out/" + safe_name + "_####.exr";
 }

@@ -16,9 +16,10 @@ std::string expand_output_pattern(const std::string& pattern, int frame);
 // True when the pattern contains at least one '#', i.e. different frames get different names.
 bool pattern_has_frame_field(const std::string& pattern);
 
-// "out/<scene>_####.exr". Characters of the scene name that would change the meaning of the
-// pattern ('#', which would become a frame field, and '/' or '\\', which would make folders) are
-// replaced with '_'; an empty name becomes "frame".
+// "out/<scene>_####.exr", one file name whatever the scene file's name holds: '#' (a frame
+// field), '/', '\\' and '.' (folders, "..", hidden files), NUL and other control characters
+// become '_'; names longer than 119 bytes are cut at a character boundary; an empty name becomes
+// "frame". Other bytes (UTF-8 letters, blanks) stay.
 std::string default_output_pattern(const std::string& scene_name);
 
 }  // namespace pm

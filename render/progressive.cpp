@@ -3,6 +3,8 @@
 
 #include <chrono>
 
+#include "render/interruption.h"
+
 namespace pm {
 
 ProgressiveResult render_progressive(Renderer& renderer, int frame, const PassBudget& budget,
@@ -22,6 +24,7 @@ ProgressiveResult render_progressive(Renderer& renderer, int frame, const PassBu
   if (!renderer.method()) cap = 0;
 
   while (renderer.passes_done() < cap) {
+    throw_if_interrupted();  // between passes: a long frame stops at once (its checkpoint stays)
     renderer.run_pass();
     PassReport report;
     report.passes = renderer.passes_done();

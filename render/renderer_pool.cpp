@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "render/errors.h"
+#include "render/interruption.h"
 
 namespace pm {
 
@@ -46,6 +47,7 @@ ProgressiveResult RendererPool::render_progressive(int frame, const PassBudget& 
     Renderer& r = *renderers_[d];
     try {
       while (!stop) {
+        throw_if_interrupted();
         const uint32_t pass = next_pass++;
         if (pass >= cap) break;
         r.run_pass(pass);

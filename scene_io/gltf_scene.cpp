@@ -6,11 +6,9 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -20,6 +18,7 @@
 #include "render/scene_frame.h"
 #include "scene_io/animation_json.h"
 #include "scene_io/gltf_animation.h"
+#include "scene_io/gltf_files.h"
 #include "scene_io/json_reader.h"
 #include "scene_io/load_error.h"
 #include "scene_io/obj_mesh.h"
@@ -114,13 +113,10 @@ class GltfLoader {
 };
 
 void GltfLoader::parse_file() {
-  std::error_code ec;
-  if (fs::is_directory(path_, ec)) fail("", "cannot open (it is a directory)");
-  std::ifstream probe(path_, std::ios::binary);
-  if (!probe) fail("", std::string("cannot open (") + std::strerror(errno) + ")");
-  probe.close();
+  check_gltf_files(path_);  // the file, its nesting and its buffers, before tinygltf reads them
 
   tinygltf::TinyGLTF loader;
+  loader.SetFsCallbacks(regular_file_callbacks(&path_));
   loader.SetImageLoader(&skip_image, nullptr);
   loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
   std::string err, warn;
@@ -128,16 +124,10 @@ void GltfLoader::parse_file() {
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   const bool ok = ext == ".glb" ? loader.LoadBinaryFromFile(&model_, &err, &warn, path_)
                                 : loader.LoadASCIIFromFile(&model_, &err, &warn, path_);
-  auto trimmed = [](std::string text) {
-    while (!text.empty() && (text.back() == '\n' || text.back() == ' ')) text.pop_back();
-    return text;
-  };
-  if (!ok) fail("", "glTF: " + trimmed(err.empty() ? "cannot be read" : err));
-  if (!trimmed(warn).empty()) {
-    std::istringstream lines(warn);
-    for (std::string line; std::getline(lines, line);)
-      if (!trimmed(line).empty()) this->warn("glTF: " + trimmed(line));
-  }
+  if (!ok) fail("", "glTF: " + (err.empty() ? std::string("cannot be read") : short_tinygltf_message(err)));
+  std::istringstream lines(warn);
+  for (std::string line; std::getline(lines, line);)
+    if (!short_tinygltf_message(line).empty()) this->warn("glTF: " + short_tinygltf_message(line));
   for (const std::string& required : model_.extensionsRequired) {
     if (required != "KHR_lights_punctual" && required != "KHR_materials_emissive_strength")
       fail("extensionsRequired", "extension '" + required + "' is required by the file but not supported");

@@ -167,6 +167,27 @@ const char* kind_of(const json& value) {
 
 }  // namespace
 
+void check_json_nesting(const std::string& file, const std::string& text) {
+  int depth = 0;
+  size_t line = 1;
+  bool in_string = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') ++line;
+    if (in_string) {
+      if (c == '\\') ++i;  // the escaped character cannot end the string
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonNesting)
+        throw_input_error(file_line(file, line), "JSON nested deeper than " + std::to_string(kMaxJsonNesting) + " levels");
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
 nlohmann::json parse_json_file_strict(const std::string& path) {
   std::error_code ec;
   // Devices and pipes (/dev/zero, a FIFO) would be read without end.
@@ -177,6 +198,7 @@ nlohmann::json parse_json_file_strict(const std::string& path) {
   std::ostringstream buffer;
   buffer << in.rdbuf();
   const std::string text = buffer.str();
+  check_json_nesting(path, text);
 
   StrictDocumentBuilder builder;
   json::sax_parse(text, &builder);

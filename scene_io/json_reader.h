@@ -11,7 +11,16 @@
 
 namespace pm {
 
-// Reads and parses the whole file. Throws InputError:
+// Deepest nesting of arrays and objects a JSON document read by pmrender may have. Scene files
+// use 5 levels, glTF files about 6 (plus whatever their extras hold); without a limit a hostile
+// file of 100,000 '[' costs memory quadratic in the depth while its field paths are built.
+constexpr int kMaxJsonNesting = 100;
+
+// Throws InputError "<file>: line N: JSON nested deeper than 100 levels" for text nesting deeper
+// than kMaxJsonNesting. A linear scan that skips strings; it does not otherwise check the syntax.
+void check_json_nesting(const std::string& file, const std::string& text);
+
+// Reads and parses the whole file (nesting checked first). Throws InputError:
 //   "<file>: cannot open (<reason>)"
 //   "<file>: line N: JSON parse error: <detail>"
 //   "<file>: line N: <path>: expected a finite number, got 1e999"   (numbers beyond double range)

@@ -46,7 +46,10 @@ class SceneMtlReader : public tinyobj::MaterialReader {
     if (!read_files_) return true;
     const std::string path = resolve_mtl_file(obj_dir_, mat_id);
     if (path.empty()) return false;  // tinyobjloader tries the line's next name
-    std::ifstream in(path);
+    std::ifstream file(path, std::ios::binary);
+    std::stringstream in;
+    in << file.rdbuf();
+    if (in.str().compare(0, 3, "\xEF\xBB\xBF") == 0) in.str(in.str().substr(3));  // a byte order mark
     std::map<std::string, int> file_map;
     std::vector<tinyobj::material_t> file_materials;
     std::string warn, err;
@@ -167,6 +170,16 @@ ObjMesh load_obj_mesh(const std::string& path, bool read_mtl_files) {
       mesh.triangle_usemtl.push_back(
           material >= 0 && static_cast<size_t>(material) < facts.usemtl_names.size() ? material : -1);
     }
+  }
+  // Large convex faces, fanned out by the text check instead of tinyobjloader.
+  for (const ObjFanTriangle& t : facts.fan_triangles) {
+    const uint32_t* v = t.vertices;
+    if (is_degenerate_triangle(mesh.positions[v[0]], mesh.positions[v[1]], mesh.positions[v[2]])) {
+      ++mesh.degenerate_triangles_dropped;
+      continue;
+    }
+    mesh.indices.insert(mesh.indices.end(), v, v + 3);
+    mesh.triangle_usemtl.push_back(t.usemtl);
   }
   return mesh;
 }

@@ -2,6 +2,7 @@
 // coordinates, element indices, usemtl names and mtllib files, each error with its line number.
 #include "scene_io/obj_text_check.h"
 
+#include <array>
 #include <cerrno>
 #include <cfloat>
 #include <climits>
@@ -13,6 +14,7 @@
 #include <unordered_map>
 
 #include "scene_io/load_error.h"
+#include "scene_io/obj_large_faces.h"
 
 namespace pm {
 namespace {
@@ -151,21 +153,41 @@ void check_corner(const std::string& where, const std::string& element, const st
   if (parts.size() == 3) check_unused("normal", parts[2], total.normals, so_far.normals);
 }
 
-void check_vertex(const std::string& where, const std::vector<std::string>& coordinates) {
+std::array<double, 3> check_vertex(const std::string& where, const std::vector<std::string>& coordinates) {
   if (coordinates.size() < 3) {
     throw_input_error(where,
                       "vertex has " + std::to_string(coordinates.size()) + " coordinates (need x y z)");
   }
+  std::array<double, 3> position{};
   for (size_t i = 0; i < 3; ++i) {
-    double value = 0;
+    double& value = position[i];
     if (!parse_decimal(coordinates[i], &value)) {
       throw_input_error(where, "vertex coordinate '" + coordinates[i] + "' is not a finite decimal number");
     }
     if (!std::isfinite(value) || std::fabs(value) > FLT_MAX) {
       throw_input_error(where, "vertex coordinate '" + coordinates[i] + "' is not a finite float");
     }
+    if (std::fabs(value) > kMaxObjCoordinate) {
+      throw_input_error(where, "vertex coordinate '" + coordinates[i] +
+                                   "' is too large to render (single-precision geometry needs |x| <= 1e15)");
+    }
   }
+  return position;
 }
+
+// The 0-based vertex of a corner that check_corner accepted ("-1/2/3" -> so_far - 1).
+uint32_t corner_vertex(const std::string& corner, size_t so_far) {
+  const long index = std::strtol(corner.c_str(), nullptr, 10);
+  return uint32_t(index > 0 ? index - 1 : long(so_far) + index);
+}
+
+// A face of more than kLargeFaceCorners corners, decided on once every vertex is known.
+struct LargeFace {
+  size_t line = 0;
+  size_t text_offset = 0, text_length = 0;  // its line in text_for_tinyobj, without the '\n'
+  int32_t usemtl = -1;
+  std::vector<uint32_t> corners;
+};
 
 }  // namespace
 
@@ -214,9 +236,11 @@ std::string resolve_mtl_file(const std::string& obj_dir, const std::string& name
   return probe ? path.string() : "";
 }
 
-ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_dir, const std::string& text,
+ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_dir, const std::string& file_text,
                             bool check_mtllib) {
-  const std::vector<std::string> lines = split_obj_lines(text);
+  // A byte order mark would make the first line unrecognisable to both passes.
+  const bool bom = file_text.compare(0, 3, "\xEF\xBB\xBF") == 0;
+  const std::vector<std::string> lines = split_obj_lines(bom ? file_text.substr(3) : file_text);
 
   // Pass 1: totals, because positive indices may point at vertices defined further down.
   AttributeCounts total;
@@ -242,8 +266,11 @@ ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_
   // Pass 2: validate each statement with its line number.
   ObjTextFacts facts;
   std::unordered_map<std::string, size_t> usemtl_slot;  // name -> index in usemtl_names
-  facts.text_for_tinyobj.reserve(text.size() + 64);
+  facts.text_for_tinyobj.reserve(file_text.size() + 64);
   AttributeCounts so_far;
+  std::vector<std::array<double, 3>> positions;
+  std::vector<LargeFace> large_faces;
+  int32_t current_usemtl = -1;
   UnusedAttributeIssues unused;
   for (size_t number = 1; number <= lines.size(); ++number) {
     const std::string& line = lines[number - 1];
@@ -256,7 +283,7 @@ ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_
     const std::string where = file_line(obj_path, number);
     switch (statement) {
       case ObjStatement::kVertex:
-        check_vertex(where, split_blanks(line, rest));
+        positions.push_back(check_vertex(where, split_blanks(line, rest)));
         ++so_far.vertices;
         break;
       case ObjStatement::kTexcoord:
@@ -278,6 +305,11 @@ ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_
         }
         for (const std::string& corner : corners)
           check_corner(where, element, corner, total, so_far, &unused);
+        if (statement == ObjStatement::kFace && corners.size() > kLargeFaceCorners) {
+          LargeFace face{number, facts.text_for_tinyobj.size() - line.size() - 1, line.size(), current_usemtl, {}};
+          for (const std::string& corner : corners) face.corners.push_back(corner_vertex(corner, so_far.vertices));
+          large_faces.push_back(std::move(face));
+        }
         break;
       }
       case ObjStatement::kUsemtl: {
@@ -292,6 +324,7 @@ ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_
           facts.usemtl_names.push_back({name, number});
         }
         facts.text_for_tinyobj += "usemtl " + usemtl_slot_token(slot->second) + "\n";
+        current_usemtl = int32_t(slot->second);
         continue;
       }
       case ObjStatement::kMtllib: {
@@ -310,6 +343,16 @@ ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_
       }
       case ObjStatement::kOther:
         break;
+    }
+  }
+  for (const LargeFace& face : large_faces) {
+    if (is_convex_polygon(positions, face.corners)) {
+      append_fan(face.corners, face.usemtl, &facts.fan_triangles);
+      facts.text_for_tinyobj.replace(face.text_offset, face.text_length, face.text_length, ' ');
+    } else if (face.corners.size() > kMaxEarClippedCorners) {
+      throw_input_error(file_line(obj_path, face.line),
+                        "face of " + std::to_string(face.corners.size()) + " corners is not convex; faces of more than " +
+                            std::to_string(kMaxEarClippedCorners) + " corners must be convex (split it)");
     }
   }
   if (unused.count > 0) {

@@ -5,6 +5,7 @@
 // It also collects the usemtl names and prepares the text tinyobjloader is given (see below).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -15,12 +16,31 @@ struct ObjUsemtl {
   size_t first_line = 0;  // 1-based line of its first usemtl statement
 };
 
+// A triangle of a large convex face, fanned out by check_obj_text itself (see below).
+struct ObjFanTriangle {
+  uint32_t vertices[3];  // 0-based vertex indices
+  int32_t usemtl;        // index into usemtl_names; -1 before any usemtl
+};
+
+// Faces of more corners than this are not left to tinyobjloader, whose ear clipping takes time
+// quadratic in the corners (100,000 corners: 22 s): convex ones are fanned out here in linear
+// time; non-convex ones of up to kMaxEarClippedCorners still go to tinyobjloader, larger ones are
+// refused.
+constexpr size_t kLargeFaceCorners = 64;
+constexpr size_t kMaxEarClippedCorners = 2048;
+
+// Vertex coordinates must be at most this large in magnitude (file units): beyond it the single-
+// precision ray-triangle products (squares of edge lengths) overflow and surfaces vanish.
+constexpr double kMaxObjCoordinate = 1e15;
+
 struct ObjTextFacts {
   std::vector<ObjUsemtl> usemtl_names;  // distinct names, in order of first use
   // The text to hand tinyobjloader: the same lines, "\n"-terminated, with every usemtl statement
   // rewritten to "usemtl <usemtl_slot_token(i)>" (i indexing usemtl_names). Names may contain
   // blanks, which tinyobjloader's usemtl parsing would cut off; tokens cannot.
   std::string text_for_tinyobj;
+  // The triangles of large convex faces; their lines are blanked in text_for_tinyobj.
+  std::vector<ObjFanTriangle> fan_triangles;
   // Tolerated problems, one line each: out-of-range texture coordinate or normal indices.
   std::vector<std::string> warnings;
 };
@@ -32,8 +52,10 @@ std::string usemtl_slot_token(size_t slot);
 // so line numbers agree with its own messages.
 std::vector<std::string> split_obj_lines(const std::string& text);
 
+// A UTF-8 byte order mark at the start of text is skipped (it would hide the first statement).
 // Throws InputError "<obj_path>: line N: <problem>" for:
-//   vertices without 3 decimal, finite (float-range) coordinates;
+//   vertices without 3 decimal, finite coordinates of magnitude at most kMaxObjCoordinate;
+//   non-convex faces of more than kMaxEarClippedCorners corners;
 //   face/line/point elements with a malformed or zero index, an out-of-range vertex index, or
 //   (faces) fewer than 3 corners; usemtl without a name; and, when check_mtllib is set, an mtllib line
 //   none of whose files can be opened (relative to obj_dir).

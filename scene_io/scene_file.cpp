@@ -37,11 +37,13 @@ constexpr double kReflectanceSumTolerance = 1e-6;
 
 float component(const Float3& v, int i) { return i == 0 ? v.x : (i == 1 ? v.y : v.z); }
 
-// Converts a position from scene units to metres; fails on the field if that overflows a float.
+// Converts a position from scene units to metres; fails on the field beyond what single-precision
+// geometry can render (the same bound as OBJ vertex coordinates, now in metres).
 Float3 to_metres(const Float3& units, double meters_per_unit, const JsonField& field) {
   const double m[3] = {units.x * meters_per_unit, units.y * meters_per_unit, units.z * meters_per_unit};
   for (double v : m) {
-    if (!std::isfinite(static_cast<float>(v))) field.fail("beyond float range once converted to metres");
+    if (!(std::fabs(v) <= kMaxObjCoordinate))
+      field.fail("a position is " + describe_json_value(v) + " m from the origin once converted to metres; at most 1e15 m renders");
   }
   return Float3{static_cast<float>(m[0]), static_cast<float>(m[1]), static_cast<float>(m[2])};
 }
@@ -353,6 +355,9 @@ Scene load_scene_file(const std::string& path, SceneLoadReport* report) {
     const JsonField mpu = root.member("meters_per_unit");
     ctx.meters_per_unit = mpu.finite_number();
     if (!(ctx.meters_per_unit > 0)) mpu.fail("must be > 0, got " + describe_json_value(mpu.value()));
+    // Nanometres to gigametres; beyond that every position rounds to 0 or overflows in floats.
+    if (ctx.meters_per_unit < 1e-9 || ctx.meters_per_unit > 1e9)
+      mpu.fail("must be from 1e-9 to 1e9, got " + describe_json_value(mpu.value()));
   }
   ctx.json_materials = read_json_materials(root);
 

@@ -1,21 +1,20 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets with clang (AddressSanitizer) in a separate build folder and runs
+# Builds the libFuzzer targets with clang (ASan + UBSan, tests/fuzz/configure.sh) and runs
 # each for a bounded time, starting from the committed corpus. New inputs go to a scratch folder;
 # a crash leaves its input as <build>/fuzz-<target>-crash-* and fails this script.
 #   tests/fuzz/run.sh [SECONDS_PER_TARGET=30] [extra libFuzzer options...]
-# Environment: PM_FUZZ_BUILD (default build-fuzz/ in the repository).
+# Environment: PM_FUZZ_BUILD (default build-fuzz/ in the repository; configure.sh sets it up),
+# PM_FUZZ_TARGETS (default: all four).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
-build=${PM_FUZZ_BUILD:-$root/build-fuzz}
 seconds=${1:-30}
 shift || true
-cmake -S "$root" -B "$build" -G Ninja -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DPMRENDER_CUDA=OFF \
-      -DPMRENDER_FUZZ=ON -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-cmake --build "$build" --target pm_fuzz_scene pm_fuzz_frame_spec
+build=$("$root/tests/fuzz/configure.sh")
+cmake --build "$build" --target pm_fuzz_scene pm_fuzz_frame_spec pm_fuzz_gltf pm_fuzz_exr
 # The scene fuzzer writes its inputs to files: on tmpfs it runs about 10x faster.
 if [ -z "${TMPDIR:-}" ] && [ -d /dev/shm ] && [ -w /dev/shm ]; then export TMPDIR=/dev/shm; fi
 status=0
-for target in scene frame_spec; do
+for target in ${PM_FUZZ_TARGETS:-scene frame_spec gltf exr}; do
   work=$(mktemp -d)
   dict=()
   [ -f "$root/tests/fuzz/$target.dict" ] && dict=(-dict="$root/tests/fuzz/$target.dict")

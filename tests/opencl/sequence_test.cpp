@@ -358,8 +358,15 @@ TEST_F(SequenceCli, ChunkedRunsWriteTheSamePixelsAsOneRun) {
 }
 
 TEST_F(SequenceCli, FailedFramesAreNamedAndTheOthersStillRender) {
-  fs::create_directories(dir_ / "out" / "f_0002.exr");  // frame 2 cannot be renamed onto a folder
-  const Process r = pmrender("render " + data("moving_room.json") + kSmall + " --frames 0-4 -o " + out("f_####.exr"));
+  // A target that cannot be written is refused before rendering (output_checks_test.cpp), so
+  // frame 2 is made to fail in its write instead: its temporary, ".f_0002.exr.tmp-<pid>-2" (the
+  // third file this process writes), is taken by a folder made as soon as the pid is known, long
+  // before pmrender has opened its device.
+  const pid_t pid = test::start_pmrender(
+      "render " + data("moving_room.json") + kSmall + " --frames 0-4 -o " + out("f_####.exr"), dir_);
+  ASSERT_GT(pid, 0);
+  fs::create_directories(dir_ / "out" / (".f_0002.exr.tmp-" + std::to_string(pid) + "-2"));
+  const test::ProcessResult r = test::wait_pmrender(pid, dir_);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("pmrender: frame 2: "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("1 of 5 frames failed: 2"), std::string::npos) << r.err;

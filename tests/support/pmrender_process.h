@@ -3,6 +3,7 @@
 #pragma once
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -41,6 +42,29 @@ inline ProcessResult run_pmrender(const std::string& args, const std::filesystem
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   r.out = read_text(out);
   r.err = read_text(err);
+  return r;
+}
+
+// pmrender started in the background (stdout and stderr as for run_pmrender), for tests that act
+// on it while it runs, e.g. send it a signal. The shell execs pmrender, so the pid is pmrender's.
+inline pid_t start_pmrender(const std::string& args, const std::filesystem::path& dir) {
+  const std::string cmd = "exec " + pmrender_binary() + " " + args + " </dev/null >" + (dir / "stdout.txt").string() +
+                          " 2>" + (dir / "stderr.txt").string();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  return pid;
+}
+
+// Waits for a process of start_pmrender; exit_code is -1 when a signal killed it.
+inline ProcessResult wait_pmrender(pid_t pid, const std::filesystem::path& dir) {
+  int status = 0;
+  ProcessResult r;
+  if (waitpid(pid, &status, 0) == pid && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  r.out = read_text(dir / "stdout.txt");
+  r.err = read_text(dir / "stderr.txt");
   return r;
 }
 

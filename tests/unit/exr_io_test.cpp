@@ -12,9 +12,11 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <Imath/half.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -283,6 +285,70 @@ TEST_F(ExrIoTest, ReadingANonExrFileIsAnInputErrorNamingIt) {
     FAIL() << "reading a text file succeeded";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(ExrIoTest, AnAttributeDeclaringMoreBytesThanTheFileIsRefusedBeforeAllocating) {
+  // A real file whose string attribute then claims 2 GB: OpenEXR would allocate that much.
+  FrameImage image = random_image(4, 3, {""}, 1.0f);
+  image.attributes = {{"pmrender/note", "abcdefgh"}};
+  write_exr(path("a.exr"), image, false);
+  std::vector<char> bytes = read_bytes(path("a.exr"));
+  const std::string marker = std::string("pmrender/note") + '\0' + "string" + '\0';
+  const auto at = std::search(bytes.begin(), bytes.end(), marker.begin(), marker.end());
+  ASSERT_NE(at, bytes.end());
+  const int32_t huge = 2000000000;
+  std::memcpy(&*(at + std::ptrdiff_t(marker.size())), &huge, 4);
+  write_bytes(path("a.exr"), bytes);
+  try {
+    read_exr(path("a.exr"));
+    FAIL() << "read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("header attribute 'pmrender/note' declares 2000000000 bytes, more than the file holds"),
+              std::string::npos) << e.what();
+  }
+  EXPECT_FALSE(exr_is_complete(path("a.exr")));
+}
+
+TEST_F(ExrIoTest, AnImageLargerThanAnyRenderIsRefused) {
+  // Written with OpenEXR directly: a 20000 x 1 data window.
+  Imf::Header header(20000, 1);
+  header.channels().insert("R", Imf::Channel(Imf::HALF));
+  header.channels().insert("G", Imf::Channel(Imf::HALF));
+  header.channels().insert("B", Imf::Channel(Imf::HALF));
+  std::vector<half> row(20000, half(0.5f));
+  Imf::FrameBuffer frame_buffer;
+  for (const char* c : {"R", "G", "B"})
+    frame_buffer.insert(c, Imf::Slice(Imf::HALF, reinterpret_cast<char*>(row.data()), sizeof(half), 0));
+  {
+    Imf::OutputFile file(path("wide.exr").c_str(), header);
+    file.setFrameBuffer(frame_buffer);
+    file.writePixels(1);
+  }
+  try {
+    read_exr(path("wide.exr"));
+    FAIL() << "read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the data window is 20000x1, not within 1x1 to 16384x16384"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(ExrIoTest, DecodingBuffersBeyond256MiBAreRefused) {
+  // 16384 pixels wide with 1200 float channels, DWAB (256 lines at once): OpenEXR would allocate
+  // 16384 x 1200 x 4 x 256 bytes (19 GiB) before reading a pixel.
+  Imf::Header header(16384, 1);
+  header.compression() = Imf::DWAB_COMPRESSION;
+  for (int c = 0; c < 1200; ++c) header.channels().insert("c" + std::to_string(c), Imf::Channel(Imf::FLOAT));
+  header.channels().insert("R", Imf::Channel(Imf::FLOAT));
+  {
+    // Only the header is needed; writing no pixels leaves the file incomplete, which is fine here.
+    Imf::OutputFile file(path("many.exr").c_str(), header);
+  }
+  try {
+    read_exr(path("many.exr"));
+    FAIL() << "read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("channels make decoding buffers of "), std::string::npos) << e.what();
   }
 }
 

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "render/errors.h"
 
 namespace pm {
@@ -47,6 +49,26 @@ TEST(OutputPattern, DefaultPatternKeepsSceneNameFromChangingThePattern) {
   EXPECT_EQ(default_output_pattern("take#2"), "out/take_2_####.exr");
   EXPECT_EQ(default_output_pattern("a/b"), "out/a_b_####.exr");
   EXPECT_EQ(default_output_pattern(""), "out/frame_####.exr");
+}
+
+TEST(OutputPattern, DefaultPatternIsOneSafeFileNameForAnySceneName) {
+  using namespace std::string_literals;
+  // A NUL used to cut the path short, so every frame overwrote one extension-less file.
+  EXPECT_EQ(default_output_pattern("a\0b"s), "out/a_b_####.exr");
+  EXPECT_EQ(default_output_pattern("line\nbreak\r\t"), "out/line_break___####.exr");
+  EXPECT_EQ(default_output_pattern(".."), "out/___####.exr");
+  EXPECT_EQ(default_output_pattern("../../etc/x"), "out/______etc_x_####.exr");
+  EXPECT_EQ(default_output_pattern(".hidden"), "out/_hidden_####.exr");
+  EXPECT_EQ(default_output_pattern("K\xc3\xbc" "che 2"), "out/K\xc3\xbc" "che 2_####.exr");  // UTF-8 and blanks stay
+  // Long names are cut (at a character boundary) so the file name fits beside its temporary.
+  std::string long_name;
+  for (int i = 0; i < 200; ++i) long_name += "\xc3\xbc";
+  const std::string pattern = default_output_pattern(long_name);
+  const std::string file = pattern.substr(4);
+  EXPECT_LE(file.size(), 128u);
+  EXPECT_EQ(file.substr(file.size() - 9), "_####.exr");
+  EXPECT_EQ((file.size() - 9) % 2, 0u);  // no half of a two-byte character
+  EXPECT_EQ(std::count(pattern.begin(), pattern.end(), '/'), 1);
 }
 
 }  // namespace

@@ -145,9 +145,16 @@ std::vector<Vec3> make_queries(const Hits& h, uint count, uint32_t seed)
     const uint hit = rng() % h.lo.size();
     const float4 lo = h.lo[hit], hi = h.hi[hit];
     switch (i % 4) {
-      case 0: q.push_back(vec3(-1.5f + 5.0f * u(rng), -1.5f + 5.0f * u(rng), -1.5f + 5.0f * u(rng))); break;
+      // Coordinates drawn in sequence, z first (as gcc evaluated the arguments when the expected
+      // counts were set): the order of function arguments is unspecified and clang's differs.
+      case 0: {
+        const float z = u(rng), y = u(rng), x = u(rng);
+        q.push_back(vec3(-1.5f + 5.0f * x, -1.5f + 5.0f * y, -1.5f + 5.0f * z));
+        break;
+      }
       case 1: {  // on a face: one coordinate snapped to lo or hi
-        Vec3 x = vec3(lo.x + (hi.x - lo.x) * u(rng), lo.y + (hi.y - lo.y) * u(rng), lo.z + (hi.z - lo.z) * u(rng));
+        const float uz = u(rng), uy = u(rng), ux = u(rng);
+        Vec3 x = vec3(lo.x + (hi.x - lo.x) * ux, lo.y + (hi.y - lo.y) * uy, lo.z + (hi.z - lo.z) * uz);
         float* c[3] = {&x.x, &x.y, &x.z};
         const float los[3] = {lo.x, lo.y, lo.z}, his[3] = {hi.x, hi.y, hi.z};
         uint axis = rng() % 3;

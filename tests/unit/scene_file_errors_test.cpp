@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -108,6 +109,22 @@ TEST_F(SceneJsonErrors, SyntaxErrorInsideAStringGivesItsLine) {
   // A raw line break inside a string is not JSON; the error is on the string's line (3).
   expect_scene_message(error_of_text("{\n  \"format\": \"pmrender-scene\",\n  \"name\": \"a\nb\"\n}\n"),
                        "line 3: JSON parse error: ");
+}
+
+TEST_F(SceneJsonErrors, DeepNestingIsRefusedWithItsLine) {
+  // 101 levels, the last on line 3; strings holding brackets do not count.
+  std::string text = "{\"name\": \"[[[[{{{{\",\n\"x\":\n" + std::string(100, '[') + std::string(100, ']') + "}";
+  expect_scene_message(error_of_text(text), "line 3: JSON nested deeper than 100 levels");
+  // 100 levels pass the check (and fail later for what they are).
+  text = "{\"x\": " + std::string(99, '[') + std::string(99, ']') + "}";
+  EXPECT_EQ(error_of_text(text).find("nested deeper"), std::string::npos);
+}
+
+TEST_F(SceneJsonErrors, MillionLevelsAreRefusedQuickly) {
+  // Building the field paths of 200,000 levels took all memory; the check is one linear scan.
+  const auto start = std::chrono::steady_clock::now();
+  expect_scene_message(error_of_text(std::string(1000000, '[')), "line 1: JSON nested deeper than 100 levels");
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
 }
 
 TEST_F(SceneJsonErrors, NullWhereANumberIsExpected) {

@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# AddressSanitizer + UndefinedBehaviorSanitizer run of the unit and OpenCL tests, in the clang build
+# the fuzzers use (tests/fuzz/configure.sh: build-fuzz/, no CUDA), with leak checking. PoCL and its
+# LLVM are not instrumented; no leak report comes from them, so no suppressions are needed.
+# Not run under ASan: MemoryLimits.* (ulimit -v cannot hold ASan's shadow memory) and
+# SequenceMemory.* (its flat-memory bound cannot hold ASan's quarantine of freed memory).
+#   .ci/sanitizers.sh [gtest filter, e.g. 'Cli*']
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=$("$root/tests/fuzz/configure.sh")
+cmake --build "$build" --target pmrender pm_unit_tests pm_opencl_tests
+export ASAN_OPTIONS=detect_leaks=1:strict_string_checks=1
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+filter=${1:-*}
+"$build/tests/pm_unit_tests" --gtest_brief=1 --gtest_filter="$filter"
+"$build/tests/pm_opencl_tests" --gtest_brief=1 --gtest_filter="$filter:-MemoryLimits.*:SequenceMemory.*"

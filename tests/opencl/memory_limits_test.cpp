@@ -1,0 +1,61 @@
+// Requests that cannot fit in memory are refused with the numbers (exit code 2) before the first
+// frame, instead of std::bad_alloc or PoCL's assertion (exit code 134) when a buffer is first
+// touched. The limit is the process's address space (ulimit -v), as a user or a batch system
+// would set it. (Not for AddressSanitizer builds: their shadow memory does not fit such limits.)
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "support/pmrender_process.h"
+
+namespace pm {
+namespace {
+
+class MemoryLimits : public test::PmrenderProcessTest {
+ protected:
+  test::ProcessResult render_under_limit(const std::string& limit_kb, const std::string& args) {
+    const std::string out = (dir_ / "stdout.txt").string(), err = (dir_ / "stderr.txt").string();
+    const std::string cmd = "ulimit -v " + limit_kb + "; exec " + test::pmrender_binary() + " render " + args + " -o " +
+                            (dir_ / "f.exr").string() + " </dev/null >" + out + " 2>" + err;
+    const int status = std::system(cmd.c_str());
+    test::ProcessResult r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    r.out = test::read_text(out);
+    r.err = test::read_text(err);
+    return r;
+  }
+  void expect_refused(const test::ProcessResult& r, const std::string& expect) {
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err.rfind("pmrender: ", 0), 0u) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(expect), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("GiB are available (RLIMIT_AS (ulimit -v))"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "f.exr"));
+  }
+};
+
+TEST_F(MemoryLimits, AFrameTooLargeForTheHostIsRefusedBeforeTheDeviceOpens) {
+  // 8192x8192 at 128 bytes a pixel: 8 GiB, under a 2 GB address space. --device 99 does not exist:
+  // the memory refusal comes first.
+  expect_refused(render_under_limit("2000000", "--backend opencl --device 99 --resolution 8192x8192 --photons 1000"),
+                 "--resolution 8192x8192: a frame needs about 8.0 GiB of host memory, but ");
+}
+
+TEST_F(MemoryLimits, DeviceBuffersThatDoNotFitTheHostAreRefusedBeforeTheFirstFrame) {
+  // The frame's 8 GiB fit under 9 GB, but PoCL's buffers (15 GiB, host memory) do not.
+  expect_refused(render_under_limit("9000000", "--backend opencl --resolution 8192x8192 --photons 1000"),
+                 "the render needs 15.0 GiB of device memory and 8.0 GiB for the frame on the host; OpenCL buffers can "
+                 "be host memory");
+}
+
+TEST_F(MemoryLimits, AFittingRequestRendersUnderTheSameKindOfLimit) {
+  const test::ProcessResult r = render_under_limit("4000000", "--backend opencl --resolution 64x64 --photons 1000");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir_ / "f.exr"));
+}
+
+}  // namespace
+}  // namespace pm
