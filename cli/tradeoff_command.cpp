@@ -15,6 +15,7 @@
 
 #include "cli/bench_measure.h"
 #include "cli/commands.h"
+#include "cli/number_parsing.h"
 #include "cli/progress_line.h"
 #include "cli/tradeoff_grid.h"
 #include "cli/tradeoff_report.h"
@@ -263,6 +264,11 @@ Run add_tradeoff_command(CLI::App& app) {
   cmd->add_option("--k", o->grid.k, "Neighbours of --estimator knn")->capture_default_str()->group(grid);
   cmd->add_option("--radius", o->grid.radius, "Gather radii of --estimator radius, metres (0: 5 % of the scene diagonal)")
       ->capture_default_str()->group(grid);
+  cmd->add_option("--progressive", o->grid.progressive, "How photon passes combine: average, shrink or "
+                                                        "average,shrink (shrink only where passes > 1)")
+      ->capture_default_str()->group(grid);
+  cmd->add_option("--alpha", o->grid.alpha, "Shrink's alpha, 0 < alpha < 1 (docs/progressive.md)")
+      ->transform(finite_float())->capture_default_str()->group(grid);
   cmd->add_option("--spp", o->grid.spp, "Paths per pixel and pass of the path tracer")->capture_default_str()->group(grid);
   cmd->add_option("--warmup", o->warmup, "Frames rendered first and not timed, per setting")->capture_default_str();
   cmd->add_option("--repeat", o->repeat, "Timed frames per setting (medians)")->capture_default_str();

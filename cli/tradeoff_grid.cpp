@@ -63,10 +63,14 @@ std::string TradeoffSetting::label() const {
   if (estimator == "pd") text += " s=" + number_text(parameter);
   if (estimator == "knn") text += " k=" + number_text(parameter);
   if (estimator == "radius") text += parameter > 0 ? " r=" + number_text(parameter) : " r=auto";
-  return text + " x" + std::to_string(passes);
+  text += " x" + std::to_string(passes);
+  return progressive == "shrink" ? text + " shrink" : text;
 }
 
-std::string TradeoffSetting::series() const { return estimator == "path" ? "path tracer" : "photon " + estimator; }
+std::string TradeoffSetting::series() const {
+  if (estimator == "path") return "path tracer";
+  return "photon " + estimator + (progressive == "shrink" ? " shrink" : "");
+}
 
 RenderSettings TradeoffSetting::render_settings(const RenderSettings& base, int bounces, float rmax) const {
   RenderSettings s = base;
@@ -85,6 +89,8 @@ RenderSettings TradeoffSetting::render_settings(const RenderSettings& base, int 
     if (estimator == "pd") photon->smoothing = float(parameter);
     if (estimator == "knn") photon->knn_k = int(parameter);
     if (estimator == "radius") photon->radius = float(parameter);
+    value_of(kProgressiveNames, progressive, &photon->progressive);
+    photon->alpha = alpha;
     s.method = photon;
   }
   s.validate();
@@ -98,6 +104,14 @@ std::vector<TradeoffSetting> expand_tradeoff_grid(const TradeoffGridLists& lists
   const std::vector<uint64_t> k = whole_numbers(lists.k, "--k", 256);
   const std::vector<double> smoothing = parse_number_list(lists.smoothing, "--smoothing");
   const std::vector<double> radius = parse_number_list(lists.radius, "--radius", true);
+  const std::vector<std::string> modes = split(lists.progressive);
+  for (const std::string& mode : modes) {
+    int unused = 0;
+    if (!value_of(kProgressiveNames, mode, &unused))
+      throw InputError("--progressive: expected " + names_list(kProgressiveNames) + ", got '" + mode + "'");
+  }
+  if (!(lists.alpha > 0 && lists.alpha < 1))
+    throw InputError("--alpha: expected a number between 0 and 1 (exclusive), got " + number_text(lists.alpha));
   std::vector<TradeoffSetting> grid;
   for (const std::string& estimator : split(lists.estimators)) {
     std::vector<double> parameters;
@@ -106,10 +120,16 @@ std::vector<TradeoffSetting> expand_tradeoff_grid(const TradeoffGridLists& lists
     else if (estimator == "knn") for (uint64_t v : k) parameters.push_back(double(v));
     else if (estimator == "radius") parameters = radius;
     else throw InputError("--estimators: expected pd, knn, radius or path, got '" + estimator + "'");
-    const std::vector<uint64_t> counts = estimator == "path" ? std::vector<uint64_t>{0} : photons;
+    const bool photon_mapping = estimator != "path";
+    const std::vector<uint64_t> counts = photon_mapping ? photons : std::vector<uint64_t>{0};
     for (uint64_t count : counts)
       for (double parameter : parameters)
-        for (uint64_t p : passes) grid.push_back(TradeoffSetting{estimator, count, uint32_t(p), parameter});
+        for (uint64_t p : passes)
+          for (const std::string& mode : photon_mapping ? modes : std::vector<std::string>{"average"}) {
+            // Shrinking starts at the first pass's footprints: one shrink pass is the average pass.
+            if (mode == "shrink" && p == 1 && modes.size() > 1) continue;
+            grid.push_back(TradeoffSetting{estimator, count, uint32_t(p), parameter, mode, lists.alpha});
+          }
   }
   return grid;
 }

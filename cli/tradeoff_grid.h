@@ -1,5 +1,5 @@
 // The grid of settings `pmrender tradeoff` sweeps: which estimators, photon counts, smoothing /
-// k / radius values, passes and path-tracer samples, parsed from comma-separated lists, expanded
+// k / radius values, passes, progressive modes and path-tracer samples, parsed from comma-separated lists, expanded
 // into one RenderSettings per point, each with a short label for tables and plots.
 #pragma once
 
@@ -16,9 +16,11 @@ struct TradeoffSetting {
   uint64_t photons = 0;   // photons per pass (photon mapping)
   uint32_t passes = 1;
   double parameter = 0;   // pd: smoothing s; knn: k; radius: metres (0: the scene default); path: spp
+  std::string progressive = "average";  // how a photon estimator's passes combine: average or shrink
+  float alpha = 2.0f / 3.0f;            // shrink's alpha
 
-  std::string label() const;   // "pd 262144 s=8 x4", "path spp=16 x4"
-  std::string series() const;  // the plot's colour: "photon pd", "path tracer", ...
+  std::string label() const;   // "pd 262144 s=8 x4", "pd 262144 s=8 x4 shrink", "path spp=16 x4"
+  std::string series() const;  // the plot's colour: "photon pd", "photon pd shrink", "path tracer", ...
   // base (scene, resolution, seed, mirror depth) with this point's method and passes.
   // rmax: footprint clamp and k-NN search radius of the photon estimators, metres (0: default).
   RenderSettings render_settings(const RenderSettings& base, int bounces, float rmax) const;
@@ -33,6 +35,8 @@ struct TradeoffGridLists {
   std::string k = "64";
   std::string radius = "0";
   std::string spp = "1,4,16";
+  std::string progressive = "average";  // average, shrink or both; shrink only where passes > 1
+  float alpha = 2.0f / 3.0f;
 };
 
 // Every combination, estimator by estimator in the order given. InputError naming the option

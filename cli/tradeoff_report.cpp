@@ -191,6 +191,8 @@ nlohmann::ordered_json tradeoff_json_rows(const std::vector<TradeoffRow>& rows) 
     if (r.setting.estimator == "knn") j["k"] = r.setting.parameter;
     if (r.setting.estimator == "radius") j["radius"] = r.setting.parameter;
     j["passes"] = r.setting.passes;
+    if (r.setting.estimator != "path") j["progressive"] = r.setting.progressive;
+    if (r.setting.progressive == "shrink") j["alpha"] = r.setting.alpha;
     j["device_ms"] = {{"median", r.device_ms.median}, {"min", r.device_ms.min}, {"max", r.device_ms.max}};
     j["wall_ms"] = {{"median", r.wall_ms.median}, {"min", r.wall_ms.min}, {"max", r.wall_ms.max}};
     j["relmae"] = r.errors.relmae;

@@ -60,6 +60,27 @@ TEST_F(TradeoffCli, TinyGridEndToEnd) {
       << "the same setting against the same reference, read back from its float EXR";
 }
 
+// Progressive modes are a grid dimension: shrink only where passes > 1 (one shrink pass is the
+// average pass), its own label and series, and its footprints shrink: at 8 passes the shrink
+// setting has less bias and more noise than the average setting, so their errors differ.
+TEST_F(TradeoffCli, ProgressiveModesAreAGridDimension) {
+  const fs::path out = dir_ / "modes";
+  const test::ProcessResult r = pmrender(
+      "tradeoff --backend opencl --resolution 16x16 --reference-spp 16 --reference-passes 2 --estimators pd "
+      "--photons 4096 --passes 1,8 --progressive average,shrink --alpha 0.5 --warmup 0 --repeat 1 -q -o " +
+      out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const nlohmann::json j = nlohmann::json::parse(test::read_text(out / "tradeoff.json"));
+  ASSERT_EQ(j["settings"].size(), 3u) << j.dump(1);
+  EXPECT_EQ(j["settings"][0]["label"], "pd 4096 s=8 x1");
+  EXPECT_EQ(j["settings"][1]["label"], "pd 4096 s=8 x8");
+  EXPECT_EQ(j["settings"][2]["label"], "pd 4096 s=8 x8 shrink");
+  EXPECT_EQ(j["settings"][2]["progressive"], "shrink");
+  EXPECT_EQ(j["settings"][2]["alpha"].get<double>(), 0.5);
+  EXPECT_NE(j["settings"][1]["relmae"].get<double>(), j["settings"][2]["relmae"].get<double>());
+  EXPECT_NE(test::read_text(out / "tradeoff.svg").find("photon pd shrink"), std::string::npos);
+}
+
 TEST_F(TradeoffCli, BadInputExitsTwoBeforeRendering) {
   const struct {
     std::string args, message;
@@ -71,6 +92,8 @@ TEST_F(TradeoffCli, BadInputExitsTwoBeforeRendering) {
       {"--reference-spp 4 --metric rmse", "--metric: expected relmae, relmse or flip"},
       {"--reference no_such.exr", "no_such.exr"},
       {"--reference-spp 4 --smoothing 0", "--smoothing: expected a comma-separated list of positive numbers"},
+      {"--reference-spp 4 --progressive average,grow", "--progressive: expected average or shrink, got 'grow'"},
+      {"--reference-spp 4 --alpha 1", "--alpha: expected a number between 0 and 1"},
   };
   for (const auto& c : cases) {
     const test::ProcessResult r = pmrender("tradeoff --backend opencl --resolution 8x8 " + c.args + " -o " +
