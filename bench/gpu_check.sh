@@ -12,6 +12,11 @@
 #   ncu         Nsight Compute on Sponza's production frame: the hot kernels' SIMT efficiency,
 #               occupancy, throughput (--clock-control none: the clocks stay as they are)
 #   sanitizer   compute-sanitizer memcheck and racecheck over pm_gpu_tests
+#   radiosity   vertex link radiosity: the paper's tables (nC 256, one-sided, 3 bounces, CUDA) and
+#               bench/radiosity_suite.sh on CUDA and OpenCL (docs/radiosity.md)
+#   tradeoff    bench/tradeoff_suite.sh --profile h200 on CUDA over $TRADEOFF_SCENES (default
+#               sponza), with $TRADEOFF_ARGS added (docs/tradeoff.md)
+#   multi       bench/multi_gpu_suite.sh on CUDA and OpenCL, devices 0,1 (a two-GPU machine)
 set -uo pipefail
 out=$1; shift
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -44,12 +49,13 @@ for step in "$@"; do
       echo "production suite exit $?" | tee -a "$out/summary.txt"; cat "$out/production/summary.md" >>"$out/summary.txt"
       ;;
     ncu)
-      "$ncu_bin" --clock-control none -k 'regex:pm_(gather|photon_trace|camera_pass|photon_map_bottom_up|photon_footprint)$' \
-        --launch-skip 6 --launch-count 5 --section SpeedOfLight --section Occupancy --section LaunchStats \
+      "$ncu_bin" --clock-control none \
+        -k 'regex:pm_(gather|photon_trace|camera_pass|photon_map_bottom_up|photon_map_nodes|photon_footprint|photon_morton|sort_scatter)$' \
+        --launch-count 60 --section SpeedOfLight --section Occupancy --section LaunchStats \
         --section WarpStateStats --section MemoryWorkloadAnalysis \
         --metrics smsp__thread_inst_executed_per_inst_executed.ratio,l1tex__t_sector_hit_rate.pct,lts__t_sector_hit_rate.pct \
         pmrender bench "$bundle/bench/scenes/sponza.json" --backend cuda --resolution 1920x1080 --photons 1048576 \
-        --smoothing 40 --rmax 0.7 --warmup 1 --repeat 1 >"$out/ncu.txt" 2>&1
+        --smoothing 40 --rmax 0.7 --warmup 0 --repeat 2 >"$out/ncu.txt" 2>&1
       echo "ncu exit $?" | tee -a "$out/summary.txt"
       ;;
     sanitizer)
@@ -58,6 +64,25 @@ for step in "$@"; do
         echo "compute-sanitizer $tool exit $?: $(grep -E 'ERROR SUMMARY|RACECHECK SUMMARY' "$out/sanitizer_$tool.txt" | tail -n 1)" \
           | tee -a "$out/summary.txt"
       done
+      ;;
+    radiosity)
+      for s in conference conference-69k sponza sibenik; do
+        pmrender bench "$bundle/bench/scenes/$s.json" --backend cuda --method radiosity --sides one --directions 256 \
+          --bounces 3 --resolution 512x512 --warmup 0 --repeat 1 >"$out/radiosity-paper-$s.txt" 2>&1
+        echo "radiosity paper $s exit $?" | tee -a "$out/summary.txt"
+      done
+      "$bundle/bench/radiosity_suite.sh" --backend cuda,opencl --out "$out/radiosity" >"$out/radiosity.log" 2>&1
+      echo "radiosity suite exit $?" | tee -a "$out/summary.txt"; cat "$out/radiosity/summary.md" >>"$out/summary.txt"
+      ;;
+    tradeoff)
+      # shellcheck disable=SC2086
+      "$bundle/bench/tradeoff_suite.sh" --profile h200 --backend cuda --scenes "${TRADEOFF_SCENES:-sponza}" \
+        ${TRADEOFF_ARGS:-} --out "$out/tradeoff" >"$out/tradeoff.log" 2>&1
+      echo "tradeoff suite exit $?" | tee -a "$out/summary.txt"; cat "$out/tradeoff/summary.md" >>"$out/summary.txt"
+      ;;
+    multi)
+      "$bundle/bench/multi_gpu_suite.sh" --backend cuda,opencl --out "$out/multi" >"$out/multi.log" 2>&1
+      echo "multi-GPU suite exit $?" | tee -a "$out/summary.txt"; cat "$out/multi/summary.md" >>"$out/summary.txt"
       ;;
     *) echo "unknown step $step" | tee -a "$out/summary.txt" ;;
   esac

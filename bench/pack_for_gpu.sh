@@ -33,7 +33,7 @@ done
 "$shared/tools/device-bundle" "$out" "${binaries[@]}" >/dev/null
 cp -r "$repo/tests/data" "$out/data"
 mkdir -p "$out/bench/scenes" "$out/shared/scenes"
-cp "$repo/bench/run_suite.sh" "$repo/bench/radiosity_suite.sh" "$repo/bench/suite_common.sh" \
+cp "$repo/bench/run_suite.sh" "$repo/bench/radiosity_suite.sh" "$repo/bench/multi_gpu_suite.sh" "$repo/bench/suite_common.sh" \
    "$repo/bench/tradeoff_suite.sh" "$repo/bench/mitsuba_peer.py" "$repo/bench/gpu_check.sh" "$out/bench/"
 # The Mitsuba converter mitsuba_peer.py imports (docs/tradeoff.md, "H200 (CUDA)").
 mkdir -p "$out/tests/mitsuba"

@@ -73,50 +73,13 @@ suite_name=radiosity_suite.sh
 source "$suite_dir/suite_common.sh"
 suite_find_pmrender "$pmrender"
 
-# Per scene: how far its light and its camera move over one second (24 frames), in scene units.
-light_motion() {
-  case $1 in cornell-mcguire) echo "0.6, 0, 0" ;; sponza) echo "8, 0, 0" ;; conference|conference-69k) echo "600, 0, 0" ;;
-    sibenik) echo "8, 0, 0" ;; *) return 1 ;; esac
-}
-camera_motion() {
-  case $1 in cornell-mcguire) echo "0.5, 0.2, -0.5" ;; sponza) echo "4, 1, 0" ;; conference|conference-69k) echo "-200, 0, 100" ;;
-    sibenik) echo "4, 1, 1" ;; *) return 1 ;; esac
-}
 for s in $scenes; do
-  light_motion "$s" >/dev/null || { echo "radiosity_suite.sh: --scenes: unknown scene '$s'" >&2; exit 2; }
+  suite_light_motion "$s" >/dev/null || { echo "radiosity_suite.sh: --scenes: unknown scene '$s'" >&2; exit 2; }
   [ -f "$suite_dir/scenes/$s.json" ] || { echo "radiosity_suite.sh: missing $suite_dir/scenes/$s.json" >&2; exit 2; }
 done
 
 [ -n "$out" ] || out=bench-results/radiosity-$(date -u +%Y%m%d-%H%M%S)
 mkdir -p "$out/scenes" "$out/images"
-
-# vector_of NAME FILE: the [x, y, z] after the first "NAME": [ ... ] in FILE (within its line).
-vector_of() { grep -o "\"$1\": *\[[^]]*\]" "$2" | head -n 1 | sed 's/.*\[//; s/\]//'; }
-add() {  # add "x, y, z" "dx, dy, dz"
-  awk -v a="$1" -v b="$2" 'BEGIN { split(a, p, ","); split(b, q, ","); printf "%g, %g, %g", p[1] + q[1], p[2] + q[2], p[3] + q[3] }'
-}
-# animated SCENE KIND: OUT/scenes/SCENE-KIND.json, the scene with its light (KIND light) or its
-# camera (KIND camera) moving linearly over frames 0..24 and held after.
-animated() {
-  local s=$1 kind=$2 src=$suite_dir/scenes/$1.json dst=$out/scenes/$1-$2.json track
-  local light camera
-  light=$(grep -o '"lights": *\[{ *"name": *"[^"]*"' "$src" | sed 's/.*"name": *"//; s/"$//')
-  if [ "$kind" = light ]; then
-    local from; from=$(vector_of position "$src")  # the light's is the first "position"
-    track="\"lights\": { \"$light\": { \"position\": { \"interpolation\": \"linear\", \"keys\": [
-      { \"time\": 0, \"value\": [$from] }, { \"time\": 1, \"value\": [$(add "$from" "$(light_motion "$s")")] } ] } } }"
-  else
-    camera=$(sed -n '/"camera"/,/}/p' "$src")
-    local from; from=$(echo "$camera" | grep -o '"position": *\[[^]]*\]' | sed 's/.*\[//; s/\]//')
-    track="\"camera\": { \"position\": { \"interpolation\": \"linear\", \"keys\": [
-      { \"time\": 0, \"value\": [$from] }, { \"time\": 1, \"value\": [$(add "$from" "$(camera_motion "$s")")] } ] } }"
-  fi
-  # Mesh paths relative to bench/scenes become absolute; the animation goes before the last brace.
-  sed "s#\"file\": *\"\([^/\"][^\"]*\)\"#\"file\": \"$suite_dir/scenes/\1\"#" "$src" | sed '$ d' |
-    sed '$ s/$/,/' >"$dst"
-  printf '  "animation": { "frame_rate": 24, "frames": [0, 24],\n    %s }\n}\n' "$track" >>"$dst"
-  echo "$dst"
-}
 
 suite_environment "$out" "backend=$backends device=$device scenes='$scenes' resolution=$resolution \
 directions=$directions bounces=$bounces photons=$photons frames=$frames full-runs=$full_runs \
@@ -153,8 +116,8 @@ radiosity=(--method radiosity --directions "$directions" --bounces "$bounces")
 photon=(--method photon --photons "$photons" --bounces "$bounces")
 for s in $scenes; do
   still=$suite_dir/scenes/$s.json
-  lit=$(animated "$s" light)
-  moved=$(animated "$s" camera)
+  lit=$(suite_animated_scene "$s" light "$out/scenes")
+  moved=$(suite_animated_scene "$s" camera "$out/scenes")
   for backend in ${backends//,/ }; do
     common=(--backend "$backend" --device "$device" --resolution "$resolution")
     for i in $(seq 1 "$full_runs"); do

@@ -1,5 +1,6 @@
-# The plumbing the benchmark suites share (bench/run_suite.sh, bench/radiosity_suite.sh): finding
-# the pmrender binary, the environment report and one timed `pmrender bench` run. Sourced, not
+# The plumbing the benchmark suites share (bench/run_suite.sh, bench/radiosity_suite.sh,
+# bench/multi_gpu_suite.sh): finding the pmrender binary, the environment report, one timed
+# `pmrender bench` run and the bench scenes with a moving light or camera. Sourced, not
 # run; the suite sets suite_name and suite_dir first.
 
 # suite_find_pmrender GIVEN: sets pmrender to GIVEN, the repository's build, or the bundle's
@@ -68,4 +69,43 @@ suite_failed_row() {
   grep -q '^frames per second' "$out/$1.txt" 2>/dev/null && return 1
   printf '| %s | failed: %s |%s\n' "$1" "$(head -n 1 "$out/$1.err" 2>/dev/null)" "$(printf '%*s' "$2" '' | tr ' ' '|')"
   return 0
+}
+
+# Per scene: how far its light and its camera move over one second (24 frames), in scene units.
+suite_light_motion() {
+  case $1 in cornell-mcguire) echo "0.6, 0, 0" ;; sponza) echo "8, 0, 0" ;; conference|conference-69k) echo "600, 0, 0" ;;
+    sibenik) echo "8, 0, 0" ;; *) return 1 ;; esac
+}
+suite_camera_motion() {
+  case $1 in cornell-mcguire) echo "0.5, 0.2, -0.5" ;; sponza) echo "4, 1, 0" ;; conference|conference-69k) echo "-200, 0, 100" ;;
+    sibenik) echo "4, 1, 1" ;; *) return 1 ;; esac
+}
+
+# suite_vector_of NAME FILE: the [x, y, z] after the first "NAME": [ ... ] in FILE (within its line).
+suite_vector_of() { grep -o "\"$1\": *\[[^]]*\]" "$2" | head -n 1 | sed 's/.*\[//; s/\]//'; }
+suite_add() {  # suite_add "x, y, z" "dx, dy, dz"
+  awk -v a="$1" -v b="$2" 'BEGIN { split(a, p, ","); split(b, q, ","); printf "%g, %g, %g", p[1] + q[1], p[2] + q[2], p[3] + q[3] }'
+}
+# suite_animated_scene SCENE KIND DIR: writes DIR/SCENE-KIND.json and prints its path: the bench
+# scene with its light (KIND light) or its camera (KIND camera) moving linearly over frames 0..24
+# and held after.
+suite_animated_scene() {
+  local s=$1 kind=$2 src=$suite_dir/scenes/$1.json dst=$3/$1-$2.json track
+  local light camera
+  light=$(grep -o '"lights": *\[{ *"name": *"[^"]*"' "$src" | sed 's/.*"name": *"//; s/"$//')
+  if [ "$kind" = light ]; then
+    local from; from=$(suite_vector_of position "$src")  # the light's is the first "position"
+    track="\"lights\": { \"$light\": { \"position\": { \"interpolation\": \"linear\", \"keys\": [
+      { \"time\": 0, \"value\": [$from] }, { \"time\": 1, \"value\": [$(suite_add "$from" "$(suite_light_motion "$s")")] } ] } } }"
+  else
+    camera=$(sed -n '/"camera"/,/}/p' "$src")
+    local from; from=$(echo "$camera" | grep -o '"position": *\[[^]]*\]' | sed 's/.*\[//; s/\]//')
+    track="\"camera\": { \"position\": { \"interpolation\": \"linear\", \"keys\": [
+      { \"time\": 0, \"value\": [$from] }, { \"time\": 1, \"value\": [$(suite_add "$from" "$(suite_camera_motion "$s")")] } ] } }"
+  fi
+  # Mesh paths relative to bench/scenes become absolute; the animation goes before the last brace.
+  sed "s#\"file\": *\"\([^/\"][^\"]*\)\"#\"file\": \"$suite_dir/scenes/\1\"#" "$src" | sed '$ d' |
+    sed '$ s/$/,/' >"$dst"
+  printf '  "animation": { "frame_rate": 24, "frames": [0, 24],\n    %s }\n}\n' "$track" >>"$dst"
+  echo "$dst"
 }

@@ -24,6 +24,8 @@ usage: tradeoff_suite.sh [options]
   --resolution WxH      override the profile's resolution
   --reference-spp N     override the profile's reference paths per pixel and pass
   --reference-passes N  override the profile's reference passes
+  --passes LIST         override the profile's passes per frame
+  --progressive LIST    how photon passes combine: average, shrink or average,shrink (default: average)
   --pmrender PATH       the pmrender binary (default: build/pmrender, or the bundle's bin/pmrender)
   -h, --help            this text
 EOF
@@ -31,7 +33,7 @@ EOF
 
 suite_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 profile=h200 backend=auto device=0 out="" scenes="sponza conference sibenik cornell-box" pmrender=""
-resolution="" reference_spp="" reference_passes=""
+resolution="" reference_spp="" reference_passes="" passes_list="" progressive=average
 while [ $# -gt 0 ]; do
   case $1 in
     --profile) profile=$2; shift 2 ;;
@@ -42,6 +44,8 @@ while [ $# -gt 0 ]; do
     --resolution) resolution=$2; shift 2 ;;
     --reference-spp) reference_spp=$2; shift 2 ;;
     --reference-passes) reference_passes=$2; shift 2 ;;
+    --passes) passes_list=$2; shift 2 ;;
+    --progressive) progressive=$2; shift 2 ;;
     --pmrender) pmrender=$2; shift 2 ;;
     -h|--help) usage; exit 0 ;;
     *) echo "tradeoff_suite.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
@@ -61,6 +65,7 @@ esac
 [ -z "$resolution" ] || res=$resolution
 [ -z "$reference_spp" ] || ref_spp=$reference_spp
 [ -z "$reference_passes" ] || ref_passes=$reference_passes
+[ -z "$passes_list" ] || passes=$passes_list
 
 if [ -z "$pmrender" ]; then
   if [ -x "$suite_dir/../build/pmrender" ]; then
@@ -92,7 +97,7 @@ mkdir -p "$out"
   echo "date: $(date -u +%Y-%m-%dT%H:%M:%SZ)"
   echo "host: $(uname -n) ($(nproc) cores)"
   echo "pmrender: $pmrender ($("$pmrender" --version))"
-  echo "suite: profile=$profile backend=$backend resolution=$res reference=${ref_passes}x${ref_spp} spp"
+  echo "suite: profile=$profile backend=$backend resolution=$res reference=${ref_passes}x${ref_spp} spp passes=$passes progressive=$progressive"
   "$pmrender" devices || true
 } >"$out/environment.txt"
 cat "$out/environment.txt"
@@ -105,7 +110,7 @@ for s in $scenes; do
   rc=0
   "$pmrender" tradeoff ${a:+"$a"} --backend "$backend" --device "$device" --resolution "$res" \
     --reference-spp "$ref_spp" --reference-passes "$ref_passes" --bounces 2 --mirror-depth 1 --rmax 0.7 \
-    --estimators pd,knn,radius,path --photons "$photons" --passes "$passes" --smoothing "$(smoothing "$s")" \
+    --estimators pd,knn,radius,path --photons "$photons" --passes "$passes" --progressive "$progressive" --smoothing "$(smoothing "$s")" \
     --k "$k" --radius 0 --spp "$spp" --warmup "$warmup" --repeat "$repeat" -o "$out/$s" 2>&1 | tee "$out/$s.log" ||
     rc=$?
   [ "$rc" -eq 0 ] || { echo "FAILED (exit $rc)"; failed=$((failed + 1)); }
