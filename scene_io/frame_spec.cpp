@@ -4,15 +4,14 @@
 #include <cctype>
 #include <set>
 
-#include "render/errors.h"
+#include "scene_io/load_error.h"
 
 namespace pm {
 
 namespace {
 
-[[noreturn]] void bad(const std::string& item, const std::string& why) {
-  throw InputError("'" + item + "': " + why);
-}
+// The item is the user's text: a line break or control character in it is escaped (one-line messages).
+[[noreturn]] void bad(const std::string& item, const std::string& why) { throw_input_error("'" + item + "'", why); }
 
 int parse_number(const std::string& item, const std::string& text) {
   if (text.empty() || text.size() > 9) bad(item, "expected a frame number");

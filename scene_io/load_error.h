@@ -9,16 +9,25 @@
 
 namespace pm {
 
-// Messages quote user text (JSON keys, OBJ material names) that may contain line breaks; the CLI
-// prints one line per error, so breaks are escaped rather than passed through.
+// Messages quote user text (JSON keys, OBJ material names, frame lists) that may contain line
+// breaks or other control characters; the CLI prints one line per error, so those are escaped
+// (\n, \r, \t, \xNN) rather than passed through to the terminal.
 inline std::string single_line(const std::string& text) {
+  static const char hex[] = "0123456789abcdef";
   std::string out;
   out.reserve(text.size());
   for (char c : text) {
+    const unsigned char u = static_cast<unsigned char>(c);
     if (c == '\n') {
       out += "\\n";
     } else if (c == '\r') {
       out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (u < 0x20 || u == 0x7f) {
+      out += "\\x";
+      out += hex[u >> 4];
+      out += hex[u & 15];
     } else {
       out += c;
     }

@@ -34,6 +34,17 @@ TEST(FrameSpec, RejectsMalformedSpecsNamingThePart) {
   }
 }
 
+// A spec with line breaks or control characters (found by the fuzzer: "\0\n1-") is quoted
+// escaped, so its message stays one printable line.
+TEST(FrameSpec, ControlCharactersAreEscapedInMessages) {
+  try {
+    parse_frame_spec(std::string("\0\n1-", 4), 0, 100);
+    ADD_FAILURE() << "accepted a spec with a NUL and a line break";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "'\\x00\\n1-': expected a frame number, got '\\x00\\n1'");
+  }
+}
+
 TEST(FrameSpec, FramesOutsideTheSequenceAreErrors) {
   EXPECT_THROW(parse_frame_spec("0-24", 0, 23), InputError);
   EXPECT_THROW(parse_frame_spec("5", 10, 20), InputError);
