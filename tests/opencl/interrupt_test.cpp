@@ -60,8 +60,11 @@ TEST_F(Interrupt, SigintStopsBetweenFramesWithCode130) { interrupt_mid_sequence(
 TEST_F(Interrupt, SigtermStopsBetweenFramesWithCode143) { interrupt_mid_sequence(SIGTERM, 143); }
 
 // A stop requested while a frame is being written: the writer throws Interrupted and removes its
-// temporary. Run in a child process (death-test style) so the request does not reach other tests.
+// temporary. Run in a child process (death-test style) so the request does not reach other tests;
+// "threadsafe" re-executes this binary for the child instead of forking it, so the child inherits
+// no GPU driver state (a forked child's exit broke the parent's NVIDIA OpenCL context).
 TEST(InterruptedWrite, LeavesNeitherTargetNorTemporary) {
+  testing::GTEST_FLAG(death_test_style) = "threadsafe";
   const fs::path dir = test::process_temp_dir() / "interrupted_write";
   fs::remove_all(dir);
   fs::create_directories(dir);
