@@ -77,19 +77,19 @@ void check_host_memory_for_frame(int width, int height) {
 
 void check_device_memory(uint64_t device_bytes, const DeviceInfo& device, int width, int height) {
   const std::string what = "the render needs " + bytes_text(device_bytes) + " of device memory";
-  if (device.backend != "opencl") {
+  if (!device.buffers_in_host_memory) {
     if (device.memory_bytes > 0 && device_bytes > device.memory_bytes)
       throw InputError(what + ", but " + device.name + " has " + bytes_text(device.memory_bytes) +
                        "; lower --resolution or --photons");
     return;
   }
-  // OpenCL's reported global memory is no limit on a CPU device (PoCL 3.1 reports 4.7 GiB on a
-  // 23 GiB machine and allocates beyond it), and the buffers are host memory there.
+  // A CPU device's reported global memory is no limit (PoCL 3.1 reports 4.7 GiB on a 23 GiB
+  // machine and allocates beyond it): its buffers are host memory.
   const uint64_t needed = device_bytes + host_frame_bytes(width, height);
   const HostMemory host = available_host_memory();
   if (needed > host.available_bytes)
     throw InputError(what + " and " + bytes_text(host_frame_bytes(width, height)) + " for the frame on the host; " +
-                     "OpenCL buffers can be host memory (they are on CPU devices such as " + device.name + "), where " + bytes_text(host.available_bytes) +
+                     "the buffers of " + device.name + " are host memory, where " + bytes_text(host.available_bytes) +
                      " are available (" + host.limited_by + "); lower --resolution or --photons");
 }
 

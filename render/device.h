@@ -22,6 +22,7 @@ struct DeviceInfo {
   std::string driver;        // driver version
   uint64_t memory_bytes = 0;
   int compute_units = 0;
+  bool buffers_in_host_memory = false;  // a CPU device (PoCL): its buffers are the process's memory
 };
 
 class Device;

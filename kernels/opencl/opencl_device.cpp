@@ -97,8 +97,11 @@ DeviceInfo describe(const DeviceEntry& entry, int index) {
   cl_uint units = 0;
   PM_CL_CHECK(clGetDeviceInfo(entry.device, CL_DEVICE_GLOBAL_MEM_SIZE, sizeof(memory), &memory, nullptr));
   PM_CL_CHECK(clGetDeviceInfo(entry.device, CL_DEVICE_MAX_COMPUTE_UNITS, sizeof(units), &units, nullptr));
+  cl_device_type type = 0;
+  PM_CL_CHECK(clGetDeviceInfo(entry.device, CL_DEVICE_TYPE, sizeof(type), &type, nullptr));
   info.memory_bytes = memory;
   info.compute_units = static_cast<int>(units);
+  info.buffers_in_host_memory = (type & CL_DEVICE_TYPE_CPU) != 0;
   return info;
 }
 

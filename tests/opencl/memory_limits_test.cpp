@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <string>
 
+#include "render/device.h"
 #include "support/pmrender_process.h"
 
 namespace pm {
@@ -44,11 +45,20 @@ TEST_F(MemoryLimits, AFrameTooLargeForTheHostIsRefusedBeforeTheDeviceOpens) {
                  "--resolution 8192x8192: a frame needs about 8.0 GiB of host memory, but ");
 }
 
+// The OpenCL index of a CPU device (PoCL), whose buffers are host memory; -1 if there is none.
+int cpu_opencl_device() {
+  for (const DeviceInfo& info : list_devices())
+    if (info.backend == "opencl" && info.buffers_in_host_memory) return info.index;
+  return -1;
+}
+
 TEST_F(MemoryLimits, DeviceBuffersThatDoNotFitTheHostAreRefusedBeforeTheFirstFrame) {
-  // The frame's 8 GiB fit under 9 GB, but PoCL's buffers (15 GiB, host memory) do not.
-  expect_refused(render_under_limit("9000000", "--backend opencl --resolution 8192x8192 --photons 1000"),
-                 "the render needs 15.0 GiB of device memory and 8.0 GiB for the frame on the host; OpenCL buffers can "
-                 "be host memory");
+  // The frame's 8 GiB fit under 9 GB, but a CPU device's buffers (15 GiB, host memory) do not.
+  const int cpu = cpu_opencl_device();
+  ASSERT_GE(cpu, 0) << "this test needs an OpenCL CPU device (PoCL)";
+  expect_refused(render_under_limit("9000000", "--backend opencl --device " + std::to_string(cpu) +
+                                                   " --resolution 8192x8192 --photons 1000"),
+                 "the render needs 15.0 GiB of device memory and 8.0 GiB for the frame on the host; the buffers of ");
 }
 
 TEST_F(MemoryLimits, AFittingRequestRendersUnderTheSameKindOfLimit) {
