@@ -35,16 +35,16 @@ for step in "$@"; do
   log "step $step"
   case $step in
     tests)
-      pm_gpu_tests >"$out/gpu_tests.txt" 2>&1; echo "pm_gpu_tests exit $?" | tee -a "$out/summary.txt"
-      pm_opencl_tests >"$out/opencl_tests.txt" 2>&1; echo "pm_opencl_tests exit $?" | tee -a "$out/summary.txt"
+      "$bundle/bin/pm_gpu_tests" >"$out/gpu_tests.txt" 2>&1; echo "pm_gpu_tests exit $?" | tee -a "$out/summary.txt"
+      "$bundle/bin/pm_opencl_tests" >"$out/opencl_tests.txt" 2>&1; echo "pm_opencl_tests exit $?" | tee -a "$out/summary.txt"
       grep -E "^\[  (PASSED|FAILED)|tests? ran|SKIPPED \]" "$out"/gpu_tests.txt "$out"/opencl_tests.txt | tee -a "$out/summary.txt"
       ;;
     paper)
-      "$bundle/bench/run_suite.sh" --backend cuda,opencl --profile paper --knn --out "$out/paper" >"$out/paper.log" 2>&1
+      "$bundle/bench/run_suite.sh" --backend cuda,opencl --profile paper --knn --unclipped --out "$out/paper" >"$out/paper.log" 2>&1
       echo "paper suite exit $?" | tee -a "$out/summary.txt"; cat "$out/paper/summary.md" >>"$out/summary.txt"
       ;;
     production)
-      "$bundle/bench/run_suite.sh" --backend cuda,opencl --profile production --out "$out/production" \
+      "$bundle/bench/run_suite.sh" --backend cuda,opencl --profile production --unclipped --out "$out/production" \
         >"$out/production.log" 2>&1
       echo "production suite exit $?" | tee -a "$out/summary.txt"; cat "$out/production/summary.md" >>"$out/summary.txt"
       ;;

@@ -28,6 +28,8 @@ usage: run_suite.sh [options]
                         --radius-histogram (Table 3)
   --knn                 paper profile also runs --estimator knn with --k = k_PD of the pd run
                         (capped at 256, the largest --k)
+  --unclipped           every pd run also runs with --footprint-clip off (the paper's whole
+                        ellipses; run name suffix -unclipped)
   --pmrender PATH       the pmrender binary (default: build/pmrender, or the bundle's bin/pmrender)
   -h, --help            this text
 EOF
@@ -35,7 +37,7 @@ EOF
 
 suite_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 backends=auto device=0 out="" profile=all scenes="sponza conference sibenik cornell-box"
-warmup=2 repeat=10 resolution="" divisor=1 paper_tables=0 knn=0 pmrender=""
+warmup=2 repeat=10 resolution="" divisor=1 paper_tables=0 knn=0 unclipped=0 pmrender=""
 while [ $# -gt 0 ]; do
   case $1 in
     --backend) backends=$2; shift 2 ;;
@@ -49,6 +51,7 @@ while [ $# -gt 0 ]; do
     --photon-divisor) divisor=$2; shift 2 ;;
     --paper-tables) paper_tables=1; shift ;;
     --knn) knn=1; shift ;;
+    --unclipped) unclipped=1; shift ;;
     --pmrender) pmrender=$2; shift 2 ;;
     -h|--help) usage; exit 0 ;;
     *) echo "run_suite.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
@@ -84,7 +87,7 @@ done
 mkdir -p "$out"
 
 suite_environment "$out" "backend=$backends device=$device profile=$profile scenes='$scenes' warmup=$warmup \
-repeat=$repeat resolution=${resolution:-profile} photon-divisor=$divisor paper-tables=$paper_tables knn=$knn"
+repeat=$repeat resolution=${resolution:-profile} photon-divisor=$divisor paper-tables=$paper_tables knn=$knn unclipped=$unclipped"
 
 failed=0
 runs=()
@@ -104,6 +107,7 @@ for backend in ${backends//,/ }; do
       [ "$p" = paper ] && [ "$paper_tables" = 1 ] &&
         extra=(--leaf-sweep "1,2,4,8,16,32,64,128,256,512" --radius-histogram)
       run "$backend-$p-$s" "${common[@]}" ${extra[@]+"${extra[@]}"}
+      [ "$unclipped" = 0 ] || run "$backend-$p-$s-unclipped" "${common[@]}" --footprint-clip off
       if [ "$p" = paper ] && [ "$knn" = 1 ] && [ -s "$out/$backend-$p-$s.txt" ]; then
         k=$(awk '/^counted in frame/ { for (i = 1; i <= NF; ++i) if ($i ~ /^photons_per_gather=/) {
                    split($i, kv, "="); printf "%d", kv[2] + 0.5 } }' "$out/$backend-$p-$s.txt")

@@ -24,6 +24,7 @@ class PhotonOptions final : public MethodOptions {
   std::string photon_bvh = "lbvh";
   std::string sequence = "random";
   std::string progressive = "average";
+  std::string footprint_clip = "on";
 
   std::shared_ptr<const MethodSettings> settings() const override {
     auto s = std::make_shared<PhotonSettings>(settings_);
@@ -32,6 +33,9 @@ class PhotonOptions final : public MethodOptions {
     value_of(kPhotonMapBuilderNames, photon_bvh, &s->builder);
     value_of(kPhotonSequenceNames, sequence, &s->sequence);
     value_of(kProgressiveNames, progressive, &s->progressive);
+    int clip = 1;
+    value_of(kFootprintClipNames, footprint_clip, &clip);
+    s->footprint_clip = clip != 0;
     if (smoothing == "auto") {
       s->smoothing = 0;
     } else {
@@ -95,6 +99,10 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
   cmd->add_option("--photon-sequence", o->sequence,
                   "random, or halton: emission directions from a Halton sequence, the same in every frame")
       ->capture_default_str()->check(CLI::IsMember(names_of(kPhotonSequenceNames)))->group(group);
+  cmd->add_option("--footprint-clip", o->footprint_clip,
+                  "on: footprints stop at the walls around their hit (no light through thin walls; one scene "
+                  "query per photon hit); off: the paper's whole ellipses, faster (docs/algorithm.md)")
+      ->capture_default_str()->check(CLI::IsMember(names_of(kFootprintClipNames)))->group(group);
   cmd->add_option("--progressive", o->progressive,
                   "How passes combine: average (the same footprints every pass; noise falls, bias stays) or "
                   "shrink (footprints and radii shrink from pass to pass: bias and noise both vanish; "

@@ -61,6 +61,21 @@ typedef struct FootprintClip {
   Vec3 cut_direction[PM_FOOTPRINT_CUTS]; /* of each kept cut, in the plane (footprint_cut_direction) */
 } FootprintClip;
 
+/* No cuts: the whole disc, all of the kernel's mass. */
+PM_DEVICE FootprintCut footprint_uncut(void)
+{
+  FootprintCut cut;
+  for (int k = 0; k < PM_FOOTPRINT_CUTS; ++k) {
+    cut.mu[k] = 0.0f;
+    cut.mv[k] = 0.0f;
+    cut.t[k] = 1.0f;
+  }
+  cut.count = 0;
+  cut.shrink = 1.0f;
+  cut.kept = 1.0f;
+  return cut;
+}
+
 /* Green's theorem: the kernel mass of a region is the integral of Q dy around its boundary
    (counter-clockwise), with dQ/dx = K. Constant kernel K = 1: Q = x. Epanechnikov
    K = 2 (1 - x^2 - y^2): Q = 2 (x - x^3 / 3 - x y^2), which is (4/3) x^3 on the unit circle. */
@@ -315,9 +330,7 @@ PM_DEVICE FootprintCut footprint_clip(const KernelGlobals* kg, Footprint* f, Vec
   c.center = center;
   c.n = n;
   c.height = pm_fmaxf(PM_FOOTPRINT_CLIP_HEIGHT * vec3_length(f->axis_n), offset);
-  c.cut.count = 0;
-  c.cut.shrink = 1.0f;
-  c.cut.kept = 1.0f;
+  c.cut = footprint_uncut();
   float area = vec3_dot(vec3_cross(c.a_u, c.a_v), n);
   if (!(pm_fabsf(area) > 0.0f) || !pm_isfinite(area)) return c.cut;
   c.row_u = vec3_scale(vec3_cross(c.a_v, n), 1.0f / area);

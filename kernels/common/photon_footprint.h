@@ -62,8 +62,10 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     f.axis_v = vec3_scale(f.axis_v, p->footprint_scale);
     f.axis_n = vec3_scale(f.axis_n, p->footprint_scale);
   }
-  FootprintCut cut = footprint_clip(kg, &f, center, vec3_normalize(vec3_from_float4(n4)),
-                                    ray_offset_distance(center, 0.0f, p->ray_epsilon), p->kernel_shape);
+  FootprintCut cut = footprint_uncut();
+  if (p->footprint_clip)
+    cut = footprint_clip(kg, &f, center, vec3_normalize(vec3_from_float4(n4)),
+                         ray_offset_distance(center, 0.0f, p->ray_epsilon), p->kernel_shape);
   Vec3 lo, hi;
   footprint_bounds(f, center, &lo, &hi);
   float area = footprint_area(f) * cut.kept;

@@ -93,7 +93,7 @@ typedef struct LaunchParams {
   float footprint_scale; /* progressive shrink: this pass's footprint semiaxis / gather radius factor (1: none) */
   uint photon_offset_hi; /* high 32 bits of the pass's first photon index (frames of 2^32 photons and more) */
   uint film_odd_passes;  /* of film_passes, those with an odd pass number (film_odd_sum's) */
-  uint pad0;             /* (a whole 16-byte row) */
+  uint footprint_clip;   /* 1: footprints stop at walls (footprint_clip.h); 0: the paper's unclipped ellipses */
 
   uint path_samples;      /* path tracer: paths per shading point in this pass */
   uint path_first_sample; /* path tracer: index of the pass's first path (random stream) */

@@ -14,6 +14,7 @@ const NameTable kKernelShapeNames = {{"constant", PM_KERNEL_CONSTANT}, {"epanech
 const NameTable kPhotonMapBuilderNames = {{"lbvh", kPhotonMapLbvh}, {"vvh", kPhotonMapVvh}};
 const NameTable kPhotonSequenceNames = {{"random", PM_PHOTON_SEQUENCE_RANDOM}, {"halton", PM_PHOTON_SEQUENCE_HALTON}};
 const NameTable kProgressiveNames = {{"average", kProgressiveAverage}, {"shrink", kProgressiveShrink}};
+const NameTable kFootprintClipNames = {{"on", 1}, {"off", 0}};
 
 namespace {
 
@@ -66,6 +67,7 @@ std::string PhotonSettings::describe() const {
   s << " photon_bvh=" << name_of(kPhotonMapBuilderNames, builder)
     << " leaf=" << (leaf_threshold > 0 ? std::to_string(leaf_threshold) : "auto")
     << " photon_sequence=" << name_of(kPhotonSequenceNames, sequence)
+    << " footprint_clip=" << name_of(kFootprintClipNames, footprint_clip ? 1 : 0)
     << " progressive=" << name_of(kProgressiveNames, progressive);
   if (progressive == kProgressiveShrink) s << " alpha=" << alpha;
   return s.str();

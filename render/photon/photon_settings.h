@@ -18,6 +18,7 @@ extern const NameTable kKernelShapeNames;       // constant, epanechnikov (PM_KE
 extern const NameTable kPhotonMapBuilderNames;  // lbvh, vvh
 extern const NameTable kPhotonSequenceNames;    // random, halton (PM_PHOTON_SEQUENCE_*)
 extern const NameTable kProgressiveNames;       // average, shrink
+extern const NameTable kFootprintClipNames;     // on, off
 
 enum PhotonMapBuilder { kPhotonMapLbvh = 0, kPhotonMapVvh = 1 };
 // How passes combine (docs/progressive.md): every pass at the same footprint sizes, or footprints
@@ -40,6 +41,9 @@ class PhotonSettings final : public MethodSettings {
   int sequence = PM_PHOTON_SEQUENCE_RANDOM;  // emission: random, or Halton (the same every frame)
   int builder = kPhotonMapLbvh;  // the device LBVH, or the voxel volume heuristic on the host
                                  // (section 5.1, for the paper's Table 1 comparison)
+  // Footprints cut at the walls around their hit (kernels/common/footprint_clip.h): no light leaks
+  // through thin walls, at one scene-BVH box query per hit; off: the paper's whole ellipses.
+  bool footprint_clip = true;
   int progressive = kProgressiveAverage;
   float alpha = 2.0f / 3.0f;  // shrink: r_i^2 = r_{i-1}^2 (i + alpha) / (i + 1) (Knaus & Zwicker 2011)
 

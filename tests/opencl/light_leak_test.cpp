@@ -40,10 +40,11 @@ struct Estimator {
 };
 const Estimator kEstimators[] = {{"pd", PM_ESTIMATOR_PD}, {"radius", PM_ESTIMATOR_RADIUS}, {"knn", PM_ESTIMATOR_KNN}};
 
-RenderSettings settings_for(int estimator) {
+RenderSettings settings_for(int estimator, bool clip = true) {
   PhotonSettings photons;
   photons.photons = 20000;
   photons.estimator = estimator;
+  photons.footprint_clip = clip;
   return test::photon_render_settings(photons);
 }
 
@@ -86,6 +87,20 @@ TEST(LightLeaks, ACameraInsideAClosedBoxSeesBlack) {
       EXPECT_EQ(lit, 0.0) << e.name << (bottom ? ", box with a bottom" : ", box closed by the floor");
     }
   }
+}
+
+// --footprint-clip off: the paper's whole ellipses reach along the floor under the box's walls,
+// so the light inside lights the floor outside (what the clipping above prevents).
+TEST(LightLeaks, UnclippedFootprintsLeakUnderTheWalls) {
+  Scene s = box_on_floor(false);
+  s.lights = {LightDesc{"inside", {0.1f, 0.5f, -0.1f}, {20, 20, 20}}};
+  s.camera.position = {2.2f, 1.8f, -3.0f};
+  s.camera.look_at = {0, 0.4f, 0};
+  s.camera.vertical_fov_degrees = 40;
+  const test::StillRender r = test::render_still(device(), s, settings_for(PM_ESTIMATOR_PD, false), 48, 48);
+  const double lit = lit_fraction(r, "indirect");
+  std::printf("light in a box closed by the floor, pd, unclipped: %5.2f %% of the pixels lit\n", 100.0 * lit);
+  EXPECT_GT(lit, 0.01);
 }
 
 }  // namespace
