@@ -18,9 +18,9 @@ Run add_devices_command(CLI::App& app) {
       return 1;
     }
     for (const DeviceInfo& d : devices) {
-      std::printf("%-7s --device %d  %s  [%s; driver %s; %.1f GiB; %d compute units]\n", d.backend.c_str(), d.index,
+      std::printf("%-7s --device %d  %s  [%s; driver %s; %.1f GiB%s; %d compute units]\n", d.backend.c_str(), d.index,
                   d.name.c_str(), d.platform.c_str(), d.driver.c_str(), double(d.memory_bytes) / (1u << 30),
-                  d.compute_units);
+                  d.buffers_in_host_memory ? " (host memory)" : "", d.compute_units);
     }
     return 0;
   };

@@ -68,5 +68,6 @@ PM_DEVICE int32_t pm_atomic_add_i32(int32_t* p, int32_t v) { int32_t old = *p; *
 #define PM_MEMORY_FENCE() ((void)0)
 
 #define PM_LOAD(p) (*(p))
+#define PM_LOAD_SHARED_FLOAT4(p) (*(p))
 
 #endif

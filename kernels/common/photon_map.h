@@ -233,12 +233,13 @@ PM_DEVICE void photon_map_bottom_up(uint k, uint n, uint leaf_threshold, PM_GLOB
     /* Release: our slot must be visible before the counter says it is there. */
     PM_MEMORY_FENCE();
     if (pm_atomic_add_u32(&visits[p], 1u) == 0u) return; /* first arrival: the sibling finishes p */
-    /* Acquire: read the sibling's slot only after its writer's counter increment (and never
-       from a stale cache line). Plain loads, not PM_LOAD: this data is written in this pass. */
+    /* Acquire: read the sibling's slot only after its writer's counter increment, and never
+       from a stale cache line: the slot was written in this launch, perhaps by another
+       multiprocessor, so neither PM_LOAD nor a plain load (either may hit a stale L1 line). */
     PM_MEMORY_FENCE();
     uint other = 2 * (1u - side);
-    float4 sib_lo = nodes[4 * p + other];
-    float4 sib_hi = nodes[4 * p + other + 1];
+    float4 sib_lo = PM_LOAD_SHARED_FLOAT4(&nodes[4 * p + other]);
+    float4 sib_hi = PM_LOAD_SHARED_FLOAT4(&nodes[4 * p + other + 1]);
     uint sib_count = PM_AS_UINT(sib_hi.w);
     lo = vec3_min(lo, vec3_from_float4(sib_lo));
     hi = vec3_max(hi, vec3_from_float4(sib_hi));

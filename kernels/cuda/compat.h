@@ -56,5 +56,13 @@ typedef unsigned int uint;
 #define PM_MEMORY_FENCE() __threadfence()
 
 #define PM_LOAD(p) __ldg(p)
+/* A load that bypasses the SM's non-coherent L1 cache: data another block wrote in this launch,
+   after a fence and an atomic (photon map bottom-up pass). */
+static __device__ __forceinline__ float4 pm_load_shared_float4(const float4* p)
+{
+  const volatile float* f = (const volatile float*)p;
+  return make_float4(f[0], f[1], f[2], f[3]);
+}
+#define PM_LOAD_SHARED_FLOAT4(p) pm_load_shared_float4(p)
 
 #endif

@@ -57,5 +57,8 @@ typedef int int32_t;
 #define PM_MEMORY_FENCE() mem_fence(CLK_GLOBAL_MEM_FENCE)
 
 #define PM_LOAD(p) (*(p))
+/* A load that bypasses the multiprocessor's non-coherent L1 cache: data another work group wrote
+   in this launch, after a fence and an atomic (photon map bottom-up pass). */
+#define PM_LOAD_SHARED_FLOAT4(p) (*(volatile __global const float4*)(p))
 
 #endif

@@ -7,9 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <sstream>
 #include <string>
 
-#include "render/device.h"
 #include "support/pmrender_process.h"
 
 namespace pm {
@@ -28,6 +30,20 @@ class MemoryLimits : public test::PmrenderProcessTest {
     r.err = test::read_text(err);
     return r;
   }
+  // The OpenCL index of a CPU device (PoCL, buffers in host memory) as `pmrender devices` numbers
+  // it under the limit (a GPU driver may not start under it, which renumbers the rest); -1: none.
+  int cpu_opencl_device_under_limit(const std::string& limit_kb) {
+    const std::string out = (dir_ / "devices.txt").string();
+    const std::string cmd = "ulimit -v " + limit_kb + "; exec " + test::pmrender_binary() + " devices >" + out + " 2>&1";
+    if (std::system(cmd.c_str()) != 0) return -1;
+    std::istringstream lines(test::read_text(out));
+    std::string line;
+    int index = -1;
+    while (std::getline(lines, line))
+      if (line.rfind("opencl  --device ", 0) == 0 && line.find("(host memory)") != std::string::npos)
+        index = std::atoi(line.c_str() + std::strlen("opencl  --device "));
+    return index;
+  }
   void expect_refused(const test::ProcessResult& r, const std::string& expect) {
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_EQ(r.err.rfind("pmrender: ", 0), 0u) << r.err;
@@ -45,16 +61,9 @@ TEST_F(MemoryLimits, AFrameTooLargeForTheHostIsRefusedBeforeTheDeviceOpens) {
                  "--resolution 8192x8192: a frame needs about 8.0 GiB of host memory, but ");
 }
 
-// The OpenCL index of a CPU device (PoCL), whose buffers are host memory; -1 if there is none.
-int cpu_opencl_device() {
-  for (const DeviceInfo& info : list_devices())
-    if (info.backend == "opencl" && info.buffers_in_host_memory) return info.index;
-  return -1;
-}
-
 TEST_F(MemoryLimits, DeviceBuffersThatDoNotFitTheHostAreRefusedBeforeTheFirstFrame) {
   // The frame's 8 GiB fit under 9 GB, but a CPU device's buffers (15 GiB, host memory) do not.
-  const int cpu = cpu_opencl_device();
+  const int cpu = cpu_opencl_device_under_limit("9000000");
   ASSERT_GE(cpu, 0) << "this test needs an OpenCL CPU device (PoCL)";
   expect_refused(render_under_limit("9000000", "--backend opencl --device " + std::to_string(cpu) +
                                                    " --resolution 8192x8192 --photons 1000"),
