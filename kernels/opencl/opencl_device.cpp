@@ -9,6 +9,7 @@
 #include <CL/cl_ext.h>
 
 #include <array>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -86,6 +87,12 @@ std::string platform_string(cl_platform_id platform, cl_platform_info what) {
   return value;
 }
 
+std::string gib_text(uint64_t bytes) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.1f GiB", double(bytes) / double(uint64_t(1) << 30));
+  return text;
+}
+
 DeviceInfo describe(const DeviceEntry& entry, int index) {
   DeviceInfo info;
   info.backend = "opencl";
@@ -109,6 +116,9 @@ class OpenclDevice final : public Device {
  public:
   OpenclDevice(const DeviceEntry& entry, int index) : device_(entry.device) {
     info_ = describe(entry, index);
+    cl_ulong max_allocation = 0;
+    PM_CL_CHECK(clGetDeviceInfo(device_, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof(max_allocation), &max_allocation, nullptr));
+    max_allocation_ = max_allocation;
     cl_int err = CL_SUCCESS;
     context_ = clCreateContext(nullptr, 1, &device_, nullptr, nullptr, &err);
     PM_CL_CHECK(err);
@@ -129,6 +139,12 @@ class OpenclDevice final : public Device {
   const DeviceInfo& info() const override { return info_; }
 
   DeviceBuffer allocate(size_t bytes, const char* what) override {
+    // A buffer over the device's one-allocation limit fails with CL_INVALID_BUFFER_SIZE; say so
+    // with the numbers (PoCL derives the limit from the memory the process may use).
+    if (max_allocation_ > 0 && bytes > max_allocation_)
+      throw InputError("OpenCL: " + std::string(what) + " needs " + gib_text(bytes) + " in one buffer, but " +
+                       info_.name + " allows at most " + gib_text(max_allocation_) +
+                       " (CL_DEVICE_MAX_MEM_ALLOC_SIZE); lower --resolution or --photons");
     cl_int err = CL_SUCCESS;
     cl_mem mem = clCreateBuffer(context_, CL_MEM_READ_WRITE, bytes > 0 ? bytes : 4, nullptr, &err);
     if (err != CL_SUCCESS)
@@ -236,6 +252,7 @@ class OpenclDevice final : public Device {
   }
 
   DeviceInfo info_;
+  uint64_t max_allocation_ = 0;  // CL_DEVICE_MAX_MEM_ALLOC_SIZE
   cl_device_id device_ = nullptr;
   cl_context context_ = nullptr;
   cl_command_queue queue_ = nullptr;
