@@ -77,7 +77,10 @@ FrameOutcome FrameJob::run(int frame, const std::string& path, const std::string
 
   const uint32_t cap = options_.budget.max_passes;
   const IndirectMethod* method = renderer_.method();
-  const auto [unit, per_pass] = method ? method->work_per_pass() : std::pair<std::string, double>{"", 0.0};
+  // Plain variables, not a structured binding: C++17 lambdas cannot capture bindings.
+  const std::pair<std::string, double> work = method ? method->work_per_pass() : std::pair<std::string, double>{"", 0.0};
+  const std::string& unit = work.first;
+  const double per_pass = work.second;
   auto last_draw = std::chrono::steady_clock::time_point{};
   ProgressiveCallbacks callbacks;
   if (pass_progress_) callbacks.after_pass = [&](const PassReport& r) {
