@@ -50,20 +50,27 @@ struct FarmSlurmOptions {
   bool submit = false;
 };
 
-// The render subcommand, freshly registered on its own app, parsed with these arguments (what
+// The render subcommand, freshly registered on its own app and parsed with these arguments (what
 // `pmrender render ARGS` would see). CLI11 errors become InputError naming the render options.
-CLI::App* parse_as_render(CLI::App& holder, const std::vector<std::string>& args) {
-  add_render_command(holder);
-  std::vector<std::string> reversed = {"render"};
-  reversed.insert(reversed.end(), args.begin(), args.end());
-  std::reverse(reversed.begin(), reversed.end());  // CLI11 takes the arguments last first
-  try {
-    holder.parse(reversed);
-  } catch (const CLI::ParseError& e) {
-    throw InputError(std::string("render options: ") + e.what());
+// The command's run function is kept: it owns the options CLI11 writes the parsed values into.
+class RenderArguments {
+ public:
+  explicit RenderArguments(const std::vector<std::string>& args) : run_(add_render_command(holder_)) {
+    std::vector<std::string> reversed = {"render"};
+    reversed.insert(reversed.end(), args.begin(), args.end());
+    std::reverse(reversed.begin(), reversed.end());  // CLI11 takes the arguments last first
+    try {
+      holder_.parse(reversed);
+    } catch (const CLI::ParseError& e) {
+      throw InputError(std::string("render options: ") + e.what());
+    }
   }
-  return holder.get_subcommand("render");
-}
+  CLI::App* render() { return holder_.get_subcommand("render"); }
+
+ private:
+  CLI::App holder_;
+  Run run_;
+};
 
 std::string option_text(CLI::App* render, const std::string& name) {
   CLI::Option* option = render->get_option_no_throw(name);
@@ -80,8 +87,8 @@ int scene_argument_index(const std::vector<std::string>& args, const std::string
     std::vector<std::string> trial = args;
     trial[i] = marker;
     try {
-      CLI::App holder;
-      if (option_text(parse_as_render(holder, trial), "scene") == marker) return int(i);
+      RenderArguments parsed(trial);
+      if (option_text(parsed.render(), "scene") == marker) return int(i);
     } catch (const InputError&) {
       // the marker was an option's value (--seed, say) that does not parse: not the scene
     }
@@ -177,8 +184,8 @@ std::string submit_to_sbatch(const std::string& script, const std::string& file)
 SlurmArrayJob plan_slurm_job(const FarmSlurmOptions& o, CLI::App* farm) {
   // 1. The pass-through options, parsed as `render` would parse them.
   const std::vector<std::string> passed = farm->remaining();
-  CLI::App holder;
-  CLI::App* render = parse_as_render(holder, passed);
+  RenderArguments parsed(passed);
+  CLI::App* render = parsed.render();
   require_no_shared_option_names(farm, render);
   for (const std::string& owned : kOwnedRenderOptions)
     if (render->get_option(owned)->count() > 0)

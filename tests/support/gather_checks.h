@@ -70,7 +70,7 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   auto caustic = read_slot<float4>(device, renderer, BufferSlot::film_caustic, pixels);
   std::vector<Material> materials = to_device_materials(scene);
 
-  double total = 0, worst = 0;
+  double worst = 0;
   size_t nonzero = 0;
   for (size_t px = 0; px < pixels; ++px) {
     double sum[3] = {0, 0, 0};
@@ -127,7 +127,6 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
       double err = std::fabs(got[c] - sum[c]) / std::max(std::fabs(sum[c]), 1e-6);
       worst = std::max(worst, err);
       ASSERT_NEAR(got[c], sum[c], 2e-4 * std::fabs(sum[c]) + 1e-7) << "pixel " << px << " channel " << c;
-      total += sum[c];
       nonzero += sum[c] > 0;
     }
   }
