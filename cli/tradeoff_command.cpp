@@ -118,6 +118,7 @@ FrameImage make_reference(const TradeoffOptions& o, Device& device, const Scene&
   if (!o.quiet)
     std::printf("wrote %s (%s%s)\n", file.c_str(), seconds_text(seconds).c_str(),
                 *noise > 0 ? (", own noise about " + std::to_string(100 * *noise).substr(0, 5) + " % relMAE").c_str() : "");
+  std::fflush(stdout);  // seen at once in a log file too, before the grid's long silence
   return image;
 }
 
