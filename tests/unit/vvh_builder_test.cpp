@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -370,21 +369,6 @@ TEST(VvhBuilder, HeuristicCostBelowMedianSplitOnFlatWall)
     EXPECT_LT(c_vvh, 0.9 * c_med) << "T=" << t;
     std::printf("[ cost     ] wall T=%u  VVH %.4g  median %.4g  ratio %.3f\n", t, c_vvh, c_med, c_vvh / c_med);
   }
-}
-
-// Run with --gtest_also_run_disabled_tests: build times on one core (-O2).
-TEST(VvhBuilder, DISABLED_BuildTime)
-{
-  for (uint32_t n : {100000u, 500000u})
-    for (uint32_t t : {1u, 8u}) {
-      const Hits h = random_hits(n, 99, 0.02f);
-      const auto t0 = std::chrono::steady_clock::now();
-      const pm::VvhPhotonMap m = pm::build_vvh_photon_map(h.lo, h.hi, t);
-      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      std::printf("[ time     ] n=%u T=%u  %.3f s  depth %d  leaves %zu\n", n, t, s, m.depth, m.leaves);
-      EXPECT_EQ(check(m, h, t), "");
-      EXPECT_LT(s, 5.0);
-    }
 }
 
 }  // namespace

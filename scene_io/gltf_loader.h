@@ -1,0 +1,89 @@
+// Internal to scene_io: the glTF 2.0 loader's state and steps, shared by the three files that
+// implement them: gltf_loader.cpp (the file, extras.pmrender, the node hierarchy, accessors and
+// animation channels), gltf_geometry.cpp (materials and mesh primitives) and gltf_scene.cpp (the
+// camera, the lights, their animation and the Scene). The public entry is gltf_scene.h.
+#pragma once
+
+#include <tiny_gltf.h>
+
+#include <array>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "render/scene.h"
+#include "scene_io/gltf_animation.h"
+#include "scene_io/gltf_scene.h"
+#include "scene_io/load_error.h"
+#include "scene_io/scene_file.h"
+
+namespace pm {
+namespace gltf {
+
+constexpr int kMaxResolution = 16384;
+constexpr double kDefaultHeight = 512;
+
+// Pieces of the one-line messages: a number as written, "array[i]", " ('name')".
+std::string str(double v);
+inline std::string indexed(const std::string& array, size_t i) { return array + "[" + std::to_string(i) + "]"; }
+inline std::string quoted_name(const std::string& name) { return name.empty() ? "" : " ('" + name + "')"; }
+
+}  // namespace gltf
+
+class GltfLoader {
+ public:
+  GltfLoader(std::string path, SceneLoadReport* report) : path_(std::move(path)), report_(report) {}
+
+  Scene load();
+
+ private:
+  [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+    throw_input_error(where.empty() ? path_ : path_ + ": " + where, what);
+  }
+  void warn(const std::string& text) { report_->warnings.push_back(single_line(path_ + ": " + text)); }
+
+  void parse_file();
+  void read_extras();
+  void build_hierarchy();
+  void read_animations();
+  gltf::Mat4 local_matrix(int node, double t, bool animated) const;
+  gltf::Mat4 world_matrix(int node, double t, bool animated) const;
+  bool node_is_animated(int node) const;  // the node or an ancestor has a TRS channel
+
+  std::vector<double> read_accessor(int index, const std::string& where, std::vector<int> types, bool normalized_ints,
+                                    size_t* count, int* components) const;
+  std::vector<uint32_t> read_indices(int index, const std::string& where) const;
+
+  void read_meshes(Scene& scene);
+  void append_primitive(const tinygltf::Primitive& primitive, const std::string& where, const gltf::Mat4& world,
+                        Scene& scene, std::map<int, uint32_t>& material_index);
+  MaterialDesc convert_material(int index);
+  int choose_camera_node();
+  CameraDesc camera_at(int node, double t, bool animated) const;
+  void read_lights(Scene& scene);
+  void read_animation(Scene& scene);
+
+  std::string path_;
+  SceneLoadReport* report_;
+  tinygltf::Model model_;
+  int scene_index_ = 0;
+  std::vector<int> parent_;
+  std::vector<int> order_;  // nodes of the scene, depth first
+  std::vector<std::array<const gltf::Sampler*, 3>> channels_;  // per node: translation, rotation, scale
+  std::vector<gltf::Sampler> samplers_;
+  std::vector<std::string> sampler_where_;
+
+  // extras.pmrender of the chosen scene
+  nlohmann::json extras_document_;
+  bool has_frame_rate_ = false, has_frames_ = false, has_resolution_ = false;
+  double frame_rate_ = kGltfDefaultFrameRate;
+  int first_frame_ = 0, last_frame_ = 0;
+  int width_ = 0, height_ = 0;
+  std::string camera_name_, scene_name_;
+
+  int camera_node_ = -1;
+  std::vector<int> light_nodes_;
+};
+
+}  // namespace pm
