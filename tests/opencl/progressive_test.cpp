@@ -100,7 +100,9 @@ TEST(ProgressiveSettings, ShrinkFollowsKnausZwicker) {
   double area = 1;
   for (uint32_t i = 1; i <= 1000; ++i) {
     area *= (i + 0.5) / (i + 1.0);
-    if (i == 1 || i == 10 || i == 1000) EXPECT_NEAR(p.footprint_scale(i), std::sqrt(area), 1e-12 * std::sqrt(area)) << i;
+    if (i == 1 || i == 10 || i == 1000) {
+      EXPECT_NEAR(p.footprint_scale(i), std::sqrt(area), 1e-12 * std::sqrt(area)) << i;
+    }
   }
   EXPECT_GT(p.footprint_scale(1000000), 0.0);
 }
