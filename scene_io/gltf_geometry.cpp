@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
 #include <functional>
 #include <map>
 #include <set>
@@ -19,16 +18,7 @@
 #include "scene_io/load_error.h"
 #include "scene_io/obj_mesh.h"
 
-namespace pm {
-
-namespace fs = std::filesystem;
-using gltf::indexed;
-using gltf::kDefaultHeight;
-using gltf::kMaxResolution;
-using gltf::Mat4;
-using gltf::quoted_name;
-using gltf::str;
-using gltf::Vec3d;
+namespace pm::gltf {
 
 MaterialDesc GltfLoader::convert_material(int index) {
   const tinygltf::Material& m = model_.materials[size_t(index)];
@@ -184,4 +174,4 @@ void GltfLoader::read_meshes(Scene& scene) {
                        " degenerate triangles dropped)");
 }
 
-}  // namespace pm
+}  // namespace pm::gltf

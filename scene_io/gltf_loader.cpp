@@ -20,18 +20,11 @@
 #include "scene_io/load_error.h"
 #include "scene_io/obj_mesh.h"
 
-namespace pm {
+namespace pm::gltf {
 
 namespace fs = std::filesystem;
-using gltf::indexed;
-using gltf::kDefaultHeight;
-using gltf::kMaxResolution;
-using gltf::Mat4;
-using gltf::quoted_name;
-using gltf::str;
-using gltf::Vec3d;
 
-std::string gltf::str(double v) {
+std::string str(double v) {
   std::ostringstream s;
   s << v;
   return s.str();
@@ -312,4 +305,4 @@ bool GltfLoader::node_is_animated(int node) const {
   return false;
 }
 
-}  // namespace pm
+}  // namespace pm::gltf

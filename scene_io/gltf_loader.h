@@ -29,8 +29,6 @@ std::string str(double v);
 inline std::string indexed(const std::string& array, size_t i) { return array + "[" + std::to_string(i) + "]"; }
 inline std::string quoted_name(const std::string& name) { return name.empty() ? "" : " ('" + name + "')"; }
 
-}  // namespace gltf
-
 class GltfLoader {
  public:
   GltfLoader(std::string path, SceneLoadReport* report) : path_(std::move(path)), report_(report) {}
@@ -47,8 +45,8 @@ class GltfLoader {
   void read_extras();
   void build_hierarchy();
   void read_animations();
-  gltf::Mat4 local_matrix(int node, double t, bool animated) const;
-  gltf::Mat4 world_matrix(int node, double t, bool animated) const;
+  Mat4 local_matrix(int node, double t, bool animated) const;
+  Mat4 world_matrix(int node, double t, bool animated) const;
   bool node_is_animated(int node) const;  // the node or an ancestor has a TRS channel
 
   std::vector<double> read_accessor(int index, const std::string& where, std::vector<int> types, bool normalized_ints,
@@ -56,7 +54,7 @@ class GltfLoader {
   std::vector<uint32_t> read_indices(int index, const std::string& where) const;
 
   void read_meshes(Scene& scene);
-  void append_primitive(const tinygltf::Primitive& primitive, const std::string& where, const gltf::Mat4& world,
+  void append_primitive(const tinygltf::Primitive& primitive, const std::string& where, const Mat4& world,
                         Scene& scene, std::map<int, uint32_t>& material_index);
   MaterialDesc convert_material(int index);
   int choose_camera_node();
@@ -86,4 +84,5 @@ class GltfLoader {
   std::vector<int> light_nodes_;
 };
 
+}  // namespace gltf
 }  // namespace pm

@@ -26,14 +26,9 @@ double roughness_to_phong_exponent(double roughness) {
   return std::max(0.0, 2.0 / (alpha * alpha) - 2.0);
 }
 
+namespace gltf {
+
 namespace fs = std::filesystem;
-using gltf::indexed;
-using gltf::kDefaultHeight;
-using gltf::kMaxResolution;
-using gltf::Mat4;
-using gltf::quoted_name;
-using gltf::str;
-using gltf::Vec3d;
 
 int GltfLoader::choose_camera_node() {
   std::vector<std::string> names;
@@ -218,11 +213,13 @@ Scene GltfLoader::load() {
   return scene;
 }
 
+}  // namespace gltf
+
 Scene load_gltf_scene(const std::string& path, SceneLoadReport* report) {
   SceneLoadReport local_report;
   SceneLoadReport* r = report ? report : &local_report;
   *r = SceneLoadReport{};
-  return GltfLoader(path, r).load();
+  return gltf::GltfLoader(path, r).load();
 }
 
 }  // namespace pm
