@@ -33,10 +33,13 @@ import pm_mitsuba  # noqa: E402
 
 
 def relative_errors(image, reference):
+    """relMAE and relMSE as pmrender tradeoff computes them, and the bias of the image mean: the
+    check that the two renderers converge to the same image, beyond noise."""
     diff = image - reference
     relmae = float(np.abs(diff).sum() / np.abs(reference).sum())
     relmse = float(np.mean(diff ** 2 / (reference ** 2 + 0.01)))
-    return relmae, relmse
+    mean = float(image.sum() / reference.sum() - 1.0)
+    return relmae, relmse, mean
 
 
 def timed_render(scene, spp, seed, chunk):
@@ -88,12 +91,12 @@ def main():
     rows = []
     print("Mitsuba %s (%s), %dx%d, max_depth %d, reference %s" % (mi.__version__, args.variant, width, height,
                                                                   args.bounces + 2, args.reference))
-    print("%8s %12s %10s %10s" % ("spp", "seconds", "relMAE", "relMSE"))
+    print("%8s %12s %10s %10s %9s" % ("spp", "seconds", "relMAE", "relMSE", "mean"))
     for spp in [int(s) for s in args.spp.split(",")]:
         image, seconds = timed_render(scene, spp, args.seed, args.chunk_spp)
-        relmae, relmse = relative_errors(image, reference)
-        rows.append({"spp": spp, "seconds": seconds, "relmae": relmae, "relmse": relmse})
-        print("%8d %12.4f %9.3f%% %10.4g" % (spp, seconds, 100 * relmae, relmse))
+        relmae, relmse, mean = relative_errors(image, reference)
+        rows.append({"spp": spp, "seconds": seconds, "relmae": relmae, "relmse": relmse, "mean": mean})
+        print("%8d %12.4f %9.3f%% %10.4g %+8.2f%%" % (spp, seconds, 100 * relmae, relmse, 100 * mean))
         sys.stdout.flush()
     reach = []
     for level in [float(x) for x in args.levels.split(",")]:
