@@ -45,8 +45,8 @@ TEST_P(AnalyticSphere, IndirectRadianceMatchesClosedForm) {
   photons.photons = 200000;
   photons.bounces = bounces;
   photons.estimator = c.estimator;
-  // The paper's fixed s = 8: the pd footprints' curvature bias grows with their size (-2.6 % at
-  // s = 8 here, -8.8 % at the automatic s = 20.9; docs/algorithm.md).
+  // The paper's fixed s = 8: the pd footprints' curvature bias grows with their size (-1.9 % at
+  // s = 8 here, -8.1 % at the automatic s = 20.9; docs/algorithm.md).
   photons.smoothing = 8;
   Renderer renderer(*device, scene, test::photon_render_settings(photons));
   FrameStats stats;
