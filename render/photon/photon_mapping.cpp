@@ -39,6 +39,9 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
   settings_.validate();
   scene_area_ = context.measures.surface_area;
   photons_per_pass_ = uint32_t(settings_.photons);
+  const bool mirrors = std::any_of(context.scene.materials.begin(), context.scene.materials.end(),
+                                   [](const MaterialDesc& m) { return m.mirror.x > 0 || m.mirror.y > 0 || m.mirror.z > 0; });
+  slots_per_photon_ = settings_.hit_slots_per_photon(mirrors);
   shading_points_ = context.shading_points;
   extents_.hit_slots = hit_slots();
   extents_.bounds_tiles = (extents_.hit_slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
@@ -79,7 +82,7 @@ LaunchParams PhotonMapping::pass_params(const FrameContext& frame, uint32_t pass
   params.photon_offset_hi = uint32_t(first >> 32);
   params.footprint_scale = float(settings_.footprint_scale(pass));
   params.photon_frame = uint32_t(photon_frame_);
-  params.hit_slots_per_photon = settings_.hit_slots_per_photon();
+  params.hit_slots_per_photon = slots_per_photon_;
   params.max_bounces = uint32_t(settings_.bounces);
   params.smoothing = settings_.smoothing;
   // k-NN has no footprints: the shrink bounds its search radius instead.

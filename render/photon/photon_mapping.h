@@ -34,7 +34,7 @@ class PhotonMapping final : public IndirectMethod {
   // Valid hits of the last pass: the sorted prefix the photon map covers.
   uint32_t last_hit_count() const { return map_params_.hit_count; }
   // Hit records of one pass (photons per pass * records per photon).
-  uint32_t hit_slots() const { return photons_per_pass_ * settings_.hit_slots_per_photon(); }
+  uint32_t hit_slots() const { return photons_per_pass_ * slots_per_photon_; }
 
  private:
   LaunchParams pass_params(const FrameContext& frame, uint32_t pass) const;
@@ -50,6 +50,7 @@ class PhotonMapping final : public IndirectMethod {
   PhotonSettings settings_;
   double scene_area_ = 0;
   uint32_t photons_per_pass_ = 0;
+  uint32_t slots_per_photon_ = 0;  // hit records per photon, for this scene's materials
   uint32_t shading_points_ = 0;
   BufferExtents extents_;      // the photon group's sizes; map_hits grows with reserve_map
   uint32_t map_capacity_ = 0;  // valid hits the photon map buffers hold room for

@@ -51,8 +51,13 @@ class PhotonSettings final : public MethodSettings {
   void validate() const override;
   std::unique_ptr<IndirectMethod> create(const MethodContext& context) const override;
 
-  // Hit records reserved per photon: one per diffuse bounce, one for the caustic path, one spare.
-  uint32_t hit_slots_per_photon() const { return uint32_t(bounces + 2); }
+  // Hit records reserved per photon. A photon records a hit after each of its bounces
+  // (kernels/common/photon_trace.h). In a scene without mirror reflectance every bounce is
+  // diffuse or glossy, so `bounces` records hold them all; mirrors add specular bounces on caustic
+  // paths: two more records (a path's hits beyond them are not recorded).
+  uint32_t hit_slots_per_photon(bool scene_has_mirrors = true) const {
+    return uint32_t(bounces + (scene_has_mirrors ? 2 : 0));
+  }
   // The defaults that depend on the scene (rmax, radius) filled in.
   PhotonSettings resolved(const SceneMeasures& measures) const;
   // One line: every setting, as resolved.
