@@ -8,6 +8,7 @@
 
 #include <cstring>
 #include <memory>
+#include <stdexcept>
 
 #include "render/renderer.h"
 #include "scene_io/cornell_box.h"
@@ -25,7 +26,7 @@ struct Rendered {
 
 Rendered render(const Scene& scene) {
   std::unique_ptr<Device> device = test::open_first_device("opencl");
-  EXPECT_NE(device, nullptr);
+  if (!device) throw std::runtime_error("no OpenCL device");
   PhotonSettings photons;
   photons.photons = 65536;
   photons.bounces = 2;
@@ -58,7 +59,7 @@ TEST(HitSlots, AMirrorFreeSceneLosesNoHitInBounceManyRecords) {
     EXPECT_EQ(std::memcmp(x.data(), y.data(), x.size() * sizeof(float)), 0) << "layer '" << layer << "'";
   }
   // Six float4 per record: 96 bytes for each of the two records per photon not reserved.
-  EXPECT_GE(b.peak_bytes - a.peak_bytes, uint64_t(65536) * 2 * 96);
+  EXPECT_GE(b.peak_bytes, a.peak_bytes + uint64_t(65536) * 2 * 96);
   std::printf("peak device memory: %.1f MiB without mirrors, %.1f MiB with\n", a.peak_bytes / 1048576.0,
               b.peak_bytes / 1048576.0);
 }
