@@ -17,6 +17,11 @@
 #   tradeoff    bench/tradeoff_suite.sh --profile h200 on CUDA over $TRADEOFF_SCENES (default
 #               sponza), with $TRADEOFF_ARGS added (docs/tradeoff.md)
 #   multi       bench/multi_gpu_suite.sh on CUDA and OpenCL, devices 0,1 (a two-GPU machine)
+#   progressive bench/progressive_suite.sh on CUDA and OpenCL: passes per second and error after
+#               1, 10 and 60 s, Sponza and the Cornell box at 1920x1080 (docs/progressive.md)
+#   mitsuba     Sponza at 960x540: `pmrender tradeoff` (CUDA; a 16 x 256-path reference) and Mitsuba
+#               3's cuda_ad_rgb path tracer against the same reference (docs/tradeoff.md); needs
+#               the bundle made with `bench/pack_for_gpu.sh .gpu --mitsuba`
 set -uo pipefail
 out=$1; shift
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -83,6 +88,22 @@ for step in "$@"; do
     multi)
       "$bundle/bench/multi_gpu_suite.sh" --backend cuda,opencl --out "$out/multi" >"$out/multi.log" 2>&1
       echo "multi-GPU suite exit $?" | tee -a "$out/summary.txt"; cat "$out/multi/summary.md" >>"$out/summary.txt"
+      ;;
+    progressive)
+      "$bundle/bench/progressive_suite.sh" --backend cuda,opencl --out "$out/progressive" >"$out/progressive.log" 2>&1
+      echo "progressive suite exit $?" | tee -a "$out/summary.txt"; cat "$out/progressive/summary.md" >>"$out/summary.txt"
+      ;;
+    mitsuba)
+      site=$(mktemp -d) && tar xJf "$bundle/mitsuba-site.tar.xz" -C "$site"
+      pmrender tradeoff "$bundle/bench/scenes/sponza.json" --backend cuda --resolution 960x540 \
+        --reference-spp 256 --reference-passes 16 --bounces 2 --mirror-depth 1 --rmax 0.7 \
+        --estimators pd,knn,path --photons 1048576 --passes 1,4,16,64 --progressive average,shrink \
+        --smoothing 40 --k 64 --spp 4,16 --warmup 1 --repeat 3 -q -o "$out/mitsuba" >"$out/mitsuba-tradeoff.log" 2>&1
+      echo "mitsuba: pmrender tradeoff exit $?" | tee -a "$out/summary.txt"; cat "$out/mitsuba/tradeoff.txt" >>"$out/summary.txt"
+      PYTHONPATH=$site PYTHONUNBUFFERED=1 python3 "$bundle/bench/mitsuba_peer.py" "$bundle/bench/scenes/sponza.json" \
+        --reference "$out/mitsuba/reference.exr" --pmrender "$bundle/bin/pmrender" --variant cuda_ad_rgb \
+        --json "$out/mitsuba/sponza-mitsuba.json" >"$out/mitsuba-peer.log" 2>&1
+      echo "mitsuba: peer exit $?" | tee -a "$out/summary.txt"; cat "$out/mitsuba-peer.log" >>"$out/summary.txt"
       ;;
     *) echo "unknown step $step" | tee -a "$out/summary.txt" ;;
   esac

@@ -38,6 +38,7 @@ double default_threshold(ImageMetric metric) {
     case ImageMetric::rmse: return 0.01;
     case ImageMetric::relmse: return 0.01;
     case ImageMetric::mean: return 0.01;
+    case ImageMetric::relmae: return 0.05;
   }
   return 0;
 }
@@ -52,6 +53,7 @@ std::string describe(ImageMetric metric, const ImageComparison& c) {
     case ImageMetric::rmse: std::snprintf(text, sizeof(text), "root mean squared difference"); break;
     case ImageMetric::relmse: std::snprintf(text, sizeof(text), "mean of (test - ref)^2 / (ref^2 + 0.01)"); break;
     case ImageMetric::mean: std::snprintf(text, sizeof(text), "relative difference of the image means"); break;
+    case ImageMetric::relmae: std::snprintf(text, sizeof(text), "sum |test - ref| / sum ref"); break;
   }
   return text;
 }
@@ -82,12 +84,18 @@ int run_compare(const CompareOptions& o) {
   std::printf("reference  %s (%dx%d, layer %s)\n", o.reference.c_str(), reference.width, reference.height,
               o.layer.c_str());
   std::printf("test       %s\n", o.test.c_str());
-  for (ImageMetric m : {ImageMetric::rmse, ImageMetric::relmse, ImageMetric::mean, ImageMetric::flip}) {
+  for (ImageMetric m : {ImageMetric::rmse, ImageMetric::relmse, ImageMetric::mean, ImageMetric::relmae, ImageMetric::flip}) {
     if (m == chosen) continue;
     std::printf("%-7s %.6g  (%s)\n", image_metric_name(m), c.value(m), describe(m, c).c_str());
   }
   std::printf("%-7s %.6g  (%s)\n", image_metric_name(chosen), c.value(chosen), describe(chosen, c).c_str());
   const bool pass = c.value(chosen) <= threshold;
+  if (o.layer == "combined") {
+    const LightBias bias = light_bias(reference, test);
+    std::printf("bias    %+.4f%% image mean", 100 * bias.mean);
+    if (test.find("direct")) std::printf(", %+.4f%% indirect light with the direct light matched", 100 * bias.indirect);
+    std::printf("\n");
+  }
 
   if (!o.diff.empty()) {
     FrameImage map = error_map_image(c.map(chosen), c.width, c.height);
@@ -111,11 +119,11 @@ Run add_compare_command(CLI::App& app) {
       "compare", "Compare a test image with a reference (EXR): all metrics, pass/fail on the chosen one");
   cmd->add_option("reference", options->reference, "Reference image (EXR)")->required();
   cmd->add_option("test", options->test, "Test image (EXR)")->required();
-  cmd->add_option("--metric", options->metric, "flip (HDR-FLIP), rmse, relmse or mean")
+  cmd->add_option("--metric", options->metric, "flip (HDR-FLIP), rmse, relmse, mean or relmae")
       ->capture_default_str()
-      ->check(CLI::IsMember({"flip", "rmse", "relmse", "mean"}));
+      ->check(CLI::IsMember({"flip", "rmse", "relmse", "mean", "relmae"}));
   options->threshold_option = cmd->add_option("--threshold", options->threshold,
-                  "Pass at or under this value (default: flip 0.05, rmse 0.01, relmse 0.01, mean 0.01)")
+                  "Pass at or under this value (default: flip 0.05, rmse 0.01, relmse 0.01, mean 0.01, relmae 0.05)")
       ->transform(finite_in(0, DBL_MAX));
   cmd->add_option("--diff", options->diff, "Write the per-pixel error of the chosen metric here (EXR, grey)");
   cmd->add_option("--layer", options->layer, "Layer to compare: combined, direct, indirect, caustic, ...")

@@ -107,9 +107,7 @@ FrameImage make_reference(const TradeoffOptions& o, Device& device, const Scene&
     const std::vector<float>& first = first_half.find("")->rgb;
     for (size_t i = 0; i < second.size(); ++i) second[i] = 2.0f * second[i] - first[i];
     const ImageComparison c = compare_images(second, first, image.width, image.height);
-    double relmae = 0;
-    for (float v : c.mean_map) relmae += v;
-    *noise = relmae / double(c.mean_map.size()) / 2.0;
+    *noise = c.relmae / 2.0;
   }
   image.attributes = {{"pmrender/version", PMRENDER_VERSION}, {"pmrender/settings", renderer.describe()},
                       {"pmrender/render_ms", std::to_string(seconds * 1000.0)}};

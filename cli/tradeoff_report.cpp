@@ -21,12 +21,6 @@ std::string number_percent(double v) {
   return text;
 }
 
-double sum(const std::vector<float>& v) {
-  double s = 0;
-  for (float x : v) s += x;
-  return s;
-}
-
 }  // namespace
 
 TradeoffErrors tradeoff_errors(const FrameImage& reference, const FrameImage& test) {
@@ -37,19 +31,12 @@ TradeoffErrors tradeoff_errors(const FrameImage& reference, const FrameImage& te
   const std::vector<float>& img = test.find("")->rgb;
   const ImageComparison c = compare_images(ref, img, test.width, test.height);
   TradeoffErrors e;
-  double relmae = 0;
-  for (float v : c.mean_map) relmae += v;
-  e.relmae = c.mean_map.empty() ? 0 : relmae / double(c.mean_map.size());
+  e.relmae = c.relmae;
   e.relmse = c.relmse;
   e.flip = c.flip;
-  const double ref_sum = sum(ref), test_sum = sum(img);
-  e.mean = ref_sum > 0 ? test_sum / ref_sum - 1.0 : 0.0;
-  const double test_direct = sum(test.find("direct")->rgb);
-  const ImageLayer* ref_direct_layer = reference.find("direct");
-  const double ref_direct = ref_direct_layer ? sum(ref_direct_layer->rgb) : test_direct;
-  const double test_ratio = test_direct > 0 ? (test_sum - test_direct) / test_direct : 0.0;
-  const double ref_ratio = ref_direct > 0 ? (ref_sum - ref_direct) / ref_direct : 0.0;
-  e.indirect = ref_ratio > 0 ? test_ratio / ref_ratio - 1.0 : 0.0;
+  const LightBias bias = light_bias(reference, test);
+  e.mean = bias.mean;
+  e.indirect = bias.indirect;
   return e;
 }
 

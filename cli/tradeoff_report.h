@@ -18,12 +18,8 @@ struct TradeoffErrors {
   double relmae = 0;  // sum |test - ref| / sum ref, all pixels and channels
   double relmse = 0;  // mean (test - ref)^2 / (ref^2 + 0.01)
   double flip = 0;    // mean HDR-FLIP
-  double mean = 0;    // mean(test) / mean(ref) - 1
-  // (indirect / direct of the test) / (indirect / direct of the reference) - 1, indirect being
-  // everything but the direct layer: the bias of the indirect light once the direct light, the
-  // same in both, is matched. The reference's direct layer is the test's when the reference
-  // file has none.
-  double indirect = 0;
+  double mean = 0;      // mean(test) / mean(ref) - 1 (render/image_metrics.h, light_bias)
+  double indirect = 0;  // the indirect light's bias with the direct light matched (light_bias)
 };
 
 // Errors of test against reference (same size; InputError otherwise).

@@ -22,7 +22,8 @@ ImageMetric parse_image_metric(const std::string& name) {
   if (name == "rmse") return ImageMetric::rmse;
   if (name == "relmse") return ImageMetric::relmse;
   if (name == "mean") return ImageMetric::mean;
-  throw SettingError("metric", "expected flip, rmse, relmse or mean, got '" + name + "'");
+  if (name == "relmae") return ImageMetric::relmae;
+  throw SettingError("metric", "expected flip, rmse, relmse, mean or relmae, got '" + name + "'");
 }
 
 const char* image_metric_name(ImageMetric metric) {
@@ -31,6 +32,7 @@ const char* image_metric_name(ImageMetric metric) {
     case ImageMetric::rmse: return "rmse";
     case ImageMetric::relmse: return "relmse";
     case ImageMetric::mean: return "mean";
+    case ImageMetric::relmae: return "relmae";
   }
   return "?";
 }
@@ -41,6 +43,7 @@ double ImageComparison::value(ImageMetric metric) const {
     case ImageMetric::rmse: return rmse;
     case ImageMetric::relmse: return relmse;
     case ImageMetric::mean: return mean;
+    case ImageMetric::relmae: return relmae;
   }
   return 0;
 }
@@ -50,7 +53,8 @@ const std::vector<float>& ImageComparison::map(ImageMetric metric) const {
     case ImageMetric::flip: return flip_map;
     case ImageMetric::rmse: return rmse_map;
     case ImageMetric::relmse: return relmse_map;
-    case ImageMetric::mean: return mean_map;
+    case ImageMetric::mean:
+    case ImageMetric::relmae: return mean_map;
   }
   return flip_map;
 }
@@ -69,7 +73,7 @@ ImageComparison compare_images(const std::vector<float>& reference, const std::v
   c.flip_map = std::move(flip.error);
   c.exposures = flip.exposures;
 
-  double sum_ref = 0, sum_test = 0, sq = 0, rel = 0;
+  double sum_ref = 0, sum_test = 0, sq = 0, rel = 0, abs_sum = 0;
   for (size_t i = 0; i < 3 * pixels; ++i) {
     sum_ref += reference[i];
     sum_test += test[i];
@@ -89,6 +93,7 @@ ImageComparison compare_images(const std::vector<float>& reference, const std::v
     }
     sq += psq;
     rel += prel;
+    abs_sum += pabs;
     c.rmse_map[p] = float(std::sqrt(psq / 3.0));
     c.relmse_map[p] = float(prel / 3.0);
     c.mean_map[p] = float(pabs / 3.0 * mean_scale);
@@ -96,7 +101,34 @@ ImageComparison compare_images(const std::vector<float>& reference, const std::v
   c.rmse = std::sqrt(sq / double(3 * pixels));
   c.relmse = rel / double(3 * pixels);
   c.mean = std::fabs(sum_test - sum_ref) / double(3 * pixels) * mean_scale;
+  c.relmae = abs_sum / double(3 * pixels) * mean_scale;
   return c;
+}
+
+namespace {
+double sum(const std::vector<float>& v) {
+  double s = 0;
+  for (float x : v) s += x;
+  return s;
+}
+}  // namespace
+
+LightBias light_bias(const FrameImage& reference, const FrameImage& test) {
+  LightBias b;
+  const ImageLayer* ref_combined = reference.find("");
+  const ImageLayer* test_combined = test.find("");
+  if (!ref_combined || !test_combined) return b;
+  const double ref_sum = sum(ref_combined->rgb), test_sum = sum(test_combined->rgb);
+  b.mean = ref_sum > 0 ? test_sum / ref_sum - 1.0 : 0.0;
+  const ImageLayer* test_direct_layer = test.find("direct");
+  if (!test_direct_layer) return b;
+  const double test_direct = sum(test_direct_layer->rgb);
+  const ImageLayer* ref_direct_layer = reference.find("direct");
+  const double ref_direct = ref_direct_layer ? sum(ref_direct_layer->rgb) : test_direct;
+  const double test_ratio = test_direct > 0 ? (test_sum - test_direct) / test_direct : 0.0;
+  const double ref_ratio = ref_direct > 0 ? (ref_sum - ref_direct) / ref_direct : 0.0;
+  b.indirect = ref_ratio > 0 ? test_ratio / ref_ratio - 1.0 : 0.0;
+  return b;
 }
 
 const ImageLayer& require_layer(const FrameImage& image, const std::string& layer, const std::string& file) {

@@ -48,6 +48,7 @@ TEST(ImageMetrics, IdenticalImagesScoreZero) {
   EXPECT_EQ(c.rmse, 0.0);
   EXPECT_EQ(c.relmse, 0.0);
   EXPECT_EQ(c.mean, 0.0);
+  EXPECT_EQ(c.relmae, 0.0);
   EXPECT_EQ(c.flip_map.size(), 200u);
 }
 
@@ -66,11 +67,14 @@ TEST(ImageMetrics, PlainMetricsHaveTheirDefinitions) {
   ImageComparison n = compare_images(ref, noisy, 2, 2);
   EXPECT_NEAR(n.rmse, 0.1, 1e-6);
   EXPECT_NEAR(n.mean, 0.0, 1e-6);
+  EXPECT_NEAR(n.relmae, 0.1, 1e-6);  // and the relative mean absolute error does
+  EXPECT_NEAR(n.value(ImageMetric::relmae), n.relmae, 0);
   EXPECT_GT(n.flip, 0.0);
 }
 
 TEST(ImageMetrics, MetricNamesRoundTripAndBadNamesNameTheOption) {
-  for (ImageMetric m : {ImageMetric::flip, ImageMetric::rmse, ImageMetric::relmse, ImageMetric::mean})
+  for (ImageMetric m :
+       {ImageMetric::flip, ImageMetric::rmse, ImageMetric::relmse, ImageMetric::mean, ImageMetric::relmae})
     EXPECT_EQ(parse_image_metric(image_metric_name(m)), m);
   EXPECT_EQ(message_of([] { parse_image_metric("psnr"); }).rfind("metric: ", 0), 0u);
 }
@@ -193,6 +197,24 @@ TEST_F(CompareCli, PassesUnderThresholdFailsOverAndPrintsTheChosenMetricLast) {
 
   Result under = compare(a + " " + b + " --metric mean --threshold 0.31");
   EXPECT_EQ(under.exit_code, 0) << under.out;
+}
+
+TEST_F(CompareCli, RelMaeAndTheSignedBiasesOfTheLight) {
+  // Reference: combined 2, direct 1 (indirect 1). Test: combined 1.8, direct 1 (indirect 0.8).
+  std::vector<float> ref(3 * 16, 2.0f), test(3 * 16, 1.8f), direct(3 * 16, 1.0f);
+  FrameImage r, t;
+  r.width = t.width = 4;
+  r.height = t.height = 4;
+  r.layers = {{"", ref}, {"direct", direct}};
+  t.layers = {{"", test}, {"direct", direct}};
+  const std::string a = (dir_ / "a.exr").string(), b = (dir_ / "b.exr").string();
+  write_exr(a, r, true);
+  write_exr(b, t, true);
+  Result res = compare(a + " " + b + " --metric relmae --threshold 0.2");
+  EXPECT_EQ(res.exit_code, 0) << res.err;
+  EXPECT_NE(res.out.find("relmae 0.1 <= threshold 0.2: pass"), std::string::npos) << res.out;
+  EXPECT_NE(res.out.find("bias    -10.0000% image mean, -20.0000% indirect light"), std::string::npos) << res.out;
+  EXPECT_EQ(compare(a + " " + b + " --metric relmae --threshold 0.05").exit_code, 1);
 }
 
 TEST_F(CompareCli, DiffWritesThePerPixelErrorOfTheChosenMetric) {
