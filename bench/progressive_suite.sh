@@ -90,11 +90,30 @@ suite_environment "$out" "backend=$backends scenes='$scenes' times='$times' refe
 resolution=$resolution photons=$photons estimator=$estimator progressive=$mode"
 
 failed=0
-rows=()
 first_backend=${backends%%,*}
 # metric NAME FILE: the value of metric NAME in a `pmrender compare` report.
 metric() { awk -v m="$1" '$1 == m { print $2; exit }' "$2"; }
+# row NAME BACKEND SCENE BUDGET: the summary row of a finished render and its comparison.
+row() {
+  local name=$1 wrote ms passes estimate relmae flip mean_bias indirect_bias
+  # "wrote FILE (frame 0, WxH, DEVICE, 1009.71 ms, 48 passes (time), error ~1.70%)"
+  wrote=$(grep '^wrote ' "$out/$name.log" | tail -n 1)
+  ms=$(echo "$wrote" | grep -o '[0-9.]* ms,' | tail -n 1 | cut -d' ' -f1)
+  passes=$(echo "$wrote" | grep -o '[0-9]* passes' | cut -d' ' -f1)
+  estimate=$(echo "$wrote" | grep -o 'error ~[0-9.]*%' | sed 's/error ~//')
+  relmae=$(metric relmae "$out/$name.compare") flip=$(metric flip "$out/$name.compare")
+  # "bias    -1.1472% image mean, -2.3607% indirect light with the direct light matched"
+  mean_bias=$(awk '$1 == "bias" { print $2; exit }' "$out/$name.compare" | tr -d ',')
+  indirect_bias=$(awk '$1 == "bias" { print $5; exit }' "$out/$name.compare" | tr -d ',')
+  awk -v b="$2" -v s="$3" -v t="$4" -v ms="$ms" -v p="$passes" -v e="$estimate" -v r="$relmae" -v f="$flip" \
+    -v mb="$mean_bias" -v ib="$indirect_bias" 'BEGIN {
+      printf "| %s | %s | %s | %.2f | %d | %.1f | %.2f %% | %.4f | %s | %s | %s |\n", b, s, t, ms / 1000, p,
+      p / (ms / 1000), 100 * r, f, mb, ib, e }'
+}
 
+# The comparisons (HDR-FLIP of a 1080p image takes seconds of CPU) run in the background while
+# the GPU renders the next budget; the rows are made once all have finished.
+finished=()
 for i in "${!scene_list[@]}"; do
   s=${scene_list[$i]}
   read -r -a args <<<"$(scene_args "$s")"
@@ -115,23 +134,18 @@ for i in "${!scene_list[@]}"; do
            --progressive "$mode" --time "$t" --float -o "$img" >"$out/$name.log" 2>&1; then
         echo "FAILED: $name (see $name.log)"; failed=$((failed + 1)); continue
       fi
-      # "wrote FILE (frame 0, WxH, DEVICE, 1009.71 ms, 48 passes (time), error ~1.70%)"
-      wrote=$(grep '^wrote ' "$out/$name.log" | tail -n 1)
-      ms=$(echo "$wrote" | grep -o '[0-9.]* ms,' | tail -n 1 | cut -d' ' -f1)
-      passes=$(echo "$wrote" | grep -o '[0-9]* passes' | cut -d' ' -f1)
-      estimate=$(echo "$wrote" | grep -o 'error ~[0-9.]*%' | sed 's/error ~//')
-      "$pmrender" compare --metric relmae --threshold 1e9 "$ref" "$img" >"$out/$name.compare" 2>&1 || true
-      relmae=$(metric relmae "$out/$name.compare") flip=$(metric flip "$out/$name.compare")
-      # "bias    -1.1472% image mean, -2.3607% indirect light with the direct light matched"
-      mean_bias=$(awk '$1 == "bias" { print $2; exit }' "$out/$name.compare" | tr -d ',')
-      indirect_bias=$(awk '$1 == "bias" { print $5; exit }' "$out/$name.compare" | tr -d ',')
-      rows+=("$(awk -v b="$backend" -v s="$s" -v t="$t" -v ms="$ms" -v p="$passes" -v e="$estimate" \
-        -v r="$relmae" -v f="$flip" -v mb="$mean_bias" -v ib="$indirect_bias" 'BEGIN {
-          printf "| %s | %s | %s | %.2f | %d | %.1f | %.2f %% | %.4f | %s | %s | %s |", b, s, t, ms / 1000, p,
-          p / (ms / 1000), 100 * r, f, mb, ib, e }')")
-      echo "${rows[-1]}"
+      grep '^wrote ' "$out/$name.log"
+      "$pmrender" compare --metric relmae --threshold 1e9 "$ref" "$img" >"$out/$name.compare" 2>&1 &
+      finished+=("$name $backend $s $t")
     done
   done
+done
+wait
+rows=()
+for f in ${finished[@]+"${finished[@]}"}; do
+  read -r -a r <<<"$f"
+  rows+=("$(row "${r[@]}")")
+  echo "${rows[-1]}"
 done
 
 {
@@ -144,7 +158,7 @@ done
   echo
   echo "| backend | scene | budget s | render s | passes | passes per second | relMAE | HDR-FLIP | image mean bias | indirect bias | own estimate |"
   echo "|---|---|---|---|---|---|---|---|---|---|---|"
-  printf '%s\n' "${rows[@]}"
+  printf '%s\n' ${rows[@]+"${rows[@]}"}
 } >"$out/summary.md"
 echo
 echo "results in $out ($failed failed)"
