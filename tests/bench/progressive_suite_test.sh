@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# bench/progressive_suite.sh end to end on the first OpenCL device (PoCL in CI), on the built-in
+# Cornell box at 32 x 18: a reference, two time budgets, and a summary whose rows hold numbers;
+# then bad options exit 2 with one line and write nothing.
+#
+#   tests/bench/progressive_suite_test.sh PMRENDER
+set -uo pipefail
+pmrender=$1
+suite=$(cd "$(dirname "${BASH_SOURCE[0]}")/../../bench" && pwd)/progressive_suite.sh
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+
+"$suite" --pmrender "$pmrender" --backend opencl --scenes cornell-box --resolution 32x18 --photons 4096 \
+  --times 0.3,1 --reference-time 1 --out "$work/out" >"$work/log" 2>&1 || { cat "$work/log"; fail "suite exit $?"; }
+summary=$work/out/summary.md
+[ -f "$summary" ] || fail "no summary.md"
+rows=$(grep -c '^| opencl | cornell-box |' "$summary")
+[ "$rows" -eq 2 ] || { cat "$summary"; fail "expected 2 rows, got $rows"; }
+# Each row: budget, render s, passes, passes per second, relMAE, FLIP, two biases, estimate.
+while IFS='|' read -r _ _ _ budget seconds passes rate relmae flip mean indirect estimate _; do
+  awk -v b="$budget" -v s="$seconds" 'BEGIN { exit !(s + 0 >= b + 0) }' || fail "rendered $seconds s on a $budget s budget"
+  [[ $passes =~ ^\ *[1-9][0-9]*\ *$ ]] || fail "passes '$passes'"
+  [[ $relmae =~ ^\ *[0-9.]+\ %\ *$ ]] || fail "relMAE '$relmae'"
+  [[ $mean =~ ^\ *[-+][0-9.]+%\ *$ && $indirect =~ ^\ *[-+][0-9.]+%\ *$ ]] || fail "biases '$mean' '$indirect'"
+  [[ $estimate =~ ^\ *[0-9.]+%\ *$ ]] || fail "estimate '$estimate'"
+  : "$rate" "$flip"
+done < <(grep '^| opencl | cornell-box |' "$summary")
+grep -q 'cornell-box: --method photon --estimator radius' "$summary" || fail "the reference is not named"
+
+for bad in "--times 1,x" "--scenes attic" "--scenes cornell-box --reference-time 1,2" "--photons 0" "--frobnicate"; do
+  # shellcheck disable=SC2086
+  "$suite" --pmrender "$pmrender" $bad --out "$work/bad" >"$work/bad.out" 2>"$work/bad.err"
+  rc=$?
+  [ "$rc" -eq 2 ] || fail "'$bad': exit $rc, expected 2"
+  [ "$(wc -l <"$work/bad.err")" -eq 1 ] || { cat "$work/bad.err"; fail "'$bad': expected one line"; }
+  [ ! -e "$work/bad" ] || fail "'$bad': wrote $work/bad"
+done
+echo "progressive_suite.sh: 2 rows, 5 bad inputs refused"
