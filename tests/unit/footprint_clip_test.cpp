@@ -166,18 +166,20 @@ TEST(FootprintClip, CoplanarNeighboursLowWallsAndGentleCurvesLeaveFootprintsAlon
   HostScene tiled(tiles);
   Footprint f = circle(0.5f);
   EXPECT_EQ(footprint_clip(&tiled.kg, &f, vec3(0.05f, 0, 0.02f), vec3(0, 1, 0), 1e-6f, PM_KERNEL_CONSTANT).kept, 1.0f);
-  // A wall lower than the lifted plane (half of the normal half-axis, 0.0625 here) is not seen.
+  // A wall lower than the lifted plane (half of the normal half-axis: 0.125 here) is not seen.
   HostScene low(floor_and_wall(0.05f));
   Footprint g = circle(0.5f);
   EXPECT_EQ(footprint_clip(&low.kg, &g, vec3(0.2f, 0, 0), vec3(0, 1, 0), 1e-6f, PM_KERNEL_CONSTANT).kept, 1.0f);
-  // Inside a sphere of radius 2, a footprint of radius 0.3 (the sphere rises into the lifted plane
-  // at sqrt(2 R h) = 0.39 from the hit, beyond it) is left whole; one of 1.0 is cut.
+  // Inside a sphere of radius R = 2 the surface rises into the lifted plane (height h = half the
+  // normal half-axis, a quarter of the footprint's radius) at about sqrt(2 R h) from the hit: a
+  // footprint of radius 0.3 (0.55, beyond its rim) is left whole; one of 1.5 (1.22) is cut.
+  static_assert(PM_FOOTPRINT_NORMAL_RATIO == 0.5f && PM_FOOTPRINT_CLIP_HEIGHT == 0.5f, "distances above assume these");
   HostScene sphere(test::diffuse_sphere(2.0f, 0.5f, 5, {1, 1, 1}));
   const Vec3 bottom = vec3(0, -1.9995f, 0), in = vec3(0, 1, 0);
-  Footprint small = circle(0.3f), large = circle(1.0f);
+  Footprint small = circle(0.3f), large = circle(1.5f);
   EXPECT_EQ(footprint_clip(&sphere.kg, &small, bottom, in, 1e-6f, PM_KERNEL_CONSTANT).kept, 1.0f);
   const FootprintCut cut = footprint_clip(&sphere.kg, &large, bottom, in, 1e-6f, PM_KERNEL_CONSTANT);
-  EXPECT_TRUE(cut.kept < 1.0f || large.axis_u.x < 1.0f);
+  EXPECT_TRUE(cut.kept < 1.0f || large.axis_u.x < 1.5f);
 }
 
 }  // namespace
