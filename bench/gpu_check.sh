@@ -19,9 +19,10 @@
 #   multi       bench/multi_gpu_suite.sh on CUDA and OpenCL, devices 0,1 (a two-GPU machine)
 #   progressive bench/progressive_suite.sh on CUDA and OpenCL: passes per second and error after
 #               1, 10 and 60 s, Sponza and the Cornell box at 1920x1080 (docs/progressive.md)
-#   mitsuba     Sponza at 960x540: `pmrender tradeoff` (CUDA; a 16 x 256-path reference) and Mitsuba
-#               3's cuda_ad_rgb path tracer against the same reference (docs/tradeoff.md); needs
-#               the bundle made with `bench/pack_for_gpu.sh .gpu --mitsuba`
+#   mitsuba     per scene of $MITSUBA_SCENES (default sponza; conference, sibenik, cornell-mcguire) at
+#               960x540: `pmrender tradeoff` (CUDA; a 16 x 256-path reference) and Mitsuba 3's
+#               cuda_ad_rgb path tracer against the same reference (docs/tradeoff.md); needs the
+#               bundle made with `bench/pack_for_gpu.sh .gpu --mitsuba`
 set -uo pipefail
 out=$1; shift
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -95,15 +96,21 @@ for step in "$@"; do
       ;;
     mitsuba)
       site=$(mktemp -d) && tar xJf "$bundle/mitsuba-site.tar.xz" -C "$site"
-      pmrender tradeoff "$bundle/bench/scenes/sponza.json" --backend cuda --resolution 960x540 \
-        --reference-spp 256 --reference-passes 16 --bounces 2 --mirror-depth 1 --rmax 0.7 \
-        --estimators pd,knn,path --photons 1048576 --passes 1,4,16,64 --progressive average,shrink \
-        --smoothing 40 --k 64 --spp 4,16 --warmup 1 --repeat 3 -q -o "$out/mitsuba" >"$out/mitsuba-tradeoff.log" 2>&1
-      echo "mitsuba: pmrender tradeoff exit $?" | tee -a "$out/summary.txt"; cat "$out/mitsuba/tradeoff.txt" >>"$out/summary.txt"
-      PYTHONPATH=$site PYTHONUNBUFFERED=1 python3 "$bundle/bench/mitsuba_peer.py" "$bundle/bench/scenes/sponza.json" \
-        --reference "$out/mitsuba/reference.exr" --pmrender "$bundle/bin/pmrender" --variant cuda_ad_rgb \
-        --json "$out/mitsuba/sponza-mitsuba.json" >"$out/mitsuba-peer.log" 2>&1
-      echo "mitsuba: peer exit $?" | tee -a "$out/summary.txt"; cat "$out/mitsuba-peer.log" >>"$out/summary.txt"
+      for scene in ${MITSUBA_SCENES:-sponza}; do
+        # The suite's s per scene (bench/run_suite.sh); the box's own s keeps its gathers small.
+        case $scene in sponza) s=40 ;; conference) s=22.5 ;; sibenik) s=60 ;; cornell-mcguire) s=6 ;;
+          *) echo "mitsuba: unknown scene $scene" | tee -a "$out/summary.txt"; continue ;; esac
+        dir=$out/mitsuba/$scene
+        pmrender tradeoff "$bundle/bench/scenes/$scene.json" --backend cuda --resolution 960x540 \
+          --reference-spp 256 --reference-passes 16 --bounces 2 --mirror-depth 1 --rmax 0.7 \
+          --estimators pd,knn,path --photons 1048576 --passes 1,4,16,64 --progressive average,shrink \
+          --smoothing "$s" --k 64 --spp 4,16 --warmup 1 --repeat 3 -q -o "$dir" >"$out/mitsuba-$scene-tradeoff.log" 2>&1
+        echo "mitsuba $scene: pmrender tradeoff exit $?" | tee -a "$out/summary.txt"; cat "$dir/tradeoff.txt" >>"$out/summary.txt"
+        PYTHONPATH=$site PYTHONUNBUFFERED=1 python3 "$bundle/bench/mitsuba_peer.py" "$bundle/bench/scenes/$scene.json" \
+          --reference "$dir/reference.exr" --pmrender "$bundle/bin/pmrender" --variant cuda_ad_rgb \
+          --json "$dir/mitsuba.json" >"$out/mitsuba-$scene-peer.log" 2>&1
+        echo "mitsuba $scene: peer exit $?" | tee -a "$out/summary.txt"; cat "$out/mitsuba-$scene-peer.log" >>"$out/summary.txt"
+      done
       ;;
     *) echo "unknown step $step" | tee -a "$out/summary.txt" ;;
   esac
