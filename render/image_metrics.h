@@ -1,7 +1,8 @@
-// Differences of two renders of the same frame, as `pmrender compare` and the golden-image tests
-// compute them: the perceptual HDR-FLIP (render/flip.h) and three plain statistics, each with a
-// per-pixel error map. Bad input (different sizes, a missing layer, NaN or Inf) is a
-// pm::InputError naming the file and, for non-finite values, the pixel.
+// Differences of two renders of the same frame, as `pmrender compare`, `pmrender tradeoff` and the
+// golden-image tests compute them: the perceptual HDR-FLIP (render/flip.h) and four plain
+// statistics, each with a per-pixel error map, and the signed biases of the light. Bad input
+// (different sizes, a missing layer, NaN or Inf) is a pm::InputError naming the file and, for
+// non-finite values, the pixel.
 #pragma once
 
 #include <string>
