@@ -313,6 +313,55 @@ TEST(HdrFlip, GrowsWithAGlobalBrightnessError) {
   }
 }
 
+// hdr_flip evaluates its exposures on several threads: the result must be, bit for bit, the
+// maximum over the exposures taken one after the other.
+TEST(HdrFlip, IsTheMaximumOfItsExposuresTakenInTurn) {
+  const int w = 37, h = 23;  // odd sizes: kernels wider than the image reach both borders
+  std::vector<float> ref = random_image(w, h, 1.0f, 3), test = random_image(w, h, 1.0f, 4);
+  for (std::vector<float>* image : {&ref, &test})
+    for (float& v : *image) v = std::exp2(12.0f * v - 6.0f);  // 12 stops: many exposures
+  const HdrFlipResult r = hdr_flip(ref, test, w, h, kPpd);
+  ASSERT_GE(r.exposures.count, 3) << "several exposures, so several threads can take part";
+  std::vector<float> expected(size_t(w) * h, 0.0f), a(ref.size()), b(test.size());
+  for (int k = 0; k < r.exposures.count; ++k) {
+    const double c = r.exposures.start + k * (r.exposures.stop - r.exposures.start) / double(r.exposures.count - 1);
+    const float scale = float(std::exp2(c));
+    for (size_t i = 0; i < ref.size(); ++i) {
+      a[i] = tone_map(scale * ref[i]);
+      b[i] = tone_map(scale * test[i]);
+    }
+    const std::vector<float> e = ldr_flip(a, b, w, h, kPpd);
+    for (size_t i = 0; i < e.size(); ++i) expected[i] = std::max(expected[i], e[i]);
+  }
+  ASSERT_EQ(r.error.size(), expected.size());
+  for (size_t i = 0; i < expected.size(); ++i) ASSERT_EQ(r.error[i], expected[i]) << "pixel " << i;
+}
+
+// The convolution against its definition, a clamped-border sum per pixel, at sizes smaller and
+// larger than the kernel.
+TEST(FlipFilters, ConvolutionIsTheClampedBorderSum) {
+  for (const auto& size : {std::pair<int, int>{5, 3}, std::pair<int, int>{41, 29}}) {
+    const int w = size.first, h = size.second;
+    std::vector<float> image(size_t(w) * h);
+    for (size_t i = 0; i < image.size(); ++i) image[i] = float((i * 7919) % 101) / 100.0f;
+    const SeparableKernel kernel = csf_kernel(2, kPpd);  // two terms
+    const std::vector<float> out = convolve(image, w, h, kernel);
+    for (int y = 0; y < h; y += 2)
+      for (int x = 0; x < w; x += 3) {
+        double sum = 0;
+        for (const SeparableTerm& term : kernel) {
+          const int rx = int(term.x_taps.size() / 2), ry = int(term.y_taps.size() / 2);
+          for (int j = -ry; j <= ry; ++j)
+            for (int i = -rx; i <= rx; ++i) {
+              const int xx = std::min(std::max(x + i, 0), w - 1), yy = std::min(std::max(y + j, 0), h - 1);
+              sum += double(term.weight) * term.x_taps[i + rx] * term.y_taps[j + ry] * image[size_t(yy) * w + xx];
+            }
+        }
+        EXPECT_NEAR(out[size_t(y) * w + x], sum, 1e-5 * (1.0 + std::fabs(sum))) << x << "," << y;
+      }
+  }
+}
+
 TEST(HdrFlip, RefusesMismatchedBuffers) {
   std::vector<float> a(12), b(9);
   EXPECT_THROW(hdr_flip(a, b, 2, 2, kPpd), std::invalid_argument);
