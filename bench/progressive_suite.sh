@@ -103,6 +103,10 @@ row() {
   passes=$(echo "$wrote" | grep -o '[0-9]* passes' | cut -d' ' -f1)
   estimate=$(echo "$wrote" | grep -o 'error ~[0-9.]*%' | sed 's/error ~//')
   relmae=$(metric relmae "$out/$name.compare") flip=$(metric flip "$out/$name.compare")
+  if [ -z "$relmae" ] || [ -z "$ms" ]; then
+    echo "| $2 | $3 | $4 | failed: $(head -n 1 "$out/$name.compare" 2>/dev/null) |"
+    return
+  fi
   # "bias    -1.1472% image mean, -2.3607% indirect light with the direct light matched"
   mean_bias=$(awk '$1 == "bias" { print $2; exit }' "$out/$name.compare" | tr -d ',')
   indirect_bias=$(awk '$1 == "bias" { print $5; exit }' "$out/$name.compare" | tr -d ',')
@@ -146,6 +150,7 @@ rows=()
 for f in ${finished[@]+"${finished[@]}"}; do
   read -r -a r <<<"$f"
   rows+=("$(row "${r[@]}")")
+  case ${rows[-1]} in *"| failed: "*) failed=$((failed + 1)) ;; esac
   echo "${rows[-1]}"
 done
 
