@@ -12,6 +12,7 @@
 #include "render/scene_frame.h"
 #include "render/errors.h"
 #include "scene_io/scene_file.h"
+#include "support/test_folder.h"
 
 namespace pm {
 namespace {
@@ -42,16 +43,13 @@ json animated_scene() {
   })");
 }
 
-class AnimationJson : public ::testing::Test {
+class AnimationJson : public test::FolderTest {
  protected:
+  AnimationJson() : FolderTest("pm_animation_json_") {}
   void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           (std::string("pm_animation_json_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    std::ofstream(dir_ / "tri.obj") << "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n";
+    FolderTest::SetUp();
+    write("tri.obj", "v -1 -1 0\nv 1 -1 0\nv 0 1 0\nf 1 2 3\n");
   }
-  void TearDown() override { fs::remove_all(dir_); }
 
   Scene load(const json& scene) {
     std::ofstream(dir_ / "scene.json") << scene.dump(2);
@@ -69,8 +67,6 @@ class AnimationJson : public ::testing::Test {
       EXPECT_EQ(message.find('\n'), std::string::npos) << message;
     }
   }
-
-  fs::path dir_;
 };
 
 TEST_F(AnimationJson, ReadsTracksInMetresAndSeconds) {

@@ -19,6 +19,7 @@
 #include "scene_io/gltf_scene.h"
 #include "scene_io/scene_file.h"
 #include "support/paths.h"
+#include "support/test_folder.h"
 
 namespace pm {
 namespace {
@@ -155,20 +156,9 @@ class GltfBuilder {
   std::string bytes_;
 };
 
-class Gltf : public ::testing::Test {
+class Gltf : public test::FolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           (std::string("pm_gltf_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  std::string write(const std::string& name, const std::string& content) {
-    std::ofstream(dir_ / name, std::ios::binary) << content;
-    return (dir_ / name).string();
-  }
+  Gltf() : FolderTest("pm_gltf_") {}
   Scene load(GltfBuilder& b, SceneLoadReport* report = nullptr) {
     return load_scene_file(write("scene.gltf", b.gltf_text()), report);
   }
@@ -189,8 +179,6 @@ class Gltf : public ::testing::Test {
       if (w.find(part) != std::string::npos) return true;
     return false;
   }
-
-  fs::path dir_;
 };
 
 }  // namespace

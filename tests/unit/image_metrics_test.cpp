@@ -20,6 +20,7 @@
 #include "render/exr_io.h"
 #include "render/image_metrics.h"
 #include "support/paths.h"
+#include "support/test_folder.h"
 
 namespace pm {
 namespace {
@@ -115,15 +116,9 @@ struct Result {
   std::string out, err;
 };
 
-class CompareCli : public ::testing::Test {
+class CompareCli : public test::FolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("pm_compare_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  CompareCli() : FolderTest("pm_compare_") {}
 
   std::string write(const std::string& name, int w, int h, const std::vector<float>& rgb, bool with_direct = false) {
     FrameImage image;
@@ -173,8 +168,6 @@ class CompareCli : public ::testing::Test {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "diff.exr"));
   }
-
-  fs::path dir_;
 };
 
 TEST_F(CompareCli, PassesUnderThresholdFailsOverAndPrintsTheChosenMetricLast) {

@@ -13,25 +13,16 @@
 #include "scene_io/obj_large_faces.h"
 #include "scene_io/obj_mesh.h"
 #include "scene_io/scene_file.h"
+#include "support/test_folder.h"
 
 namespace pm {
 namespace {
 
 namespace fs = std::filesystem;
 
-class ObjHostile : public ::testing::Test {
+class ObjHostile : public test::FolderTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           (std::string("pm_obj_hostile_") + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-    return (dir_ / name).string();
-  }
+  ObjHostile() : FolderTest("pm_obj_hostile_") {}
   std::string scene(const std::string& extra = "") {
     return write("scene.json", R"({"format": "pmrender-scene", "version": 1, "meshes": [{"file": "mesh.obj"}],)" + extra +
                                    R"( "lights": [{"position": [0, 2, 0], "power": [1, 1, 1]}],
@@ -71,7 +62,6 @@ class ObjHostile : public ::testing::Test {
     }
     return total;
   }
-  fs::path dir_;
 };
 
 TEST_F(ObjHostile, AConvexFaceOfAHundredThousandCornersLoadsInLinearTime) {
