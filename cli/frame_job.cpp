@@ -54,6 +54,14 @@ std::vector<std::pair<std::string, std::string>> FrameJob::attributes(int frame,
       {"pmrender/render_seconds", number_text(report.seconds)}};
   if (!stopped_by.empty()) a.push_back({"pmrender/stopped_by", stopped_by});
   if (report.error >= 0) a.push_back({"pmrender/error_estimate", number_text(report.error)});
+  if (const BiasEstimate& bias = renderer_.last_bias(); bias.known) {
+    // The estimate's bias part (render/bias_control.h): regional |bias|, the signed bias of the
+    // control pixels' sum with its standard error, and the control's paths per pixel.
+    a.push_back({"pmrender/error_bias", number_text(bias.regional_bias)});
+    a.push_back({"pmrender/error_bias_signed", number_text(bias.signed_bias)});
+    a.push_back({"pmrender/error_bias_stderr", number_text(bias.bias_error)});
+    a.push_back({"pmrender/error_control_paths", std::to_string(bias.paths)});
+  }
   if (const IndirectMethod* method = renderer_.method()) {
     const auto [unit, per_pass] = method->work_per_pass();
     a.push_back({"pmrender/" + unit + "s_total", number_text(per_pass * report.passes)});

@@ -25,6 +25,7 @@ class PhotonOptions final : public MethodOptions {
   std::string sequence = "random";
   std::string progressive = "average";
   std::string footprint_clip = "on";
+  std::string footprint_coverage = "on";
 
   std::shared_ptr<const MethodSettings> settings() const override {
     auto s = std::make_shared<PhotonSettings>(settings_);
@@ -36,6 +37,9 @@ class PhotonOptions final : public MethodOptions {
     int clip = 1;
     value_of(kFootprintClipNames, footprint_clip, &clip);
     s->footprint_clip = clip != 0;
+    int coverage = 1;
+    value_of(kFootprintClipNames, footprint_coverage, &coverage);
+    s->footprint_coverage = coverage != 0;
     if (smoothing == "auto") {
       s->smoothing = 0;
     } else {
@@ -102,6 +106,11 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
   cmd->add_option("--footprint-clip", o->footprint_clip,
                   "on: footprints stop at the walls around their hit (no light through thin walls; one scene "
                   "query per photon hit); off: the paper's whole ellipses, faster (docs/algorithm.md)")
+      ->capture_default_str()->check(CLI::IsMember(names_of(kFootprintClipNames)))->group(group);
+  cmd->add_option("--footprint-coverage", o->footprint_coverage,
+                  "on: a footprint's flux is spread over the part of it that lies on a surface (no light "
+                  "lost where a footprint hangs over an edge; a few short rays per photon hit); off: over "
+                  "the whole (clipped) ellipse")
       ->capture_default_str()->check(CLI::IsMember(names_of(kFootprintClipNames)))->group(group);
   cmd->add_option("--progressive", o->progressive,
                   "How passes combine: average (the same footprints every pass; noise falls, bias stays) or "

@@ -84,6 +84,11 @@ class IndirectMethod {
   virtual std::string describe() const = 0;
   // The most passes a frame can use; 0: any number (a progressive method).
   virtual uint32_t max_passes() const = 0;
+  // The diffuse and glossy bounces of indirect light it estimates (--bounces), and whether it
+  // may be biased: the error estimate's bias control path-traces those light paths beside a
+  // biased method's film (render/bias_control.h); an unbiased one needs no control.
+  virtual uint32_t light_bounces() const = 0;
+  virtual bool may_be_biased() const = 0;
 
   // Once per frame, before its passes. change says what differs from the previous frame.
   virtual void begin_frame(const FrameContext& frame, const FrameChange& change) = 0;

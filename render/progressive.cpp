@@ -50,7 +50,7 @@ ProgressiveResult render_progressive(Renderer& renderer, int frame, const PassBu
   }
   renderer.resolve();
   result.passes = renderer.passes_done();
-  if (result.error < 0) result.error = renderer.estimate_error();
+  result.error = renderer.estimate_error(true);  // the control topped up to its paths
   result.seconds = seconds();
   return result;
 }

@@ -3,6 +3,7 @@
 // FrameImage with its layers.
 #include "render/renderer.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -96,7 +97,9 @@ Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& set
   extents.pixels = uint64_t(width_) * uint64_t(height_);
   extents.shading_points = extents.pixels * uint64_t(settings_.mirror_depth + 1);
   extents.error_tiles = (extents.pixels + PM_FILM_ERROR_TILE - 1) / PM_FILM_ERROR_TILE;
+  extents.control_pixels = control_grid(width_, height_).pixels();
   buffers_.allocate(BufferGroup::frame, extents);
+  control_ = std::make_unique<BiasControl>(device_, buffers_, width_, height_);
   if (settings_.method) {
     MethodContext context{device_,  scene_,  measures_, buffers_, width_, height_, uint32_t(extents.shading_points),
                           settings_.passes};
@@ -200,6 +203,8 @@ void Renderer::begin_frame(int frame) {
   passes_done_ = 0;
   odd_passes_ = 0;
   next_pass_ = 0;
+  control_->begin_frame();
+  last_bias_ = BiasEstimate{};
   if (method_) method_->begin_frame(frame_, change);
 }
 
@@ -214,7 +219,26 @@ void Renderer::run_pass(uint32_t pass) {
   next_pass_ = pass + 1;
 }
 
-double Renderer::estimate_error() {
+double Renderer::estimate_error(bool final, double noise_scale) {
+  double noise = estimate_noise();
+  if (noise >= 0) noise *= noise_scale;
+  if (method_ && method_->may_be_biased() && settings_.control_paths > 0 && passes_done_ > 0) {
+    // Paths in steps as passes go (a budget asks after every pass), topped up at the end.
+    // (A launch of no paths still reads the film at the control pixels again.)
+    const uint64_t have = control_->paths();
+    const uint64_t want = final ? std::max<uint64_t>(have, settings_.control_paths)
+                                : have + std::min<uint32_t>(settings_.control_paths, kControlPathsPerStep);
+    LaunchParams p = frame_.params;
+    p.max_bounces = method_->light_bounces();
+    p.film_passes = passes_done_;
+    last_bias_ = control_->add_and_compare(p, uint32_t(want - have));
+  }
+  const double bias = last_bias_.known ? last_bias_.regional_bias : -1.0;
+  if (noise < 0 && bias < 0) return -1.0;
+  return std::sqrt(std::max(noise, 0.0) * std::max(noise, 0.0) + std::max(bias, 0.0) * std::max(bias, 0.0));
+}
+
+double Renderer::estimate_noise() {
   if (odd_passes_ == 0 || odd_passes_ == passes_done_) return -1.0;
   LaunchParams p = frame_.params;
   p.film_passes = passes_done_;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "render/bias_control.h"
 #include "render/buffer_table.h"
 #include "render/device.h"
 #include "render/image.h"
@@ -30,6 +31,9 @@ struct RenderSettings {
   // unchanged lights (random numbers keyed by that frame; work kept when still on the device).
   // false: every frame computes its lighting keyed by its own frame number, like a still render.
   bool reuse_lighting = true;
+  // Paths per control pixel of the error estimate's bias control (render/bias_control.h) by the
+  // time a frame's error is estimated; 0: the estimate sees noise only.
+  uint32_t control_paths = 128;
   std::shared_ptr<const MethodSettings> method;  // null: direct light only
 
   // Throws SettingError naming the first setting out of range (the method's too).
@@ -76,11 +80,17 @@ class Renderer {
   // frame's passes, each running its own subset; their sums add up to the frame's.
   void run_pass(uint32_t pass);
 
-  // Expected relative error of the indirect light (indirect + caustic) of the passes so far: the
-  // mean absolute difference between the even and the odd passes' means, scaled to the mean of
-  // all passes, over the mean indirect light (docs/progressive.md). Needs at least one even and
-  // one odd pass in the film; negative otherwise. Waits for the device.
-  double estimate_error();
+  // Expected relative error of the indirect light (indirect + caustic) of the passes so far,
+  // sqrt(noise^2 + bias^2): the noise from the mean absolute difference between the even and the
+  // odd passes' means, scaled to the mean of all passes, over the mean indirect light
+  // (docs/progressive.md; needs an even and an odd pass), the bias from the control pixels of a
+  // method that may be biased (render/bias_control.h: each call adds paths there, up to
+  // control_paths when `final`). Negative when neither is known. Waits for the device.
+  // noise_scale: the noise part's factor (a device holding part of a frame's passes).
+  double estimate_error(bool final = false, double noise_scale = 1.0);
+  // The noise part alone (negative when unknown), and the control's last comparison.
+  double estimate_noise();
+  const BiasEstimate& last_bias() const { return last_bias_; }
 
   // The film sums (waits for the device), and sums put back or added in: a checkpoint's resume,
   // or another device's passes. set_film_sums also sets the pass count; add_film_sums adds it.
@@ -120,6 +130,8 @@ class Renderer {
   SceneMeasures measures_;
   BufferTable buffers_;
   std::unique_ptr<IndirectMethod> method_;
+  std::unique_ptr<BiasControl> control_;
+  BiasEstimate last_bias_;
 
   FrameContext frame_;            // the frame being rendered (timer and stats switch persist)
   uint32_t passes_done_ = 0;      // passes summed in the film

@@ -58,10 +58,10 @@ ProgressiveResult RendererPool::render_progressive(int frame, const PassBudget& 
         report.passes = done;
         report.seconds = seconds();
         if (d == 0 && budget.target_error > 0) {
-          const double own = r.estimate_error();
           // The first device holds passes_per_device_[0] of the frame's passes: the frame's mean
-          // has sqrt(done / own passes) less noise.
-          if (own >= 0) report.error = own * std::sqrt(double(r.passes_done()) / double(done));
+          // has sqrt(done / own passes) less noise (its bias is the same).
+          const double own = r.estimate_error(false, std::sqrt(double(r.passes_done()) / double(done)));
+          if (own >= 0) report.error = own;
         }
         if (d == 0 && callbacks.after_pass) callbacks.after_pass(report);
         std::lock_guard<std::mutex> lock(stop_mutex);
@@ -93,7 +93,7 @@ ProgressiveResult RendererPool::render_progressive(int frame, const PassBudget& 
     if (renderers_[d]->passes_done() > 0) first().add_film_sums(renderers_[d]->film_sums());
   first().resolve();
   result.passes = first().passes_done();
-  result.error = first().estimate_error();
+  result.error = first().estimate_error(true);
   result.seconds = seconds();
   return result;
 }

@@ -34,6 +34,9 @@
   X(frame, float4, film_indirect, pixels, 1)  /* resolved: sum / passes */                                  \
   X(frame, float4, film_caustic, pixels, 1)                                                                 \
   X(frame, float4, film_combined, pixels, 1)  /* direct + indirect + caustic; w = 1: repaired pixel */      \
+  /* the error estimate's bias control (bias_control.h), one entry per control pixel */                    \
+  X(frame, float4, control_sums, control_pixels, 1) /* paths' rgb sum, w = sum of squared channel means */ \
+  X(frame, float4, control_film, control_pixels, 1) /* the film's indirect + caustic there; w = pixel */   \
   /* photon mapping, S1 emitters: per light (first photon of the pass, photon count, 0, 0) */              \
   X(photon, uint4, photon_emitters, uploaded, 1)                                                            \
   /* photon mapping, S2 hits: slot order [photon * hit_slots_per_photon + k] */                            \

@@ -18,6 +18,7 @@
   K(path_trace)        /* path tracer: paths from every shading point into film_indirect_sum */ \
   K(film_resolve)      /* S7: sums / passes; combined = direct + indirect + caustic, NaN guard */\
   K(film_error_tiles)  /* S7: per-tile sums for the error estimate from even and odd passes */ \
+  K(bias_control)      /* S7: paths at sparse control pixels beside the film, for the error's bias */ \
   K(radiosity_link_trace)   /* radiosity: nC rays per element of a batch, barycentric links */ \
   K(radiosity_link_merge)   /* radiosity: an element's links to one element combined */        \
   K(radiosity_link_store)   /* radiosity: merged links, compact, at host-computed offsets */   \

@@ -10,6 +10,7 @@
 
 #include "footprint.h"
 #include "footprint_clip.h"
+#include "footprint_coverage.h"
 #include "kernel_globals.h"
 #include "photon_map.h"
 #include "photon_trace.h"
@@ -66,6 +67,13 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
   if (p->footprint_clip)
     cut = footprint_clip(kg, &f, center, vec3_normalize(vec3_from_float4(n4)),
                          ray_offset_distance(center, 0.0f, p->ray_epsilon), p->kernel_shape);
+  if (p->footprint_coverage && p->estimator != PM_ESTIMATOR_KNN) {
+    /* The pattern's turn: drawn per hit and pass, the same on every backend. */
+    float turn = PM_TWO_PI * rng_to_unit(rng_bits4(p->seed, p->photon_frame, slot, p->pass_index,
+                                                   PM_STREAM_FOOTPRINT_PROBE, p->photon_offset).b0);
+    cut.kept *= footprint_covered_share(kg, &f, &cut, center, vec3_normalize(vec3_from_float4(n4)),
+                                        ray_offset_distance(center, 0.0f, p->ray_epsilon), turn, p->kernel_shape);
+  }
   Vec3 lo, hi;
   footprint_bounds(f, center, &lo, &hi);
   float area = footprint_area(f) * cut.kept;

@@ -9,6 +9,7 @@
 #include "film.h"
 #include "gather.h"
 #include "path_trace.h"
+#include "bias_control.h"
 #include "photon_footprint.h"
 #include "footprint_scale.h"
 #include "photon_map_stage.h"

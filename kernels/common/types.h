@@ -109,6 +109,11 @@ typedef struct LaunchParams {
   uint light_sampling;   /* radiosity: PM_RADIOSITY_LIGHT_* */
   float feature_cos;     /* radiosity: cos alpha_f, the feature angle of the smoothing (eq. 6) */
   uint radiosity_unused;
+
+  uint footprint_coverage; /* 1: footprints' area is the part on a surface (footprint_coverage.h) */
+  uint control_stride;     /* bias control: one control pixel per stride x stride block (bias_control.h) */
+  uint control_samples;    /* bias control: paths per control pixel in this launch */
+  uint control_first_sample; /* bias control: index of the launch's first path (random stream) */
 } LaunchParams;
 
 /* Photon emission sequences (--photon-sequence). RANDOM: Philox keyed by (seed, photon_frame).

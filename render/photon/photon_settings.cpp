@@ -68,6 +68,7 @@ std::string PhotonSettings::describe() const {
     << " leaf=" << (leaf_threshold > 0 ? std::to_string(leaf_threshold) : "auto")
     << " photon_sequence=" << name_of(kPhotonSequenceNames, sequence)
     << " footprint_clip=" << name_of(kFootprintClipNames, footprint_clip ? 1 : 0)
+    << " footprint_coverage=" << name_of(kFootprintClipNames, footprint_coverage ? 1 : 0)
     << " progressive=" << name_of(kProgressiveNames, progressive);
   if (progressive == kProgressiveShrink) s << " alpha=" << alpha;
   return s.str();

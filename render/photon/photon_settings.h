@@ -44,6 +44,9 @@ class PhotonSettings final : public MethodSettings {
   // Footprints cut at the walls around their hit (kernels/common/footprint_clip.h): no light leaks
   // through thin walls, at one scene-BVH box query per hit; off: the paper's whole ellipses.
   bool footprint_clip = true;
+  // A footprint's area is the part of it that lies on a surface the gather accepts
+  // (kernels/common/footprint_coverage.h): no light lost over edges, at a few short rays per hit.
+  bool footprint_coverage = true;
   int progressive = kProgressiveAverage;
   float alpha = 2.0f / 3.0f;  // shrink: r_i^2 = r_{i-1}^2 (i + alpha) / (i + 1) (Knaus & Zwicker 2011)
 

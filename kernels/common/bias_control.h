@@ -1,0 +1,72 @@
+/* The bias control of the error estimate: a sparse, unbiased check of whatever method filled the
+   film. One control pixel per control_stride x control_stride block of the image (its position
+   in the block drawn per frame) gets control_samples more paths of the reference path tracer
+   (path_trace.h) from the camera pass's shading points, with the same mirror weights as the film.
+   Their sums are kept per control pixel across launches, so the control grows more precise the
+   longer a frame renders; the host compares them with the film's indirect + caustic light at the
+   same pixels (render/bias_control.cpp). A photon or radiosity image that is 15 % too dark in its
+   corners then says so, where the even/odd noise estimate alone (film.h) cannot see a bias at all.
+
+   Per control pixel, control_sums holds (sum of the paths' indirect radiance rgb, sum of the
+   squares of their channel means) over every launch of the frame (the host counts the paths),
+   and control_film the film's resolved indirect + caustic light there at the latest launch, with
+   the pixel's index in w. Random numbers: the path
+   tracer's stream, keyed by (seed ^ PM_STREAM_CONTROL, frame), so the control never shares a path
+   with a --method path render of the same seed. */
+#ifndef PM_BIAS_CONTROL_H
+#define PM_BIAS_CONTROL_H
+
+#include "path_trace.h"
+
+#define PM_STREAM_CONTROL 0x43544c52u /* "CTLR" */
+
+/* The pixel of control item c, or 0 when the block lies outside the image. */
+PM_DEVICE int control_pixel(const LaunchParams* p, uint c, uint* pixel)
+{
+  uint stride = p->control_stride > 0u ? p->control_stride : 1u;
+  uint blocks_x = (p->width + stride - 1u) / stride;
+  uint bx = c % blocks_x, by = c / blocks_x;
+  uint x0 = bx * stride, y0 = by * stride;
+  if (y0 >= p->height) return 0;
+  uint w = pm_min_u(stride, p->width - x0), h = pm_min_u(stride, p->height - y0);
+  Uniform4 u = rng_uniform4(p->seed ^ PM_STREAM_CONTROL, p->frame, c, 0u, PM_STREAM_CONTROL);
+  uint x = x0 + pm_min_u((uint)(u.u0 * (float)w), w - 1u);
+  uint y = y0 + pm_min_u((uint)(u.u1 * (float)h), h - 1u);
+  *pixel = y * p->width + x;
+  return 1;
+}
+
+/* Work item = control pixel. */
+PM_DEVICE void kernel_bias_control(const KernelGlobals* kg, const LaunchParams* p, uint c)
+{
+  uint pixel;
+  if (!control_pixel(p, c, &pixel)) return;
+  uint pixels = p->width * p->height;
+  LaunchParams q = *p;
+  q.seed = p->seed ^ PM_STREAM_CONTROL;
+  q.path_frame = p->frame;
+  Vec3 sum = vec3_splat(0.0f);
+  float squares = 0.0f;
+  for (uint s = 0; s < p->control_samples; ++s) {
+    Vec3 path = vec3_splat(0.0f);
+    for (uint depth = 0; depth <= p->mirror_depth; ++depth) {
+      ShadingPoint sp;
+      if (!shading_point_load(kg, depth * pixels + pixel, &sp)) break;
+      Vec3 l = path_radiance(kg, &q, &sp.material, sp.position, sp.normal, sp.outgoing, pixel, depth,
+                             p->control_first_sample + s);
+      path = vec3_add(path, vec3_mul(sp.weight, l));
+    }
+    if (!pm_isfinite(path.x + path.y + path.z)) continue; /* counted, as zero: never poisons the sums */
+    sum = vec3_add(sum, path);
+    float mean = (path.x + path.y + path.z) * (1.0f / 3.0f);
+    squares += mean * mean;
+  }
+  float4 old = kg->control_sums[c];
+  kg->control_sums[c] = PM_MAKE_FLOAT4(old.x + sum.x, old.y + sum.y, old.z + sum.z, old.w + squares);
+  float inv_passes = 1.0f / (float)(p->film_passes > 0u ? p->film_passes : 1u);
+  Vec3 film = vec3_scale(vec3_add(vec3_from_float4(kg->film_indirect_sum[pixel]),
+                                  vec3_from_float4(kg->film_caustic_sum[pixel])), inv_passes);
+  kg->control_film[c] = vec3_to_float4(film, PM_UINT_AS_FLOAT(pixel));
+}
+
+#endif

@@ -1,0 +1,81 @@
+// The bias control's grid, its launch and the comparison of its paths with the film.
+#include "render/bias_control.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render/buffer_table.h"
+#include "render/device.h"
+
+namespace pm {
+
+ControlGrid control_grid(int width, int height) {
+  ControlGrid g;
+  const double pixels = double(std::max(width, 1)) * std::max(height, 1);
+  g.stride = uint32_t(std::max(1.0, std::floor(std::sqrt(pixels / kControlPixelsTarget))));
+  g.blocks_x = (uint32_t(std::max(width, 1)) + g.stride - 1) / g.stride;
+  g.blocks_y = (uint32_t(std::max(height, 1)) + g.stride - 1) / g.stride;
+  return g;
+}
+
+BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const std::vector<float4>& control_film,
+                                  const ControlGrid& grid, uint64_t paths, uint32_t region_side) {
+  BiasEstimate e;
+  e.paths = paths;
+  if (paths < 2 || control_sums.size() < grid.pixels() || control_film.size() < grid.pixels()) return e;
+  const double n = double(paths);
+  const uint32_t side = std::max(region_side, 1u);
+  const uint32_t regions_x = (grid.blocks_x + side - 1) / side, regions_y = (grid.blocks_y + side - 1) / side;
+  std::vector<double> region_difference(size_t(regions_x) * regions_y, 0.0);
+  std::vector<double> region_variance(region_difference.size(), 0.0);
+  double control_total = 0, difference_total = 0, variance_total = 0;
+  for (uint32_t by = 0; by < grid.blocks_y; ++by)
+    for (uint32_t bx = 0; bx < grid.blocks_x; ++bx) {
+      const size_t c = size_t(by) * grid.blocks_x + bx;
+      const float4 s = control_sums[c];
+      const double mean = (double(s.x) + s.y + s.z) / 3.0 / n;
+      // The sample variance of one path's channel mean, and so of the control's mean here.
+      const double path_variance = std::max(0.0, (double(s.w) / n - mean * mean) * n / (n - 1.0));
+      const double variance = path_variance / n;
+      const float4 f = control_film[c];
+      const double film = (double(f.x) + f.y + f.z) / 3.0;
+      if (!std::isfinite(mean) || !std::isfinite(film) || !std::isfinite(variance)) continue;
+      const size_t r = size_t(by / side) * regions_x + bx / side;
+      region_difference[r] += film - mean;
+      region_variance[r] += variance;
+      control_total += mean;
+      difference_total += film - mean;
+      variance_total += variance;
+    }
+  if (!(control_total > 0)) return e;
+  double regional = 0;
+  for (size_t r = 0; r < region_difference.size(); ++r)
+    regional += std::sqrt(std::max(0.0, region_difference[r] * region_difference[r] - region_variance[r]));
+  e.signed_bias = difference_total / control_total;
+  e.bias_error = std::sqrt(variance_total) / control_total;
+  e.regional_bias = regional / control_total;
+  e.known = true;
+  return e;
+}
+
+BiasControl::BiasControl(Device& device, BufferTable& buffers, int width, int height)
+    : device_(device), buffers_(buffers), grid_(control_grid(width, height)) {}
+
+BiasEstimate BiasControl::add_and_compare(LaunchParams params, uint32_t samples) {
+  const uint64_t items = grid_.pixels();
+  if (!cleared_) {
+    device_.fill_zero(buffers_[BufferSlot::control_sums], buffers_[BufferSlot::control_sums].bytes());
+    cleared_ = true;
+  }
+  params.control_stride = grid_.stride;
+  params.control_samples = samples;
+  params.control_first_sample = uint32_t(paths_);
+  device_.launch(KernelId::bias_control, items, params);
+  paths_ += samples;
+  std::vector<float4> sums(items), film(items);
+  device_.download(buffers_[BufferSlot::control_sums], sums.data(), items * sizeof(float4));
+  device_.download(buffers_[BufferSlot::control_film], film.data(), items * sizeof(float4));
+  return compare_with_control(sums, film, grid_, paths_, kControlRegionSide);
+}
+
+}  // namespace pm

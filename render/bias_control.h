@@ -1,0 +1,72 @@
+// The bias part of a frame's error estimate: sparse path-traced control pixels compared with
+// the film (kernels/common/bias_control.h). The even/odd estimate of the film (film.h) sees
+// noise only: a photon map whose footprints lose light over edges reads 0.3 % while its image
+// is 17 % too dark. The control is an unbiased sample of the true image at one pixel per block,
+// so the film's deviation from it there, less the control's own noise, is the bias that a user
+// trading speed for accuracy must be told about.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "render/kernel_abi.h"
+
+namespace pm {
+
+class BufferTable;
+class Device;
+
+// What the control says about the film, relative to the mean indirect light of the control
+// pixels.
+struct BiasEstimate {
+  double signed_bias = 0;   // (film - control) summed over every control pixel / control sum
+  double bias_error = 0;    // the standard error of signed_bias from the control's paths
+  double regional_bias = 0; // sum over regions of |film - control|, less the control's noise there
+  uint64_t paths = 0;       // paths per control pixel so far
+  bool known = false;       // false: no control ran, or the control saw no light
+};
+
+// The control pixel grid of a film: one pixel per stride x stride block, stride chosen so that
+// a frame has about kControlPixelsTarget of them (every pixel of a small film).
+struct ControlGrid {
+  uint32_t stride = 1;
+  uint32_t blocks_x = 0, blocks_y = 0;
+  uint64_t pixels() const { return uint64_t(blocks_x) * blocks_y; }
+};
+constexpr uint32_t kControlPixelsTarget = 8192;
+// Control pixels per region side: regions of 4 x 4 control pixels (about 28 x 28 pixels of a
+// 960 x 540 film) are where a bias is looked for (an edge's, a corner's).
+constexpr uint32_t kControlRegionSide = 4;
+// Paths per control pixel added by each estimate while a frame goes on (a target error asks
+// after every pass).
+constexpr uint32_t kControlPathsPerStep = 16;
+ControlGrid control_grid(int width, int height);
+
+// Deviation of the film from the control, from the per-control-pixel sums (control_sums /
+// control_film as the kernel writes them). Regions are groups of region_side x region_side
+// control pixels: within one, the film's bias is summed before its absolute value is taken,
+// and the control's variance there is subtracted from the square (an unbiased |bias|^2).
+BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const std::vector<float4>& control_film,
+                                  const ControlGrid& grid, uint64_t paths, uint32_t region_side);
+
+// Runs the control beside a renderer's film: clears it per frame, adds paths on demand.
+class BiasControl {
+ public:
+  BiasControl(Device& device, BufferTable& buffers, int width, int height);
+  // A new frame: no paths yet.
+  void begin_frame() { paths_ = 0; cleared_ = false; }
+  // `samples` more paths per control pixel under `params` (the frame's, with the method's
+  // bounces and the film's pass count), then the comparison. Waits for the device.
+  BiasEstimate add_and_compare(LaunchParams params, uint32_t samples);
+  const ControlGrid& grid() const { return grid_; }
+  uint64_t paths() const { return paths_; }
+
+ private:
+  Device& device_;
+  BufferTable& buffers_;
+  ControlGrid grid_;
+  uint64_t paths_ = 0;
+  bool cleared_ = false;
+};
+
+}  // namespace pm
