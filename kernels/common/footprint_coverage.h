@@ -59,22 +59,29 @@ PM_DEVICE int footprint_cut_keeps(const FootprintCut* cut, float x, float y)
   return 1;
 }
 
-/* Whether a surface the gather would accept for this footprint lies under disc point (x, y): the
-   first hit of a ray along -n through the ellipsoid's thickness there, from its top to its
-   bottom (plus the hit's ray offset on both sides, so the photon's own plane is always inside),
-   with a normal that faces n within the gather's angle. */
+/* Whether a surface the gather would accept for this footprint lies under disc point (x, y): a
+   ray along -n through the ellipsoid's thickness there, from its top to its bottom (plus the
+   hit's ray offset on both sides, so the photon's own plane is always inside), finds a surface
+   whose normal lies within the gather's angle of n. Steeper surfaces on the way (a column, the
+   side of an arch inside a thick footprint) do not hide an accepted one below them: the ray goes
+   on past up to PM_FOOTPRINT_PROBE_HITS of them. */
+#define PM_FOOTPRINT_PROBE_HITS 4
 PM_DEVICE int footprint_probe_covered(const KernelGlobals* kg, const Footprint* f, Vec3 center, Vec3 n, float offset,
                                       float x, float y)
 {
-  float half = vec3_length(f->axis_n) * pm_sqrtf(pm_fmaxf(1.0f - x * x - y * y, 0.0f)) + offset;
+  float reach = vec3_length(f->axis_n) * pm_sqrtf(pm_fmaxf(1.0f - x * x - y * y, 0.0f)) + offset;
   Vec3 at = vec3_add(center, vec3_add(vec3_scale(f->axis_u, x), vec3_scale(f->axis_v, y)));
-  Ray ray = ray_make(vec3_madd(at, n, half), vec3_neg(n));
-  SceneHit hit = scene_trace(kg->scene_nodes, kg->triangles, &ray, 0.0f, 2.0f * half, 0);
-  if (hit.triangle < 0) return 0;
-  /* Triangles are two-sided: the side facing the probe (it comes from the photon's side). */
-  Vec3 m = scene_triangle_normal(kg->triangles, hit.triangle);
-  float facing = pm_fabsf(vec3_dot(m, n));
-  return facing * facing >= PM_GATHER_MIN_NORMAL_COS2;
+  Ray ray = ray_make(vec3_madd(at, n, reach), vec3_neg(n));
+  float t_min = 0.0f;
+  for (int k = 0; k < PM_FOOTPRINT_PROBE_HITS; ++k) {
+    SceneHit hit = scene_trace(kg->scene_nodes, kg->triangles, &ray, t_min, 2.0f * reach, 0);
+    if (hit.triangle < 0) return 0;
+    /* Triangles are two-sided: either side may face the gather's shading point. */
+    float facing = vec3_dot(scene_triangle_normal(kg->triangles, hit.triangle), n);
+    if (facing * facing >= PM_GATHER_MIN_NORMAL_COS2) return 1;
+    t_min = hit.t;
+  }
+  return 0;
 }
 
 /* Share of the kernel mass kept by `cut` that lies on accepted surface, in (0, 1]. turn: the
