@@ -19,6 +19,10 @@
 #   multi       bench/multi_gpu_suite.sh on CUDA and OpenCL, devices 0,1 (a two-GPU machine)
 #   progressive bench/progressive_suite.sh on CUDA and OpenCL: passes per second and error after
 #               1, 10 and 60 s, Sponza and the Cornell box at 1920x1080 (docs/progressive.md)
+#   accuracy    bench/accuracy_suite.sh on CUDA: the CI-size references (96x54, 65536 paths per
+#               pixel, every benchmark and golden scene, 2 and 1 bounces) as accuracy-ci.tgz, then at
+#               $ACCURACY_SIZE (default 960x540; 4096-path references) every method's defaults
+#               and $ACCURACY_CONFIGS (extra "NAME|ARGS" rows, separated by ';') (docs/accuracy.md)
 #   mitsuba     per scene of $MITSUBA_SCENES (default sponza; conference, sibenik, cornell-mcguire) at
 #               960x540: `pmrender tradeoff` (CUDA; a 16 x 256-path reference) and Mitsuba 3's
 #               cuda_ad_rgb path tracer against the same reference (docs/tradeoff.md); needs the
@@ -44,6 +48,23 @@ for step in "$@"; do
       "$bundle/bin/pm_gpu_tests" >"$out/gpu_tests.txt" 2>&1; echo "pm_gpu_tests exit $?" | tee -a "$out/summary.txt"
       "$bundle/bin/pm_opencl_tests" >"$out/opencl_tests.txt" 2>&1; echo "pm_opencl_tests exit $?" | tee -a "$out/summary.txt"
       grep -E "^\[  (PASSED|FAILED)|tests? ran|SKIPPED \]" "$out"/gpu_tests.txt "$out"/opencl_tests.txt | tee -a "$out/summary.txt"
+      ;;
+    accuracy)
+      suite=$bundle/bench/accuracy_suite.sh
+      all="builtin cornell-mcguire sponza sibenik conference glossy mirror-box ring three-lights"
+      "$suite" --backend cuda --out "$out/accuracy-ci" --size 96x54 --ref-spp 65536 --scenes "$all" --only-references \
+        >"$out/accuracy-ci.log" 2>&1
+      "$suite" --backend cuda --out "$out/accuracy-ci" --size 96x54 --ref-spp 65536 --bounces 1 --only-references \
+        >>"$out/accuracy-ci.log" 2>&1
+      tar czf "$out/accuracy-ci.tgz" -C "$out" accuracy-ci && rm -rf "$out/accuracy-ci"
+      extra=()
+      IFS=';' read -r -a rows <<<"${ACCURACY_CONFIGS:-}"
+      for r in ${rows[@]+"${rows[@]}"}; do extra+=(--config "$r"); done
+      "$suite" --backend cuda --out "$out/accuracy" --size "${ACCURACY_SIZE:-960x540}" --ref-spp 4096 \
+        ${extra[@]+"${extra[@]}"} >"$out/accuracy.log" 2>&1
+      echo "accuracy suite exit $?" | tee -a "$out/summary.txt"; cat "$out/accuracy/accuracy.tsv" >>"$out/summary.txt"
+      cat "$out/accuracy/references.txt" >>"$out/summary.txt" 2>/dev/null
+      rm -f "$out"/accuracy/*.exr
       ;;
     paper)
       "$bundle/bench/run_suite.sh" --backend cuda,opencl --profile paper --knn --unclipped --out "$out/paper" >"$out/paper.log" 2>&1

@@ -16,6 +16,7 @@
 #   OUT_DIR/bench/run_suite.sh    the suites (and radiosity_suite.sh, suite_common.sh); find ../bin/pmrender and ../env.sh
 #   OUT_DIR/bench/tradeoff_suite.sh, mitsuba_peer.py, OUT_DIR/tests/mitsuba/pm_mitsuba.py:
 #                                 the speed/accuracy suite and its Mitsuba peer (docs/tradeoff.md)
+#   OUT_DIR/bench/accuracy_suite.sh, OUT_DIR/golden/scenes/: references and biases (docs/accuracy.md)
 #   OUT_DIR/bench/scenes/*.json   the bench scene files, paths rewritten to ../../shared/scenes/
 #   OUT_DIR/shared.tar.xz         the OBJ and MTL files they name (no textures: nothing reads them),
 #                                 as shared/scenes/...; env.sh unpacks it on first use
@@ -45,7 +46,10 @@ cp -r "$repo/tests/data" "$out/data"
 mkdir -p "$out/bench/scenes" "$out/shared/scenes"
 cp "$repo/bench/run_suite.sh" "$repo/bench/radiosity_suite.sh" "$repo/bench/multi_gpu_suite.sh" "$repo/bench/suite_common.sh" \
    "$repo/bench/tradeoff_suite.sh" "$repo/bench/progressive_suite.sh" "$repo/bench/mitsuba_peer.py" "$repo/bench/gpu_check.sh" \
-   "$out/bench/"
+   "$repo/bench/accuracy_suite.sh" "$out/bench/"
+# The golden scenes (small, with their meshes) for the accuracy suite's references.
+mkdir -p "$out/golden"
+cp -r "$repo/golden/scenes" "$out/golden/"
 # The Mitsuba converter mitsuba_peer.py imports (docs/tradeoff.md, "H200 (CUDA)").
 mkdir -p "$out/tests/mitsuba"
 cp "$repo/tests/mitsuba/pm_mitsuba.py" "$repo/tests/mitsuba/requirements.txt" "$out/tests/mitsuba/"

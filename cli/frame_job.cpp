@@ -55,8 +55,10 @@ std::vector<std::pair<std::string, std::string>> FrameJob::attributes(int frame,
   if (!stopped_by.empty()) a.push_back({"pmrender/stopped_by", stopped_by});
   if (report.error >= 0) a.push_back({"pmrender/error_estimate", number_text(report.error)});
   if (const BiasEstimate& bias = renderer_.last_bias(); bias.known) {
-    // The estimate's bias part (render/bias_control.h): regional |bias|, the signed bias of the
-    // control pixels' sum with its standard error, and the control's paths per pixel.
+    // What the control saw (render/bias_control.h): the estimate's upper end, the regional
+    // |bias|, the signed bias of the control pixels' sum with its standard error, and the
+    // control's paths per pixel.
+    a.push_back({"pmrender/error_estimate_upper", number_text(bias.rms_error_upper)});
     a.push_back({"pmrender/error_bias", number_text(bias.regional_bias)});
     a.push_back({"pmrender/error_bias_signed", number_text(bias.signed_bias)});
     a.push_back({"pmrender/error_bias_stderr", number_text(bias.bias_error)});

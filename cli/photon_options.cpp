@@ -91,6 +91,10 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
                       " times on average: the same image at any scene size) or a number, the paper's factor s "
                       "(section 4.3)")
       ->capture_default_str()->group(group);
+  cmd->add_option("--overlap", o->settings_.overlap,
+                  "The automatic smoothing's target: photon footprints covering each point of the scene's "
+                  "surface on average (more: smoother, blurrier)")
+      ->capture_default_str()->group(group);
   cmd->add_option("--rmax", ph.rmax, "Largest footprint semiaxis and k-NN search radius, metres "
                                      "(default: 10% of the scene diagonal)")->transform(finite_float())->group(group);
   cmd->add_option("--radius", ph.radius, "Gather radius of --estimator radius, metres (default: 5% of the scene diagonal)")->transform(finite_float())

@@ -263,7 +263,7 @@ int run_render(const RenderCommandOptions& o) {
                     job.devices().c_str(), outcome.render_ms);
         if (outcome.result.passes > 1 || job_options.budget.open_ended())
           std::printf(", %u passes (%s)", outcome.result.passes, outcome.result.stopped_by.c_str());
-        if (outcome.result.error >= 0 && outcome.result.passes > 1) std::printf(", error ~%.2f%%", 100.0 * outcome.result.error);
+        if (outcome.result.error >= 0) std::printf(", error ~%.2f%%", 100.0 * outcome.result.error);
         if (outcome.resumed) std::printf(", continued from its checkpoint");
         if (outcome.photons_reused) std::printf(", photons reused");
         std::printf(")\n");

@@ -29,6 +29,7 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
   std::vector<double> region_difference(size_t(regions_x) * regions_y, 0.0);
   std::vector<double> region_variance(region_difference.size(), 0.0);
   double control_total = 0, difference_total = 0, variance_total = 0;
+  double squared_error_sum = 0, squared_error_squares = 0, counted = 0;
   for (uint32_t by = 0; by < grid.blocks_y; ++by)
     for (uint32_t bx = 0; bx < grid.blocks_x; ++bx) {
       const size_t c = size_t(by) * grid.blocks_x + bx;
@@ -46,11 +47,22 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
       control_total += mean;
       difference_total += film - mean;
       variance_total += variance;
+      const double squared_error = (film - mean) * (film - mean) - variance;  // unbiased for the MSE
+      squared_error_sum += squared_error;
+      squared_error_squares += squared_error * squared_error;
+      counted += 1;
     }
   if (!(control_total > 0)) return e;
   double regional = 0;
   for (size_t r = 0; r < region_difference.size(); ++r)
     regional += std::sqrt(std::max(0.0, region_difference[r] * region_difference[r] - region_variance[r]));
+  const double level = control_total / counted;
+  const double mse = squared_error_sum / counted;
+  const double mse_spread = counted > 1 ? std::sqrt(std::max(0.0, (squared_error_squares / counted - mse * mse) /
+                                                                      (counted - 1)))
+                                        : 0.0;
+  e.rms_error = std::sqrt(std::max(0.0, mse)) / level;
+  e.rms_error_upper = std::sqrt(std::max(0.0, mse + 2.0 * mse_spread)) / level;
   e.signed_bias = difference_total / control_total;
   e.bias_error = std::sqrt(variance_total) / control_total;
   e.regional_bias = regional / control_total;

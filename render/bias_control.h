@@ -17,13 +17,17 @@ class BufferTable;
 class Device;
 
 // What the control says about the film, relative to the mean indirect light of the control
-// pixels.
+// pixels. With d_c = film - control mean and v_c the variance of the control's mean at control
+// pixel c, E[d_c^2 - v_c] is the film's mean squared error there, noise and bias together: the
+// control measures the film's whole error, for any method, from one pass on.
 struct BiasEstimate {
-  double signed_bias = 0;   // (film - control) summed over every control pixel / control sum
-  double bias_error = 0;    // the standard error of signed_bias from the control's paths
-  double regional_bias = 0; // sum over regions of |film - control|, less the control's noise there
-  uint64_t paths = 0;       // paths per control pixel so far
-  bool known = false;       // false: no control ran, or the control saw no light
+  double rms_error = 0;       // sqrt(mean(d_c^2 - v_c)) / mean control: the film's relative RMS error
+  double rms_error_upper = 0; // the same with two standard errors of the mean added (stopping rules)
+  double signed_bias = 0;     // (film - control) summed over every control pixel / control sum
+  double bias_error = 0;      // the standard error of signed_bias from the control's paths
+  double regional_bias = 0;   // sum over regions of |film - control|, less the control's noise there
+  uint64_t paths = 0;         // paths per control pixel so far
+  bool known = false;         // false: no control ran, or the control saw no light
 };
 
 // The control pixel grid of a film: one pixel per stride x stride block, stride chosen so that

@@ -14,14 +14,14 @@ float auto_smoothing(double area_at_s1, double scene_area, double overlap) {
 }
 
 float batch_auto_smoothing(Device& device, const DeviceBuffer& partials, const LaunchParams& params, uint32_t tiles,
-                           double scene_area, double* area_at_s1) {
+                           double scene_area, double overlap, double* area_at_s1) {
   device.launch(KernelId::photon_footprint_scale, tiles, params);
   std::vector<float4> tile_sums(2 * size_t(tiles));
   device.download(partials, tile_sums.data(), tile_sums.size() * sizeof(float4));
   double area = 0;  // in tile order: the same sum whatever runs the tiles
   for (uint32_t t = 0; t < tiles; ++t) area += tile_sums[2 * size_t(t)].x;
   if (area_at_s1) *area_at_s1 = area;
-  return auto_smoothing(area, scene_area);
+  return auto_smoothing(area, scene_area, overlap);
 }
 
 }  // namespace pm

@@ -34,6 +34,6 @@ float auto_smoothing(double area_at_s1, double scene_area, double overlap = kAut
 // footprint stage, `tiles` tiles of PM_PHOTON_MAP_BOUNDS_TILE slots, partials bound to
 // map_partials) and returns the batch's automatic s. *area_at_s1 (if not null) gets A1.
 float batch_auto_smoothing(Device& device, const DeviceBuffer& partials, const LaunchParams& params, uint32_t tiles,
-                           double scene_area, double* area_at_s1 = nullptr);
+                           double scene_area, double overlap = kAutoSmoothingOverlap, double* area_at_s1 = nullptr);
 
 }  // namespace pm

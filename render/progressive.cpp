@@ -34,7 +34,7 @@ ProgressiveResult render_progressive(Renderer& renderer, int frame, const PassBu
     if (callbacks.after_pass) callbacks.after_pass(report);
     result.PassReport::operator=(report);
     if (budget.target_error > 0 && report.passes >= kMinPassesForError && report.error >= 0 &&
-        report.error <= budget.target_error) {
+        renderer.last_error_upper() <= budget.target_error) {
       result.stopped_by = "error";
       break;
     }

@@ -233,9 +233,9 @@ double Renderer::estimate_error(bool final, double noise_scale) {
     p.film_passes = passes_done_;
     last_bias_ = control_->add_and_compare(p, uint32_t(want - have));
   }
-  const double bias = last_bias_.known ? last_bias_.regional_bias : -1.0;
-  if (noise < 0 && bias < 0) return -1.0;
-  return std::sqrt(std::max(noise, 0.0) * std::max(noise, 0.0) + std::max(bias, 0.0) * std::max(bias, 0.0));
+  // The control measures noise and bias together; without it, the even/odd noise is all we know.
+  last_error_upper_ = last_bias_.known ? last_bias_.rms_error_upper : noise;
+  return last_bias_.known ? last_bias_.rms_error : noise;
 }
 
 double Renderer::estimate_noise() {

@@ -80,17 +80,21 @@ class Renderer {
   // frame's passes, each running its own subset; their sums add up to the frame's.
   void run_pass(uint32_t pass);
 
-  // Expected relative error of the indirect light (indirect + caustic) of the passes so far,
-  // sqrt(noise^2 + bias^2): the noise from the mean absolute difference between the even and the
-  // odd passes' means, scaled to the mean of all passes, over the mean indirect light
-  // (docs/progressive.md; needs an even and an odd pass), the bias from the control pixels of a
-  // method that may be biased (render/bias_control.h: each call adds paths there, up to
-  // control_paths when `final`). Negative when neither is known. Waits for the device.
+  // Expected relative error of the indirect light (indirect + caustic) of the passes so far.
+  // For a method that may be biased, the relative RMS error at the bias control's pixels, noise
+  // and bias together (render/bias_control.h: each call adds paths there, up to control_paths
+  // when `final`). Otherwise, or with the control off, the noise alone: the mean absolute
+  // difference between the even and the odd passes' means, scaled to the mean of all passes, over
+  // the mean indirect light (docs/progressive.md; needs an even and an odd pass). Negative when
+  // unknown. Waits for the device.
   // noise_scale: the noise part's factor (a device holding part of a frame's passes).
   double estimate_error(bool final = false, double noise_scale = 1.0);
   // The noise part alone (negative when unknown), and the control's last comparison.
   double estimate_noise();
   const BiasEstimate& last_bias() const { return last_bias_; }
+  // The last estimate's upper end (the control's estimate plus two standard errors): a target
+  // error stops a frame on this, so that a lucky low control does not stop it early.
+  double last_error_upper() const { return last_error_upper_; }
 
   // The film sums (waits for the device), and sums put back or added in: a checkpoint's resume,
   // or another device's passes. set_film_sums also sets the pass count; add_film_sums adds it.
@@ -132,6 +136,7 @@ class Renderer {
   std::unique_ptr<IndirectMethod> method_;
   std::unique_ptr<BiasControl> control_;
   BiasEstimate last_bias_;
+  double last_error_upper_ = -1;
 
   FrameContext frame_;            // the frame being rendered (timer and stats switch persist)
   uint32_t passes_done_ = 0;      // passes summed in the film

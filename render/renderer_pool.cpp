@@ -66,7 +66,7 @@ ProgressiveResult RendererPool::render_progressive(int frame, const PassBudget& 
         if (d == 0 && callbacks.after_pass) callbacks.after_pass(report);
         std::lock_guard<std::mutex> lock(stop_mutex);
         if (budget.target_error > 0 && d == 0 && report.error >= 0 && done >= kMinPassesForError &&
-            report.error <= budget.target_error) {
+            r.last_error_upper() <= budget.target_error) {
           result.stopped_by = "error";
           stop = true;
         }

@@ -199,7 +199,8 @@ void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
   std::vector<float4> partials(2 * size_t(tiles));
   if (!(settings_.smoothing > 0)) {
     StageScope scope(timer, "footprints");
-    params.smoothing = batch_auto_smoothing(device_, buffers_[BufferSlot::map_partials], params, tiles, scene_area_);
+    params.smoothing = batch_auto_smoothing(device_, buffers_[BufferSlot::map_partials], params, tiles, scene_area_,
+                                             settings_.overlap);
   }
   // Bounds and count of the valid hits, per tile: one small read-back per pass.
   PhotonMapBounds bounds;

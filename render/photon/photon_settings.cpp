@@ -32,6 +32,8 @@ void PhotonSettings::validate() const {
   if (bounces < 0 || bounces > 16) throw SettingError("bounces", "expected 0 to 16, got " + std::to_string(bounces));
   if (!(smoothing >= 0) || !std::isfinite(smoothing))
     throw SettingError("smoothing", "expected auto or a positive number, got " + std::to_string(smoothing));
+  if (!(overlap > 0) || !std::isfinite(overlap))
+    throw SettingError("overlap", "expected a positive number, got " + std::to_string(overlap));
   if (!(rmax >= 0) || !std::isfinite(rmax)) throw SettingError("rmax", "must be a positive length in metres");
   if (!(radius >= 0) || !std::isfinite(radius)) throw SettingError("radius", "must be a positive length in metres");
   if (knn_k < 1 || knn_k > 256) throw SettingError("k", "expected 1 to 256, got " + std::to_string(knn_k));
@@ -60,7 +62,7 @@ std::string PhotonSettings::describe() const {
   s << "photons=" << photons << " bounces=" << bounces << " estimator=" << name_of(kEstimatorNames, estimator)
     << " kernel=" << name_of(kKernelShapeNames, kernel_shape) << " smoothing=";
   if (smoothing > 0) s << smoothing;
-  else s << "auto";
+  else s << "auto overlap=" << overlap;
   s << " rmax=" << rmax;
   if (estimator == PM_ESTIMATOR_RADIUS) s << " radius=" << radius;
   if (estimator == PM_ESTIMATOR_KNN) s << " k=" << knn_k;

@@ -9,6 +9,7 @@
 
 #include "render/indirect_method.h"
 #include "render/kernel_abi.h"
+#include "render/footprint_scale.h"
 #include "render/named_values.h"
 
 namespace pm {
@@ -30,6 +31,7 @@ class PhotonSettings final : public MethodSettings {
   uint64_t photons = 262144;  // emitted per pass, all lights together; 0: no indirect light
   int bounces = 2;            // diffuse bounces of indirect light
   float smoothing = 0.0f;     // s of section 4.3, diffusely reflected photons; 0: automatic per pass
+  double overlap = kAutoSmoothingOverlap;  // the automatic s: footprints per surface point (render/footprint_scale.h)
                               // (render/footprint_scale.h)
   float rmax = 0.0f;          // footprint semiaxis clamp (knn: search radius), metres; 0: 10 % of the scene diagonal
   int estimator = PM_ESTIMATOR_PD;
