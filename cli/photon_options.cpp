@@ -91,6 +91,9 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
                       " times on average: the same image at any scene size) or a number, the paper's factor s "
                       "(section 4.3)")
       ->capture_default_str()->group(group);
+  cmd->add_option("--footprint-thickness", o->settings_.footprint_thickness,
+                  "Half-thickness of the pd footprints along the surface normal, over their shorter semiaxis")
+      ->capture_default_str()->group(group);
   cmd->add_option("--overlap", o->settings_.overlap,
                   "The automatic smoothing's target: photon footprints covering each point of the scene's "
                   "surface on average (more: smoother, blurrier)")

@@ -61,8 +61,10 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
   const double mse_spread = counted > 1 ? std::sqrt(std::max(0.0, (squared_error_squares / counted - mse * mse) /
                                                                       (counted - 1)))
                                         : 0.0;
-  e.rms_error = std::sqrt(std::max(0.0, mse)) / level;
-  e.rms_error_upper = std::sqrt(std::max(0.0, mse + 2.0 * mse_spread)) / level;
+  // The point estimate with the control's own resolution folded in (one standard error of the
+  // mean squared error): an imprecise control never reports an error of zero.
+  e.rms_error = std::sqrt(std::max(0.0, mse) + mse_spread) / level;
+  e.rms_error_upper = std::sqrt(std::max(0.0, mse) + 2.0 * mse_spread) / level;
   e.signed_bias = difference_total / control_total;
   e.bias_error = std::sqrt(variance_total) / control_total;
   e.regional_bias = regional / control_total;

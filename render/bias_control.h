@@ -21,8 +21,9 @@ class Device;
 // pixel c, E[d_c^2 - v_c] is the film's mean squared error there, noise and bias together: the
 // control measures the film's whole error, for any method, from one pass on.
 struct BiasEstimate {
-  double rms_error = 0;       // sqrt(mean(d_c^2 - v_c)) / mean control: the film's relative RMS error
-  double rms_error_upper = 0; // the same with two standard errors of the mean added (stopping rules)
+  double rms_error = 0;       // sqrt(mean(d_c^2 - v_c) + its standard error) / mean control: the
+                              // film's relative RMS error, never below what the control resolves
+  double rms_error_upper = 0; // the same with two standard errors (the stopping rule's)
   double signed_bias = 0;     // (film - control) summed over every control pixel / control sum
   double bias_error = 0;      // the standard error of signed_bias from the control's paths
   double regional_bias = 0;   // sum over regions of |film - control|, less the control's noise there

@@ -121,6 +121,14 @@ PM_DEVICE Footprint footprint_from_differentials(Vec3 dp_u, Vec3 dp_v, Vec3 norm
   return f;
 }
 
+/* Sets f's normal half-axis to `ratio` times its shorter in-plane semiaxis, along its normal
+   (--footprint-thickness; footprint_from_differentials uses PM_FOOTPRINT_NORMAL_RATIO). */
+PM_DEVICE void footprint_set_thickness(Footprint* f, float ratio)
+{
+  float h = ratio * pm_fminf(vec3_length(f->axis_u), vec3_length(f->axis_v));
+  f->axis_n = vec3_scale(vec3_normalize(f->axis_n), h);
+}
+
 /* Area of the skewed elliptical footprint, A = pi |a_u x a_v| (eq. 10). */
 PM_DEVICE float footprint_area(Footprint f)
 {

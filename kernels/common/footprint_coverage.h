@@ -8,16 +8,18 @@
    columns, cornices) that is 10-20 % of the indirect light, a bias that no photon count removes
    while the footprints keep their size.
 
-   The covered share is measured with probes: PM_FOOTPRINT_PROBES points spread evenly over the
-   unit disc (a golden-angle spiral, each point the centre of an equal-area cell, turned by an
-   angle drawn per hit so that the pattern's error does not line up between footprints), each
-   weighted by the kernel at its radius. A probe that the cuts exclude does not count at all (the
-   clip's kept fraction accounts for it exactly). A kept probe shoots a ray along -n through the
-   ellipsoid's thickness at that point, from its top to its bottom: it is covered when the first
-   surface there is one the gather would accept for this photon, facing the photon's side within
-   the gather's 60 degrees (gather_reach.h). The footprint's area is then multiplied by the
-   covered share of the kept kernel mass, so each photon's flux integrates to itself over the
-   shading points it reaches (tests/opencl/footprint_coverage_test.cpp measures that).
+   The area is measured with probes: PM_FOOTPRINT_PROBES points spread evenly over the unit disc
+   (Vogel's spiral: each point in the middle of an equal-area cell, the pattern turned by an angle
+   drawn per hit so that its error does not line up between footprints), each weighted by the
+   kernel at its radius. A probe that the cuts exclude does not count at all (the clip's kept
+   fraction accounts for it exactly). A kept probe shoots a ray along -n through the ellipsoid's
+   thickness at that point and adds the surface the gather would accept there: each surface it
+   crosses facing the photon's side within the gather's 60 degrees (gather_reach.h), counted as
+   1 / |cos| of its tilt, the area it holds per unit of the disc. The footprint's area is then
+   multiplied by that covered share of the kept kernel mass, so each photon's flux integrates to
+   itself over the shading points it reaches: on flat ground that ends (an edge), on a curved
+   surface that tilts away from the disc (more area than the disc: without it the closed sphere
+   reads +1.7 %), and on surfaces layered inside the footprint's thickness (steps, ledges).
 
    A footprint whose probes all miss still covers its own hit: it counts as half a probe's cell,
    so the flux never divides by zero. Cost: up to PM_FOOTPRINT_PROBES short rays per footprint,
@@ -59,33 +61,36 @@ PM_DEVICE int footprint_cut_keeps(const FootprintCut* cut, float x, float y)
   return 1;
 }
 
-/* Whether a surface the gather would accept for this footprint lies under disc point (x, y): a
-   ray along -n through the ellipsoid's thickness there, from its top to its bottom (plus the
-   hit's ray offset on both sides, so the photon's own plane is always inside), finds a surface
-   whose normal lies within the gather's angle of n. Steeper surfaces on the way (a column, the
-   side of an arch inside a thick footprint) do not hide an accepted one below them: the ray goes
-   on past up to PM_FOOTPRINT_PROBE_HITS of them. */
+/* The surface the gather would accept for this footprint under disc point (x, y), per unit of
+   the disc's own area: a ray along -n through the ellipsoid's thickness there, from its top to
+   its bottom (plus the hit's ray offset on both sides, so the photon's own plane is always
+   inside), sums 1 / |cos| over the surfaces it crosses whose normal lies within the gather's angle
+   of n. A tilted surface (a curved one, away from the hit) holds 1 / |cos| times the area of its
+   projection onto the disc, and every layer inside the thickness (a step, a stack of ledges)
+   receives the photon: both are surface area the flux is spread over. Steeper surfaces on the
+   way (a column inside a thick footprint) are passed, up to PM_FOOTPRINT_PROBE_HITS crossings. */
 #define PM_FOOTPRINT_PROBE_HITS 4
-PM_DEVICE int footprint_probe_covered(const KernelGlobals* kg, const Footprint* f, Vec3 center, Vec3 n, float offset,
-                                      float x, float y)
+PM_DEVICE float footprint_probe_area(const KernelGlobals* kg, const Footprint* f, Vec3 center, Vec3 n, float offset,
+                                     float x, float y)
 {
   float reach = vec3_length(f->axis_n) * pm_sqrtf(pm_fmaxf(1.0f - x * x - y * y, 0.0f)) + offset;
   Vec3 at = vec3_add(center, vec3_add(vec3_scale(f->axis_u, x), vec3_scale(f->axis_v, y)));
   Ray ray = ray_make(vec3_madd(at, n, reach), vec3_neg(n));
-  float t_min = 0.0f;
+  float t_min = 0.0f, area = 0.0f;
   for (int k = 0; k < PM_FOOTPRINT_PROBE_HITS; ++k) {
     SceneHit hit = scene_trace(kg->scene_nodes, kg->triangles, &ray, t_min, 2.0f * reach, 0);
-    if (hit.triangle < 0) return 0;
+    if (hit.triangle < 0) break;
     /* Triangles are two-sided: either side may face the gather's shading point. */
-    float facing = vec3_dot(scene_triangle_normal(kg->triangles, hit.triangle), n);
-    if (facing * facing >= PM_GATHER_MIN_NORMAL_COS2) return 1;
+    float facing = pm_fabsf(vec3_dot(scene_triangle_normal(kg->triangles, hit.triangle), n));
+    if (facing * facing >= PM_GATHER_MIN_NORMAL_COS2) area += 1.0f / facing;
     t_min = hit.t;
   }
-  return 0;
+  return area;
 }
 
-/* Share of the kernel mass kept by `cut` that lies on accepted surface, in (0, 1]. turn: the
-   pattern's angle for this hit. */
+/* The accepted surface area under the part of the disc that `cut` keeps, per unit of the kept
+   disc's area, kernel-weighted (above 0; 1 for a flat surface that fills the disc; above 1 where
+   the surface is tilted or layered). turn: the pattern's angle for this hit. */
 PM_DEVICE float footprint_covered_share(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut,
                                         Vec3 center, Vec3 n, float offset, float turn, uint shape)
 {
@@ -98,12 +103,47 @@ PM_DEVICE float footprint_covered_share(const KernelGlobals* kg, const Footprint
     float w = shape == PM_KERNEL_EPANECHNIKOV ? kernel_epanechnikov(x * x + y * y) : 1.0f;
     kept += w;
     ++kept_probes;
-    if (footprint_probe_covered(kg, f, center, n, offset, x, y)) covered += w;
+    covered += w * footprint_probe_area(kg, f, center, n, offset, x, y);
   }
   if (!(kept > 0.0f)) return 1.0f; /* no probe inside the cuts: the clip's kept fraction is all we know */
   /* The hit itself lies on the surface: a footprint whose probes all miss (a sliver, a thin
      rail) still covers something; count it as half a probe's cell. */
   return covered > 0.0f ? covered / kept : 0.5f / (float)kept_probes;
+}
+
+/* The same share for the disc of radius r about a shading point x (normal n), which k-NN's density
+   estimate divides by (knn_gather.h): its photons come from the surface within r of x on x's side
+   of any wall (their reach is clipped), so its area is the part of the disc that lies on an
+   accepted surface and that x sees along the surface: each probe also casts a ray from x to the
+   probe point, both lifted as the footprint clip lifts its plane (footprint_clip.h), and a probe
+   behind a wall does not count. */
+PM_DEVICE float disc_covered_share(const KernelGlobals* kg, Vec3 x, Vec3 n, float r, float offset, float turn,
+                                   uint shape)
+{
+  Footprint f;
+  Vec3 t, b;
+  vec3_onb(n, &t, &b);
+  f.axis_u = vec3_scale(t, r);
+  f.axis_v = vec3_scale(b, r);
+  f.axis_n = vec3_scale(n, PM_FOOTPRINT_NORMAL_RATIO * r);
+  float lift = pm_fmaxf(PM_FOOTPRINT_CLIP_HEIGHT * PM_FOOTPRINT_NORMAL_RATIO * r, offset);
+  Vec3 from = vec3_madd(x, n, lift);
+  float kept = 0.0f, covered = 0.0f;
+  for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) {
+    float px, py;
+    footprint_probe_point(j, PM_FOOTPRINT_PROBES, turn, &px, &py);
+    float w = shape == PM_KERNEL_EPANECHNIKOV ? kernel_epanechnikov(px * px + py * py) : 1.0f;
+    kept += w;
+    Vec3 to = vec3_add(from, vec3_add(vec3_scale(f.axis_u, px), vec3_scale(f.axis_v, py)));
+    Vec3 d = vec3_sub(to, from);
+    float length = vec3_length(d);
+    if (length > 0.0f) {
+      Ray ray = ray_make(from, vec3_scale(d, 1.0f / length));
+      if (scene_trace(kg->scene_nodes, kg->triangles, &ray, 0.0f, length, 1).triangle >= 0) continue;
+    }
+    covered += w * footprint_probe_area(kg, &f, x, n, offset, px, py);
+  }
+  return kept > 0.0f && covered > 0.0f ? covered / kept : 1.0f;
 }
 
 #endif

@@ -39,8 +39,10 @@ PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p
   }
   int caustic = (PM_AS_UINT(n4.w) & PM_HIT_CAUSTIC) != 0u;
   float delta = kg->hit_incident[slot].w;
-  return footprint_from_differentials(vec3_from_float4(kg->hit_dp_u[slot]), vec3_from_float4(kg->hit_dp_v[slot]), n,
-                                      delta, p->smoothing, p->rmax, caustic);
+  Footprint f = footprint_from_differentials(vec3_from_float4(kg->hit_dp_u[slot]), vec3_from_float4(kg->hit_dp_v[slot]),
+                                             n, delta, p->smoothing, p->rmax, caustic);
+  if (p->footprint_thickness > 0.0f) footprint_set_thickness(&f, p->footprint_thickness);
+  return f;
 }
 
 /* Work item = sorted position k < hit_count: the gather data of hit sorted_slots[k], written at
@@ -68,9 +70,12 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     cut = footprint_clip(kg, &f, center, vec3_normalize(vec3_from_float4(n4)),
                          ray_offset_distance(center, 0.0f, p->ray_epsilon), p->kernel_shape);
   if (p->footprint_coverage && p->estimator != PM_ESTIMATOR_KNN) {
-    /* The pattern's turn: drawn per hit and pass, the same on every backend. */
-    float turn = PM_TWO_PI * rng_to_unit(rng_bits4(p->seed, p->photon_frame, slot, p->pass_index,
-                                                   PM_STREAM_FOOTPRINT_PROBE, p->photon_offset).b0);
+    /* The pattern's turn: drawn per photon and record, the same on every backend and for any
+       slot layout. */
+    uint per_photon = p->hit_slots_per_photon > 0u ? p->hit_slots_per_photon : 1u;
+    float turn = PM_TWO_PI * rng_to_unit(rng_bits4(p->seed, p->photon_frame, p->photon_offset + slot / per_photon,
+                                                   slot % per_photon, PM_STREAM_FOOTPRINT_PROBE,
+                                                   p->photon_offset_hi).b0);
     cut.kept *= footprint_covered_share(kg, &f, &cut, center, vec3_normalize(vec3_from_float4(n4)),
                                         ray_offset_distance(center, 0.0f, p->ray_epsilon), turn, p->kernel_shape);
   }

@@ -114,6 +114,9 @@ typedef struct LaunchParams {
   uint control_stride;     /* bias control: one control pixel per stride x stride block (bias_control.h) */
   uint control_samples;    /* bias control: paths per control pixel in this launch */
   uint control_first_sample; /* bias control: index of the launch's first path (random stream) */
+
+  float footprint_thickness; /* normal half-axis / shorter in-plane semiaxis of pd footprints (footprint.h) */
+  uint footprint_unused[3];  /* keeps the row 16 bytes */
 } LaunchParams;
 
 /* Photon emission sequences (--photon-sequence). RANDOM: Philox keyed by (seed, photon_frame).

@@ -32,6 +32,9 @@ void PhotonSettings::validate() const {
   if (bounces < 0 || bounces > 16) throw SettingError("bounces", "expected 0 to 16, got " + std::to_string(bounces));
   if (!(smoothing >= 0) || !std::isfinite(smoothing))
     throw SettingError("smoothing", "expected auto or a positive number, got " + std::to_string(smoothing));
+  if (!(footprint_thickness > 0 && footprint_thickness <= 4))
+    throw SettingError("footprint-thickness", "expected a number above 0 and at most 4, got " +
+                                                  std::to_string(footprint_thickness));
   if (!(overlap > 0) || !std::isfinite(overlap))
     throw SettingError("overlap", "expected a positive number, got " + std::to_string(overlap));
   if (!(rmax >= 0) || !std::isfinite(rmax)) throw SettingError("rmax", "must be a positive length in metres");
@@ -71,6 +74,7 @@ std::string PhotonSettings::describe() const {
     << " photon_sequence=" << name_of(kPhotonSequenceNames, sequence)
     << " footprint_clip=" << name_of(kFootprintClipNames, footprint_clip ? 1 : 0)
     << " footprint_coverage=" << name_of(kFootprintClipNames, footprint_coverage ? 1 : 0)
+    << " footprint_thickness=" << footprint_thickness
     << " progressive=" << name_of(kProgressiveNames, progressive);
   if (progressive == kProgressiveShrink) s << " alpha=" << alpha;
   return s.str();

@@ -9,6 +9,7 @@
 
 #include "render/indirect_method.h"
 #include "render/kernel_abi.h"
+#include "kernels/common/footprint.h"
 #include "render/footprint_scale.h"
 #include "render/named_values.h"
 
@@ -49,6 +50,8 @@ class PhotonSettings final : public MethodSettings {
   // A footprint's area is the part of it that lies on a surface the gather accepts
   // (kernels/common/footprint_coverage.h): no light lost over edges, at a few short rays per hit.
   bool footprint_coverage = true;
+  // The pd footprints' normal half-axis over their shorter in-plane semiaxis (docs/algorithm.md).
+  float footprint_thickness = PM_FOOTPRINT_NORMAL_RATIO;
   int progressive = kProgressiveAverage;
   float alpha = 2.0f / 3.0f;  // shrink: r_i^2 = r_{i-1}^2 (i + alpha) / (i + 1) (Knaus & Zwicker 2011)
 
