@@ -161,7 +161,7 @@ std::optional<ClaimInspection> inspect_claim(const std::string& claim_path, cons
 }
 
 std::string claim_holder_text(const ClaimInspection& claim) {
-  if (!claim.record) return "an unreadable claim (" + claim.problem + ")";
+  if (!claim.record) return "an unknown process (unreadable claim: " + claim.problem + ")";
   const std::time_t started = std::time_t(claim.record->started_unix_seconds);
   char when[32] = "?";
   struct tm local {};

@@ -72,7 +72,8 @@ struct ClaimInspection {
 // The claim at claim_path judged against this process and the rules; nothing when there is none.
 std::optional<ClaimInspection> inspect_claim(const std::string& claim_path, const ClaimRules& rules);
 
-// "pid 4242 on node12 since 2026-11-23 05:02:46" (local time), or "an unreadable claim (empty)".
+// "pid 4242 on node12 since 2026-11-23 05:02:46" (local time), or, for an unreadable claim,
+// "an unknown process (unreadable claim: empty)".
 std::string claim_holder_text(const ClaimInspection& claim);
 
 struct ClaimAttempt;

@@ -217,7 +217,7 @@ TEST_F(FrameClaimTest, UnreadableClaimIsHeldUntilNotRefreshedForTheStaleAge) {
   ClaimAttempt attempt = claim_frame(output(), rules);
   EXPECT_FALSE(attempt.claim.held()) << "a fresh unreadable claim may be one being written";
   ASSERT_TRUE(attempt.other.has_value());
-  EXPECT_EQ(claim_holder_text(*attempt.other), "an unreadable claim (empty)");
+  EXPECT_EQ(claim_holder_text(*attempt.other), "an unknown process (unreadable claim: empty)");
   age_claim(700);
   ClaimRules never;
   never.stale_after_seconds = 0;
