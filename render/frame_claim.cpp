@@ -62,7 +62,10 @@ void judge(ClaimInspection& claim, const ClaimRules& rules) {
   }
   const ProcessIdentity& owner = claim.record->owner;
   const std::string who = "pid " + std::to_string(owner.pid) + " on " + owner.host;
-  if (owner.host != self.host) {
+  // Another boot id under the same name is a restart, or another machine that shares the name
+  // (containers, cloned images): its pid cannot be checked here either.
+  const bool other_boot = !owner.boot_id.empty() && !self.boot_id.empty() && owner.boot_id != self.boot_id;
+  if (owner.host != self.host || other_boot) {
     claim.stale = can_expire;
     if (claim.stale) claim.why_stale = who + " has not refreshed it for " + seconds_text(claim.seconds_since_refresh);
     return;
@@ -71,7 +74,6 @@ void judge(ClaimInspection& claim, const ClaimRules& rules) {
     case ProcessState::running: claim.stale = false; break;
     case ProcessState::gone: claim.stale = true; claim.why_stale = who + " is no longer running"; break;
     case ProcessState::replaced: claim.stale = true; claim.why_stale = who + " now belongs to another process"; break;
-    case ProcessState::rebooted: claim.stale = true; claim.why_stale = owner.host + " has restarted since"; break;
   }
 }
 

@@ -6,9 +6,10 @@
 // its owner refreshes its modification time every kClaimRefreshSeconds.
 //
 // A claim in the way is stale, and may be taken over, when
-//   - it is from this host: its process is gone, its pid now belongs to a later process, or the
-//     host has restarted since the claim was written;
-//   - it is from another host, or unreadable (not in the format below: cut short, edited): it
+//   - it is from this host (same host name and boot id): its process is gone, or its pid now
+//     belongs to a later process;
+//   - it is from another host, from this host before a restart (another boot id: as well another
+//     machine of the same name), or unreadable (not in the format below: cut short, edited): it
 //     has not been refreshed for ClaimRules::stale_after_seconds (0: never stale).
 // Any other claim is live: its frame is left to its owner. docs/farm.md has the farm's view.
 #pragma once

@@ -72,8 +72,6 @@ ProcessIdentity this_process_identity() {
 }
 
 ProcessState local_process_state(const ProcessIdentity& identity) {
-  const std::string now_boot = boot_id();
-  if (!identity.boot_id.empty() && !now_boot.empty() && identity.boot_id != now_boot) return ProcessState::rebooted;
   if (identity.pid <= 0) return ProcessState::gone;
   // EPERM: the pid exists but belongs to another user; it may still be the same process.
   if (::kill(pid_t(identity.pid), 0) != 0 && errno == ESRCH) return ProcessState::gone;

@@ -1,7 +1,7 @@
 // Who a process is, written so that another process can tell later whether it still runs: the
 // host name, the boot id, the pid and the pid's start time since boot. The start time is what
-// tells a process from a later one that got the same pid; the boot id tells a claim written
-// before a restart of the machine. Linux only (/proc).
+// tells a process from a later one that got the same pid; the boot id tells one running kernel
+// from another (a restart, or another machine of the same name). Linux only (/proc).
 #pragma once
 
 #include <optional>
@@ -27,11 +27,10 @@ enum class ProcessState {
   running,   // the process of that identity still runs (or this machine cannot tell otherwise)
   gone,      // no process has that pid any more
   replaced,  // the pid belongs to a later process (another start time)
-  rebooted,  // the machine has restarted since (another boot id)
 };
 
-// Whether the process of identity, which must be of this host, still runs. Conservative: when
-// the pid exists but /proc cannot say when it started, it counts as running.
+// Whether the process of identity, which must be of this host and this boot, still runs.
+// Conservative: when the pid exists but /proc cannot say when it started, it counts as running.
 ProcessState local_process_state(const ProcessIdentity& identity);
 
 }  // namespace pm
