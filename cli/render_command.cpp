@@ -247,6 +247,7 @@ int run_render(const RenderCommandOptions& o) {
       }
       if (attempt.other && !o.quiet)
         std::printf("took over the stale claim %s: %s\n", attempt.other->path.c_str(), attempt.other->why_stale.c_str());
+      std::fflush(stdout);
       lock.unlock();
       // Another process may have finished the frame since the --resume scan, or while this one waited.
       if ((o.resume || waited) && exr_is_complete(path)) {
