@@ -1,4 +1,5 @@
-// Stale temporaries, the --stale-claim-after option and the interruptible wait (concurrent_writers.h).
+// Stale temporaries and claims, the --stale-claim-after option and the interruptible wait
+// (concurrent_writers.h).
 #include "cli/concurrent_writers.h"
 
 #include <signal.h>
@@ -13,6 +14,7 @@
 
 #include "cli/number_parsing.h"
 #include "render/interruption.h"
+#include "render/output_pattern.h"
 
 namespace pm::cli {
 
@@ -71,6 +73,14 @@ void remove_stale_temporaries(const std::vector<std::string>& targets, bool verb
       if (fs::remove(entry.path(), remove_error) && verbose)
         std::printf("removed stale temporary %s\n", entry.path().c_str());
     }
+  }
+}
+
+void remove_stale_claims_of_complete_frames(const std::string& pattern, const std::vector<int>& frames,
+                                            const ClaimRules& rules, bool verbose) {
+  for (int f : frames) {
+    const std::optional<ClaimInspection> removed = remove_claim_if_stale(expand_output_pattern(pattern, f), rules);
+    if (removed && verbose) std::printf("removed stale claim %s: %s\n", removed->path.c_str(), removed->why_stale.c_str());
   }
 }
 

@@ -20,6 +20,11 @@ void add_stale_claim_option(CLI::App* cmd, ClaimRules& rules);
 // longer exists on this host (each folder is listed once); verbose lists them.
 void remove_stale_temporaries(const std::vector<std::string>& targets, bool verbose);
 
+// Claims beside frames skipped as complete (--resume) whose owner was killed between renaming the
+// frame into place and removing its claim: stale ones are removed (verbose lists them).
+void remove_stale_claims_of_complete_frames(const std::string& pattern, const std::vector<int>& frames,
+                                            const ClaimRules& rules, bool verbose);
+
 // Waits up to seconds, in short steps, and returns early once a stop is requested (SIGINT, SIGTERM).
 void sleep_unless_interrupted(double seconds);
 

@@ -194,6 +194,7 @@ int run_render(const RenderCommandOptions& o) {
     for (auto& pool : pools) jobs.push_back(std::make_unique<FrameJob>(*pool, scene, job_options));
     remove_stale_temporaries(targets, o.verbose);
   }
+  remove_stale_claims_of_complete_frames(pattern, skipped, o.claims, o.verbose);
   // Input is valid from here on: say what loading tolerated, then render.
   if (!o.quiet)
     for (const std::string& warning : report.warnings) std::fprintf(stderr, "pmrender: warning: %s\n", warning.c_str());
@@ -395,7 +396,8 @@ Run add_render_command(CLI::App& app) {
                 "released without a file or goes stale (docs/farm.md, \"Frame claims\")");
   cmd->add_flag("-q,--quiet", options->quiet, "Print nothing on success (no progress, no summary)");
   cmd->add_flag("-v,--verbose", options->verbose,
-                "Also list skipped frames and removed stale temporaries, and print host and device memory at the end");
+                "Also list skipped frames and removed stale temporaries and claims, and print host and device memory "
+                "at the end");
   return [options] { return run_render(*options); };
 }
 

@@ -84,6 +84,24 @@ std::string aside_path(const std::string& claim_path) {
   return (path.parent_path() / ("." + path.filename().string() + "-" + std::to_string(::getpid()))).string();
 }
 
+// Removes the claim judged stale, and only it: the claim is moved aside first, then checked to be
+// the file judged. Another process may have taken it over first and written its own, live claim
+// there: that one goes back where it was. False when the judged claim was no longer there.
+bool remove_judged_claim(const ClaimInspection& judged) {
+  const std::string aside = aside_path(judged.path);
+  if (std::rename(judged.path.c_str(), aside.c_str()) != 0) {
+    if (errno == ENOENT) return false;
+    throw std::runtime_error(errno_text("cannot move the stale claim '" + judged.path + "' aside"));
+  }
+  struct stat moved {};
+  if (::stat(aside.c_str(), &moved) == 0 && moved.st_dev == judged.device && moved.st_ino == judged.inode) {
+    ::unlink(aside.c_str());
+    return true;
+  }
+  std::rename(aside.c_str(), judged.path.c_str());
+  return false;
+}
+
 }  // namespace
 
 std::string claim_path_for(const std::string& output_path) { return output_path + ".claim"; }
@@ -238,23 +256,15 @@ ClaimAttempt claim_frame(const std::string& output_path, const ClaimRules& rules
       attempt.other = std::move(found);
       return attempt;
     }
-    // Take over: move the claim aside, then make sure it was the file judged stale. Another
-    // process may have taken it over first and written its own, live claim there: that one goes
-    // back where it was.
-    const std::string aside = aside_path(path);
-    if (std::rename(path.c_str(), aside.c_str()) != 0) {
-      if (errno == ENOENT) continue;
-      throw std::runtime_error(errno_text("cannot move the stale claim '" + path + "' aside"));
-    }
-    struct stat moved {};
-    if (::stat(aside.c_str(), &moved) == 0 && moved.st_dev == found->device && moved.st_ino == found->inode) {
-      ::unlink(aside.c_str());
-      attempt.other = std::move(found);
-    } else {
-      std::rename(aside.c_str(), path.c_str());
-    }
+    if (remove_judged_claim(*found)) attempt.other = std::move(found);
   }
   throw std::runtime_error("cannot claim '" + path + "': other processes keep changing it");
+}
+
+std::optional<ClaimInspection> remove_claim_if_stale(const std::string& output_path, const ClaimRules& rules) {
+  std::optional<ClaimInspection> found = inspect_claim(claim_path_for(output_path), rules);
+  if (!found || !found->stale || !remove_judged_claim(*found)) return std::nullopt;
+  return found;
 }
 
 void refresh_held_claims() {

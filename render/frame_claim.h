@@ -111,6 +111,11 @@ struct ClaimAttempt {
   std::optional<ClaimInspection> other;
 };
 
+// Removes the claim beside output_path when it is stale and returns it; nothing when there is no
+// claim or a live one. For complete frames, whose owner was killed after its file was renamed
+// into place but before it removed its claim.
+std::optional<ClaimInspection> remove_claim_if_stale(const std::string& output_path, const ClaimRules& rules);
+
 // Sets the modification time of every claim this process holds to now (what the rules call a
 // refresh). ClaimRefresher calls it every kClaimRefreshSeconds.
 void refresh_held_claims();

@@ -1,6 +1,7 @@
 // Frame claims with real pmrender processes on the OpenCL backend: two renders of one pattern at
 // once render every frame exactly once between them; a run killed with SIGKILL leaves a stale
-// claim that `frames check` names and the next run takes over; a frame claimed by a live process
+// claim that `frames check` names and the next run takes over (and a stale claim beside a
+// complete frame is removed, the frame kept); a frame claimed by a live process
 // is skipped (exit 0, named by `frames check` as being rendered), or waited for and taken over
 // once that process is gone with --wait-for-claimed-frames.
 #include <signal.h>
@@ -144,19 +145,18 @@ TEST_F(FrameClaimsCli, WaitingRendersEndOnlyWhenEveryFrameIsComplete) {
 TEST_F(FrameClaimsCli, KilledRunLeavesAStaleClaimThatTheNextRunTakesOver) {
   const pid_t killed = test::start_pmrender(render_args("0-23"), dir_ / "a");
   ASSERT_GT(killed, 0);
-  // Kill it while it renders frame 2 or later: its claim is on disk then.
+  // Kill it as soon as it has claimed frame 2 (frames 0 and 1 are done then), while it renders.
+  const int claimed = 2;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (!fs::exists(frame_path(1)) && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  ASSERT_TRUE(fs::exists(frame_path(1)));
+  while (!fs::exists(claim_path_for(frame_path(claimed))) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
   ASSERT_EQ(kill(killed, SIGKILL), 0);
   int status = 0;
   waitpid(killed, &status, 0);
   ASSERT_TRUE(WIFSIGNALED(status)) << "pmrender finished before it could be killed";
-  const std::set<std::string> left = claim_files();
-  ASSERT_EQ(left.size(), 1u) << "the frame being rendered keeps its claim after SIGKILL";
-  const int claimed = std::stoi(left.begin()->substr(2, 4));
+  ASSERT_EQ(claim_files(), std::set<std::string>{"f_0002.exr.claim"}) << "the frame being rendered keeps its claim";
   EXPECT_FALSE(fs::exists(frame_path(claimed)));
+  expect_all_complete(0, 1);
 
   ProcessResult r = pmrender("frames check -o " + pattern() + " --frames 0-23");
   EXPECT_EQ(r.exit_code, 1);
@@ -166,8 +166,15 @@ TEST_F(FrameClaimsCli, KilledRunLeavesAStaleClaimThatTheNextRunTakesOver) {
   EXPECT_NE(r.out.find(" is no longer running)\n"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(", 1 stale claim"), std::string::npos) << r.out;
 
-  r = pmrender(render_args("0-23") + " --resume");
+  // What a kill between a frame's rename and its claim's removal leaves: a complete frame with a
+  // stale claim. --resume keeps the frame and removes the claim.
+  fs::copy_file(claim_path_for(frame_path(claimed)), claim_path_for(frame_path(0)));
+  r = pmrender(render_args("0-23") + " --resume -v");
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(written_frames(r.out).count(0), 0u) << r.out;
+  EXPECT_NE(r.out.find("removed stale claim " + claim_path_for(frame_path(0)) + ": pid " + std::to_string(killed)),
+            std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("took over the stale claim " + claim_path_for(frame_path(claimed)) + ": pid " +
                        std::to_string(killed) + " on "),
             std::string::npos)

@@ -2,7 +2,8 @@
 // claim is created and released; a live claim (this process) is refused; claims of a dead pid, a
 // zombie or a reused pid are taken over; another host's claim, one of another boot and an
 // unreadable claim are held until not refreshed for the stale age (forever with an age of 0); a
-// release never removes a claim that is no longer its own; refreshing renews the modification time.
+// release never removes a claim that is no longer its own; refreshing renews the modification
+// time; remove_claim_if_stale removes a stale claim only.
 #include "render/frame_claim.h"
 
 #include <signal.h>
@@ -259,6 +260,21 @@ TEST_F(FrameClaimTest, RefreshRenewsTheModificationTimeOfHeldClaims) {
   EXPECT_LT(inspect_claim(claim(), ClaimRules{})->seconds_since_refresh, 5);
   attempt.claim.release();
   EXPECT_FALSE(fs::exists(claim()));
+}
+
+TEST_F(FrameClaimTest, OnlyAStaleClaimIsRemovedByRemoveClaimIfStale) {
+  EXPECT_FALSE(remove_claim_if_stale(output(), ClaimRules{}).has_value());  // none there
+  ClaimAttempt live = claim_frame(output(), ClaimRules{});
+  EXPECT_FALSE(remove_claim_if_stale(output(), ClaimRules{}).has_value());
+  EXPECT_TRUE(fs::exists(claim()));
+  live.claim.release();
+  static long pid;
+  pid = dead_pid();
+  write_claim([](ClaimRecord& r) { r.owner.pid = pid; });
+  const std::optional<ClaimInspection> removed = remove_claim_if_stale(output(), ClaimRules{});
+  ASSERT_TRUE(removed.has_value());
+  EXPECT_NE(removed->why_stale.find("is no longer running"), std::string::npos);
+  EXPECT_TRUE(fs::is_empty(dir_));
 }
 
 TEST_F(FrameClaimTest, MissingFoldersAreCreated) {
