@@ -57,7 +57,8 @@ void judge(ClaimInspection& claim, const ClaimRules& rules) {
   const bool can_expire = rules.stale_after_seconds > 0 && claim.seconds_since_refresh > rules.stale_after_seconds;
   if (!claim.record) {
     claim.stale = can_expire;
-    if (claim.stale) claim.why_stale = "unreadable (" + claim.problem + ") and not refreshed for " + seconds_text(claim.seconds_since_refresh);
+    if (claim.stale)
+      claim.why_stale = "unreadable (" + claim.problem + ") and not refreshed for " + seconds_text(claim.seconds_since_refresh);
     return;
   }
   const ProcessIdentity& owner = claim.record->owner;
