@@ -37,9 +37,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// Render options the farm itself owns: it gives every task its own --frames, an absolute -o, and
-// --resume. Any other name the two commands share would be ambiguous.
-const std::vector<std::string> kOwnedRenderOptions = {"--frames", "--output", "--resume", "--frame"};
+// Render options the farm itself owns: it gives every task its own --frames, an absolute -o,
+// --resume and --wait-for-claimed-frames. Any other name the two commands share would be ambiguous.
+const std::vector<std::string> kOwnedRenderOptions = {"--frames", "--output", "--resume", "--frame",
+                                                      "--wait-for-claimed-frames"};
 
 struct FarmSlurmOptions {
   std::string output, frames;
@@ -189,8 +190,9 @@ SlurmArrayJob plan_slurm_job(const FarmSlurmOptions& o, CLI::App* farm) {
   require_no_shared_option_names(farm, render);
   for (const std::string& owned : kOwnedRenderOptions)
     if (render->get_option(owned)->count() > 0)
-      throw InputError(owned + (owned == "--resume" ? ": farm tasks always resume; leave it out"
-                                                    : ": give the frames with --frames and the output with -o"));
+      throw InputError(owned + (owned == "--resume"                     ? ": farm tasks always resume; leave it out"
+                                : owned == "--wait-for-claimed-frames" ? ": farm tasks always wait; leave it out"
+                                                                       : ": give the frames with --frames and the output with -o"));
 
   // 2. The scene (absolute in the script), its frames, and the frame size every file must have.
   std::vector<std::string> render_args = passed;

@@ -1,18 +1,23 @@
 // `pmrender frames check -o PATTERN --frames SPEC [--resolution WxH]`: whether a rendered sequence
 // is all there. Lists every frame whose file is missing, truncated, unreadable or of the wrong
-// size, one line each with the reason, then a summary. Exit codes: 0 every frame complete, 1 any
-// frame not, 2 bad usage; so a pipeline (and the farm script's last step) can gate on it.
+// size, one line each with the reason, then a summary; a frame that is not complete but claimed
+// (render/frame_claim.h) is "being rendered" or, when its claim is stale, "stale claim". Exit
+// codes: 0 every frame complete, 1 any frame not, 2 bad usage; so a pipeline (and the farm
+// script's last step) can gate on it.
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "scene_io/frame_spec.h"
 #include "cli/commands.h"
+#include "cli/concurrent_writers.h"
 #include "render/errors.h"
 #include "render/exr_io.h"
+#include "render/frame_claim.h"
 #include "render/output_pattern.h"
+#include "scene_io/frame_spec.h"
 
 namespace pm::cli {
 
@@ -25,6 +30,7 @@ struct FramesCheckOptions {
   std::string output;
   std::string frames;
   std::string resolution;
+  ClaimRules claims;
   bool quiet = false;
 };
 
@@ -48,6 +54,17 @@ int run_frames_check(const FramesCheckOptions& o) {
       detail = std::to_string(check.width) + "x" + std::to_string(check.height) + ", expected " + o.resolution;
     }
     if (reason.empty()) continue;
+    // Not complete, but claimed: say so first, the file's state after it.
+    if (const std::optional<ClaimInspection> claim = inspect_claim(claim_path_for(path), o.claims)) {
+      detail = reason + ", " + detail + "; ";
+      if (claim->stale) {
+        reason = "stale claim";
+        detail += claim->why_stale;
+      } else {
+        reason = "being rendered";
+        detail += "claimed by " + claim_holder_text(*claim);
+      }
+    }
     ++bad_counts[reason];
     std::printf("frame %d: %s: %s (%s)\n", f, path.c_str(), reason.c_str(), detail.c_str());
   }
@@ -71,11 +88,13 @@ Run add_frames_command(CLI::App& app) {
   CLI::App* frames = app.add_subcommand("frames", "Work with the files of a rendered sequence");
   frames->require_subcommand(1);
   CLI::App* check = frames->add_subcommand(
-      "check", "List frames whose file is missing, truncated, unreadable or of the wrong size (exit 1 if any)");
+      "check", "List frames whose file is missing, truncated, unreadable or of the wrong size, and whether another "
+               "process is rendering them (exit 1 if any)");
   check->add_option("-o,--output", options->output, "Output pattern the frames were written with (# = frame number)")
       ->required();
   check->add_option("--frames", options->frames, "Frames to check, e.g. 0-99 or 1-30,47,100-200:2")->required();
   check->add_option("--resolution", options->resolution, "WIDTHxHEIGHT every frame must have");
+  add_stale_claim_option(check, options->claims);
   check->add_flag("-q,--quiet", options->quiet, "Print only the frames that are not complete");
   return [options] { return run_frames_check(*options); };
 }

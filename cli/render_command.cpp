@@ -1,27 +1,23 @@
 // `pmrender render [SCENE]`: loads the scene (or the built-in Cornell box), selects frames
 // (--frames, --frame, or the scene's whole sequence), opens the device once and renders the frames
 // with one Renderer (scene BVH built once, photons reused over camera-only motion), writing each
-// as OpenEXR (temporary name, then rename). --resume skips frames whose file is complete. A frame
-// that fails is reported and the others still render; the exit code is then 1
-// (docs/animation.md, "Batch rendering"). Output paths and memory are checked before the device
-// opens (output_checks.h, memory.h); SIGINT/SIGTERM stop between frames (signals.h).
-#include <unistd.h>
-
+// as OpenEXR (temporary name, then rename). --resume skips frames whose file is complete. Each
+// frame is claimed first (render/frame_claim.h): a frame another live process is rendering is
+// skipped, or waited for with --wait-for-claimed-frames. A frame that fails is reported and the
+// others still render; the exit code is then 1 (docs/animation.md, "Batch rendering"). Output
+// paths and memory are checked before the device opens (output_checks.h, memory.h); SIGINT and
+// SIGTERM stop between frames (signals.h).
 #include <algorithm>
-#include <cerrno>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
-#include <filesystem>
-#include <map>
 #include <memory>
 #include <mutex>
-#include <set>
 #include <sstream>
 #include <thread>
 
 #include "cli/commands.h"
+#include "cli/concurrent_writers.h"
 #include "cli/frame_job.h"
 #include "cli/frame_warnings.h"
 #include "cli/memory.h"
@@ -33,6 +29,7 @@
 #include "render/device.h"
 #include "render/errors.h"
 #include "render/exr_io.h"
+#include "render/frame_claim.h"
 #include "render/interruption.h"
 #include "render/output_pattern.h"
 #include "render/preview_png.h"
@@ -46,12 +43,12 @@ namespace pm::cli {
 
 namespace {
 
-namespace fs = std::filesystem;
-
 // Largest frame number --frames can name (frame_spec.cpp reads at most 9 digits).
 const int kMaxFrameNumber = 999999999;
 // The pass cap of a --time or --target-error budget given without --passes.
 const uint32_t kBudgetPassCap = 1000000;
+// How often --wait-for-claimed-frames looks at the claims of other processes again.
+const double kClaimPollSeconds = 1.0;
 
 struct RenderCommandOptions {
   RenderOptions render;
@@ -67,6 +64,8 @@ struct RenderCommandOptions {
   double target_error = 0;
   std::string devices;
   uint32_t checkpoint_every = 0;
+  ClaimRules claims;
+  bool wait_for_claimed = false;
   CLI::Option* frame_option = nullptr;
   CLI::Option* frames_option = nullptr;
 };
@@ -120,41 +119,6 @@ std::vector<int> select_frames(const RenderCommandOptions& o, const Scene& scene
   std::vector<int> frames;
   for (int f = a.first_frame; f <= a.last_frame; ++f) frames.push_back(f);
   return frames;
-}
-
-// Temporaries that write_exr leaves behind when its process is killed mid-write:
-// ".<name>.tmp-<pid>-<n>" beside the target. Removes those of the given targets whose process no
-// longer exists (each folder is listed once).
-void remove_stale_temporaries(const std::vector<std::string>& targets, bool verbose) {
-  std::map<fs::path, std::set<std::string>> names_by_folder;
-  for (const std::string& target : targets) {
-    const fs::path path(target);
-    names_by_folder[path.parent_path().empty() ? fs::path(".") : path.parent_path()].insert(path.filename().string());
-  }
-  for (const auto& [folder, names] : names_by_folder) {
-    std::error_code ec;
-    if (!fs::is_directory(folder, ec)) continue;
-    for (const fs::directory_entry& entry : fs::directory_iterator(folder, ec)) {
-      const std::string name = entry.path().filename().string();
-      const size_t tmp = name.rfind(".tmp-");
-      if (name.size() < 2 || name[0] != '.' || tmp == std::string::npos || !names.count(name.substr(1, tmp - 1))) continue;
-      const std::string rest = name.substr(tmp + 5);
-      const size_t dash = rest.find('-');
-      if (dash == std::string::npos || dash == 0) continue;
-      long pid = 0;
-      try {
-        size_t used = 0;
-        pid = std::stol(rest.substr(0, dash), &used);
-        if (used != dash) continue;
-      } catch (const std::exception&) {
-        continue;
-      }
-      if (pid <= 0 || ::kill(pid_t(pid), 0) == 0 || errno == EPERM) continue;  // its writer is alive
-      std::error_code remove_error;
-      if (fs::remove(entry.path(), remove_error) && verbose)
-        std::printf("removed stale temporary %s\n", entry.path().c_str());
-    }
-  }
 }
 
 int run_render(const RenderCommandOptions& o) {
@@ -230,6 +194,7 @@ int run_render(const RenderCommandOptions& o) {
     for (auto& pool : pools) jobs.push_back(std::make_unique<FrameJob>(*pool, scene, job_options));
     remove_stale_temporaries(targets, o.verbose);
   }
+  remove_stale_claims_of_complete_frames(pattern, skipped, o.claims, o.verbose);
   // Input is valid from here on: say what loading tolerated, then render.
   if (!o.quiet)
     for (const std::string& warning : report.warnings) std::fprintf(stderr, "pmrender: warning: %s\n", warning.c_str());
@@ -245,29 +210,58 @@ int run_render(const RenderCommandOptions& o) {
       warnings.check(f, image, repaired);
     });
   MemorySnapshot first_frame_memory;
-  std::vector<int> failed;
-  size_t rendered = 0, reused = 0, done = 0;
+  std::vector<int> failed, held_elsewhere;  // held: another live process has claimed the frame
+  size_t rendered = 0, reused = 0, done = 0, finished_elsewhere = 0;
   const auto start = std::chrono::steady_clock::now();
   install_interrupt_handlers();
-  auto render_frame = [&](FrameJob& job, int f) {
+  ClaimRefresher claim_refresher;
+  // The "wrote" line of a frame this process rendered; called with output locked.
+  auto report_written = [&](const FrameJob& job, int f, const std::string& path, const FrameOutcome& outcome) {
+    if (++rendered == 1) first_frame_memory = {host_rss_bytes(), devices.front()->allocated_bytes()};
+    reused += outcome.photons_reused ? 1 : 0;
+    if (!o.quiet) {
+      std::printf("wrote %s (frame %d, %dx%d, %s, %.2f ms", path.c_str(), f, job.width(), job.height(),
+                  job.devices().c_str(), outcome.render_ms);
+      if (outcome.result.passes > 1 || job_options.budget.open_ended())
+        std::printf(", %u passes (%s)", outcome.result.passes, outcome.result.stopped_by.c_str());
+      if (outcome.result.error >= 0) std::printf(", error ~%.2f%%", 100.0 * outcome.result.error);
+      if (outcome.resumed) std::printf(", continued from its checkpoint");
+      if (outcome.photons_reused) std::printf(", photons reused");
+      std::printf(")\n");
+      std::fflush(stdout);
+    }
+  };
+  // Claims frame f and renders it. waited: f was held by another process before (and said so), so
+  // a complete file now is that process's work, with or without --resume.
+  auto render_frame = [&](FrameJob& job, int f, bool waited) {
     const std::string path = expand_output_pattern(pattern, f);
     try {
-      const FrameOutcome outcome =
-          job.run(f, path, o.preview.empty() ? "" : expand_output_pattern(o.preview, f), progress);
-      std::lock_guard<std::mutex> lock(output);
+      ClaimAttempt attempt = claim_frame(path, o.claims);
+      std::unique_lock<std::mutex> lock(output);
       progress.clear();
-      if (++rendered == 1) first_frame_memory = {host_rss_bytes(), devices.front()->allocated_bytes()};
-      reused += outcome.photons_reused ? 1 : 0;
-      if (!o.quiet) {
-        std::printf("wrote %s (frame %d, %dx%d, %s, %.2f ms", path.c_str(), f, job.width(), job.height(),
-                    job.devices().c_str(), outcome.render_ms);
-        if (outcome.result.passes > 1 || job_options.budget.open_ended())
-          std::printf(", %u passes (%s)", outcome.result.passes, outcome.result.stopped_by.c_str());
-        if (outcome.result.error >= 0) std::printf(", error ~%.2f%%", 100.0 * outcome.result.error);
-        if (outcome.resumed) std::printf(", continued from its checkpoint");
-        if (outcome.photons_reused) std::printf(", photons reused");
-        std::printf(")\n");
+      if (!attempt.claim.held()) {
+        held_elsewhere.push_back(f);
+        if (!waited && !o.quiet)
+          std::printf("skipped %s (being rendered by %s)\n", path.c_str(), claim_holder_text(*attempt.other).c_str());
         std::fflush(stdout);
+        return;  // counted once it is done, here or there
+      }
+      if (attempt.other && !o.quiet)
+        std::printf("took over the stale claim %s: %s\n", attempt.other->path.c_str(), attempt.other->why_stale.c_str());
+      std::fflush(stdout);
+      lock.unlock();
+      // Another process may have finished the frame since the --resume scan, or while this one waited.
+      if ((o.resume || waited) && exr_is_complete(path)) {
+        lock.lock();
+        ++finished_elsewhere;
+        if (o.verbose) std::printf("skipped %s (complete)\n", path.c_str());
+      } else {
+        const FrameOutcome outcome =
+            job.run(f, path, o.preview.empty() ? "" : expand_output_pattern(o.preview, f), progress);
+        attempt.claim.release();  // the file is in place
+        lock.lock();
+        progress.clear();
+        report_written(job, f, path, outcome);
       }
     } catch (const Interrupted&) {
       return;  // the frame in progress is abandoned (its checkpoint, if any, stays)
@@ -286,7 +280,7 @@ int run_render(const RenderCommandOptions& o) {
   };
   if (jobs.size() <= 1) {
     if (!jobs.empty()) jobs.front()->set_pass_progress(true);  // one frame at a time: its passes may show
-    for (size_t i = 0; i < todo.size() && interruption_signal() == 0; ++i) render_frame(*jobs.front(), todo[i]);
+    for (size_t i = 0; i < todo.size() && interruption_signal() == 0; ++i) render_frame(*jobs.front(), todo[i], false);
   } else {
     // Contiguous runs of frames, one per device, each on its own thread.
     std::vector<std::thread> threads;
@@ -297,7 +291,7 @@ int run_render(const RenderCommandOptions& o) {
         try {
           for (size_t i = d * per_device; i < std::min(todo.size(), (d + 1) * per_device) && interruption_signal() == 0;
                ++i)
-            render_frame(*jobs[d], todo[i]);
+            render_frame(*jobs[d], todo[i], false);
         } catch (...) {
           std::lock_guard<std::mutex> lock(output);
           if (!failure) failure = std::current_exception();
@@ -307,6 +301,21 @@ int run_render(const RenderCommandOptions& o) {
     if (failure) std::rethrow_exception(failure);
     std::sort(failed.begin(), failed.end());
   }
+  // --wait-for-claimed-frames: the frames other processes held, until each is complete, here (its
+  // claim was released without a file, or went stale) or there.
+  if (o.wait_for_claimed && !held_elsewhere.empty() && !o.quiet) {
+    progress.clear();
+    std::printf("waiting for %zu frame%s other processes are rendering: %s\n", held_elsewhere.size(),
+                held_elsewhere.size() == 1 ? "" : "s", frame_list(held_elsewhere).c_str());
+    std::fflush(stdout);
+  }
+  while (o.wait_for_claimed && !held_elsewhere.empty() && interruption_signal() == 0) {
+    sleep_unless_interrupted(kClaimPollSeconds);
+    std::vector<int> waiting;
+    waiting.swap(held_elsewhere);
+    std::sort(waiting.begin(), waiting.end());
+    for (size_t i = 0; i < waiting.size() && interruption_signal() == 0; ++i) render_frame(*jobs.front(), waiting[i], true);
+  }
   progress.clear();
   if (interruption_signal() != 0) return report_interruption(rendered, todo.size());
   const double total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -315,7 +324,9 @@ int run_render(const RenderCommandOptions& o) {
     std::printf("rendered %zu of %zu frames in %s", rendered, frames.size(), seconds_text(total_seconds).c_str());
     if (rendered > 0) std::printf(" (%s/frame)", seconds_text(total_seconds / double(todo.size())).c_str());
     if (reused > 0) std::printf(", photons reused in %zu", reused);
-    if (!skipped.empty()) std::printf(", %zu already complete", skipped.size());
+    if (!skipped.empty() || finished_elsewhere > 0)
+      std::printf(", %zu already complete", skipped.size() + finished_elsewhere);
+    if (!held_elsewhere.empty()) std::printf(", %zu being rendered by other processes", held_elsewhere.size());
     if (!failed.empty()) std::printf(", %zu failed", failed.size());
     std::printf("\n");
   }
@@ -379,8 +390,14 @@ Run add_render_command(CLI::App& app) {
   cmd->add_option("--checkpoint-every", options->checkpoint_every,
                   "Write the frame so far every N passes (a normal EXR plus <file>.pmstate); --resume continues it")
       ->transform(any_unsigned32());
+  add_stale_claim_option(cmd, options->claims);
+  cmd->add_flag("--wait-for-claimed-frames", options->wait_for_claimed,
+                "Frames another process has claimed: wait until they are complete, and render any whose claim is "
+                "released without a file or goes stale (docs/farm.md, \"Frame claims\")");
   cmd->add_flag("-q,--quiet", options->quiet, "Print nothing on success (no progress, no summary)");
-  cmd->add_flag("-v,--verbose", options->verbose, "Also list skipped frames and removed stale temporaries, and print host and device memory at the end");
+  cmd->add_flag("-v,--verbose", options->verbose,
+                "Also list skipped frames and removed stale temporaries and claims, and print host and device memory "
+                "at the end");
   return [options] { return run_render(*options); };
 }
 

@@ -16,7 +16,7 @@ namespace {
 volatile std::sig_atomic_t g_signal = 0;
 
 // Each slot: the path, then `used` set (release) once the path is complete.
-constexpr int kSlots = 8;
+constexpr int kSlots = 32;  // per device thread: a frame claim, an output temporary, a checkpoint
 struct TemporarySlot {
   std::atomic<bool> used{false};
   std::atomic<bool> claimed{false};

@@ -24,8 +24,9 @@ class Interrupted : public std::runtime_error {
 // Throws Interrupted when a stop was requested.
 void throw_if_interrupted();
 
-// Temporary files that must not outlive the process. register_temporary returns a slot (or -1
-// when all slots are taken, which only means the file is not removed on a hard exit).
+// Files that must not outlive the process: output temporaries and frame claims (frame_claim.h).
+// register_temporary returns a slot (or -1 when all slots are taken, which only means the file is
+// not removed on a hard exit).
 int register_temporary(const std::string& path);
 void unregister_temporary(int slot);
 

@@ -1,5 +1,6 @@
 // Slurm job-array batch scripts for frame sequences: #SBATCH header, one frame chunk per array
-// task, per-line timestamps for per-frame timings, render with --resume, then frames check.
+// task, per-line timestamps for per-frame timings, render with --resume and
+// --wait-for-claimed-frames, then frames check.
 #include "render/slurm_script.h"
 
 #include <sstream>
@@ -97,7 +98,9 @@ std::string slurm_batch_script(const SlurmArrayJob& job) {
   s << "status=0\n";
   s << "\"$pmrender\" render";
   for (const std::string& a : job.render_args) s << " " << shell_quote(a);
-  s << " --frames \"$frames\" -o \"$pattern\" --resume 2>&1 | stamp || status=$?\n";
+  // Waiting: an earlier attempt of this task that still runs (or a second submission) keeps the
+  // frames it has claimed, and this attempt ends once they are complete.
+  s << " --frames \"$frames\" -o \"$pattern\" --resume --wait-for-claimed-frames 2>&1 | stamp || status=$?\n";
   s << "# The task succeeds only when every one of its frames is complete.\n";
   s << "\"$pmrender\" frames check -o \"$pattern\" --frames \"$frames\"";
   if (!job.check_resolution.empty()) s << " --resolution " << shell_quote(job.check_resolution);

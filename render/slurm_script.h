@@ -1,5 +1,6 @@
 // The text of a Slurm job-array batch script that renders a sequence in chunks of frames: one
-// array task per chunk, each running `pmrender render ... --frames CHUNK --resume` and then
+// array task per chunk, each running `pmrender render ... --frames CHUNK --resume
+// --wait-for-claimed-frames` and then
 // `pmrender frames check` over the same frames (docs/farm.md). Pure string work: the command line
 // (cli/farm_command.cpp) validates the job and submits the script.
 #pragma once
@@ -14,7 +15,8 @@ struct SlurmArrayJob {
   std::string pmrender;                  // absolute path of the pmrender binary on the nodes
   std::string workdir;                   // absolute; relative paths among render_args resolve here
   std::vector<std::string> render_args;  // after `render`: the scene and the options, except
-                                         // --frames, -o and --resume, which the script adds
+                                         // --frames, -o, --resume and --wait-for-claimed-frames,
+                                         // which the script adds
   std::string output_pattern;            // absolute, with # for the frame number
   std::vector<std::string> chunks;       // each array task's frames, as a --frames specification
   std::string check_resolution;          // WIDTHxHEIGHT every frame must have; empty: any

@@ -105,6 +105,8 @@ TEST_F(FarmCli, BadOptionsExitWith2BeforeAnythingIsWritten) {
   expect_usage_error(base + " --resolution 12by4", "--resolution");
   expect_usage_error(base + " --frame 3", "--frame: give the frames with --frames");
   expect_usage_error(base + " --resume", "--resume: farm tasks always resume");
+  expect_usage_error(base + " --wait-for-claimed-frames", "--wait-for-claimed-frames: farm tasks always wait");
+  expect_usage_error(base + " --stale-claim-after 30", "--stale-claim-after: expected 0 (never) or at least 60");
   expect_usage_error("farm slurm " + scene_path() + " --chunk 2 --frames 20-30 -o " + (dir_ / "f_####.exr").string(),
                      "--frames: '20-30': outside the scene's frames 0-23");
   expect_usage_error(base + " --time-limit 2h", "--time-limit: '2h' is not a Slurm time");

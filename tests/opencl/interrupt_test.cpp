@@ -1,6 +1,6 @@
 // SIGINT and SIGTERM sent to a real pmrender process in the middle of a sequence: the finished
-// frames stay and are complete, no temporary or partial file remains, the message says how far it
-// got, and the exit code is 128 + the signal (130, 143).
+// frames stay and are complete, no temporary, partial file or frame claim remains, the message
+// says how far it got, and the exit code is 128 + the signal (130, 143).
 #include <csignal>
 
 #include <gtest/gtest.h>
@@ -48,6 +48,7 @@ class Interrupt : public test::PmrenderProcessTest {
     for (const auto& entry : fs::directory_iterator(dir_)) {
       const std::string name = entry.path().filename().string();
       EXPECT_EQ(name.find(".tmp-"), std::string::npos) << "temporary left: " << name;
+      EXPECT_NE(entry.path().extension(), ".claim") << "frame claim left: " << name;
       if (entry.path().extension() != ".exr") continue;
       ++exr_files;
       EXPECT_TRUE(exr_is_complete(entry.path().string())) << name;

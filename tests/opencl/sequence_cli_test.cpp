@@ -134,6 +134,8 @@ TEST_F(SequenceCli, FailedFramesAreNamedAndTheOthersStillRender) {
   EXPECT_NE(r.err.find("1 of 5 frames failed: 2"), std::string::npos) << r.err;
   for (int f : {0, 1, 3, 4}) EXPECT_TRUE(exr_is_complete(out("f_000" + std::to_string(f) + ".exr"))) << f;
   EXPECT_EQ(written_frames(r.out), (std::set<int>{0, 1, 3, 4}));
+  for (const std::string& name : files())  // the failed frame's claim too is released
+    EXPECT_EQ(name.find(".claim"), std::string::npos) << "left behind: " << name;
 }
 
 TEST_F(SequenceCli, ResumeAfterAKilledRunRendersOnlyTheMissingFrames) {

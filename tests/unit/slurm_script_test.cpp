@@ -59,7 +59,7 @@ TEST(SlurmScript, HeaderHasTheArrayRequeueAndLogs) {
   EXPECT_NE(script.find("set -euo pipefail\n"), std::string::npos);
   EXPECT_NE(script.find("frames=${chunks[$SLURM_ARRAY_TASK_ID]}"), std::string::npos);
   EXPECT_NE(script.find("\"$pmrender\" render '/home/a/shot 1/room.json' --photons 200000 --seed 7 --frames \"$frames\" "
-                        "-o \"$pattern\" --resume"),
+                        "-o \"$pattern\" --resume --wait-for-claimed-frames 2>&1"),
             std::string::npos)
       << script;
   EXPECT_NE(script.find("\"$pmrender\" frames check -o \"$pattern\" --frames \"$frames\" --resolution 640x480"),
