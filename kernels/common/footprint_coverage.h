@@ -68,7 +68,8 @@ PM_DEVICE int footprint_cut_keeps(const FootprintCut* cut, float x, float y)
    of n. A tilted surface (a curved one, away from the hit) holds 1 / |cos| times the area of its
    projection onto the disc, and every layer inside the thickness (a step, a stack of ledges)
    receives the photon: both are surface area the flux is spread over. Steeper surfaces on the
-   way (a column inside a thick footprint) are passed, up to PM_FOOTPRINT_PROBE_HITS crossings. */
+   way (a column inside a thick footprint) are passed, up to PM_FOOTPRINT_PROBE_HITS crossings;
+   surfaces met from inside a solid (a slab's underside) are not counted. */
 #define PM_FOOTPRINT_PROBE_HITS 4
 PM_DEVICE float footprint_probe_area(const KernelGlobals* kg, const Footprint* f, Vec3 center, Vec3 n, float offset,
                                      float x, float y)
@@ -77,13 +78,18 @@ PM_DEVICE float footprint_probe_area(const KernelGlobals* kg, const Footprint* f
   Vec3 at = vec3_add(center, vec3_add(vec3_scale(f->axis_u, x), vec3_scale(f->axis_v, y)));
   Ray ray = ray_make(vec3_madd(at, n, reach), vec3_neg(n));
   float t_min = 0.0f, area = 0.0f;
+  float gap = pm_fmaxf(1.0e-3f * reach, offset);
   for (int k = 0; k < PM_FOOTPRINT_PROBE_HITS; ++k) {
     SceneHit hit = scene_trace(kg->scene_nodes, kg->triangles, &ray, t_min, 2.0f * reach, 0);
     if (hit.triangle < 0) break;
-    /* Triangles are two-sided: either side may face the gather's shading point. */
+    /* Only surfaces the ray meets from open space count: after an odd number of crossings it is
+       inside a solid (a floor slab, a column), whose far side faces away from the photon and the
+       gather skips. Triangles are two-sided, so the tilt is |cos|. */
     float facing = pm_fabsf(vec3_dot(scene_triangle_normal(kg->triangles, hit.triangle), n));
-    if (facing * facing >= PM_GATHER_MIN_NORMAL_COS2) area += 1.0f / facing;
-    t_min = hit.t;
+    if ((k & 1) == 0 && facing * facing >= PM_GATHER_MIN_NORMAL_COS2) area += 1.0f / facing;
+    /* Past this surface: a crossing that hits two triangles (their shared edge, a duplicated
+       face) is one crossing, or the parity would flip. */
+    t_min = hit.t + gap;
   }
   return area;
 }

@@ -1,0 +1,96 @@
+// The indirect light of every method against path-traced references of the benchmark and golden
+// scenes (tests/accuracy/references/, made by bench/accuracy_suite.sh: 65536 paths per pixel,
+// 96 x 54), on the OpenCL backend (PoCL in CI). Each check is the signed bias of the indirect
+// light with the direct light matched (render/image_metrics.h, as `pmrender compare` prints it),
+// and the frame's own error estimate must see it: a deliberately biased estimate (footprints
+// spread over the whole ellipse, the estimator before footprint coverage) fails the bias check
+// and is reported by the estimate. The benchmark scenes read their meshes from ../shared/scenes;
+// where that folder is missing at configure time, their cases are not built (CMake says so).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "render/exr_io.h"
+#include "render/image_metrics.h"
+#include "render/progressive.h"
+#include "render/renderer.h"
+#include "scene_io/cornell_box.h"
+#include "scene_io/scene_file.h"
+#include "support/device_checks.h"
+#include "support/render_settings.h"
+
+namespace pm {
+namespace {
+
+constexpr int kWidth = 96, kHeight = 54;
+
+Device& device() {
+  static std::unique_ptr<Device> d = test::open_first_device("opencl");
+  if (!d) throw std::runtime_error("no OpenCL device");
+  return *d;
+}
+
+Scene scene_named(const std::string& name) {
+  if (name == "builtin") return builtin_cornell_box();
+  const std::string bench = std::string(PM_SOURCE_DIR) + "/bench/scenes/" + name + ".json";
+  return load_scene_file(bench);
+}
+
+struct Accuracy {
+  double bias = 0;       // signed bias of the indirect light, the direct light matched
+  double estimate = -1;  // the frame's error estimate (pmrender/error_estimate)
+};
+
+Accuracy render_against_reference(const std::string& scene_name, RenderSettings settings, int bounces = 2) {
+  const Scene scene = scene_named(scene_name);
+  settings.width = kWidth;
+  settings.height = kHeight;
+  Renderer renderer(device(), scene, settings);
+  PassBudget budget;
+  budget.max_passes = settings.passes;
+  const ProgressiveResult result = render_progressive(renderer, 0, budget, nullptr, 0);
+  const FrameImage test = renderer.read_image();
+  const FrameImage reference = read_exr(std::string(PM_SOURCE_DIR) + "/tests/accuracy/references/ref_" + scene_name +
+                                        "_b" + std::to_string(bounces) + ".exr");
+  Accuracy a;
+  a.bias = light_bias(reference, test).indirect;
+  a.estimate = result.error;
+  std::printf("%-16s %-40s bias %+.4f  estimate %.4f\n", scene_name.c_str(), renderer.describe().c_str(), a.bias,
+              a.estimate);
+  return a;
+}
+
+RenderSettings photon_defaults() { return test::photon_render_settings(PhotonSettings{}); }
+
+// The path tracer's noise at the references' 65536 paths per pixel, summed over the image, is
+// under 0.1 % in every scene (tests/accuracy/references/README.md), so the tolerances below are
+// the targets, not noise allowances.
+constexpr double kPhotonTolerance = 0.015;
+
+class SceneAccuracy : public testing::TestWithParam<const char*> {};
+
+TEST_P(SceneAccuracy, PhotonMappingAtItsDefaultsIsWithinOneAndAHalfPercent) {
+  const Accuracy a = render_against_reference(GetParam(), photon_defaults());
+  EXPECT_LE(std::fabs(a.bias), kPhotonTolerance);
+  EXPECT_GE(a.estimate, 2.0 / 3.0 * std::fabs(a.bias)) << "the estimate sees the bias";
+}
+
+TEST_P(SceneAccuracy, ABiasedEstimateIsCaughtByTheBiasCheckAndTheErrorEstimate) {
+  // Footprints whose flux is spread over the whole ellipse, hanging over edges or not: the
+  // estimator before footprint coverage, 4 to 20 % too dark in these scenes.
+  RenderSettings settings = photon_defaults();
+  test::edit_photons(settings).footprint_coverage = false;
+  const Accuracy a = render_against_reference(GetParam(), settings);
+  EXPECT_GT(std::fabs(a.bias), kPhotonTolerance) << "the bias check catches it";
+  EXPECT_GE(a.estimate, 2.0 / 3.0 * std::fabs(a.bias)) << "the error estimate reports it";
+}
+
+INSTANTIATE_TEST_SUITE_P(Closed, SceneAccuracy, testing::Values("builtin", "cornell-mcguire"));
+#if PM_HAVE_BENCH_SCENES
+INSTANTIATE_TEST_SUITE_P(Benchmark, SceneAccuracy, testing::Values("sponza", "sibenik", "conference"));
+#endif
+
+}  // namespace
+}  // namespace pm
