@@ -58,7 +58,7 @@
   X(photon, float4, map_row_u, map_hits, 1)    /* rows of the inverse ellipsoid basis, w: the first cut */  \
   X(photon, float4, map_row_v, map_hits, 1)                                                                 \
   X(photon, float4, map_row_n, map_hits, 1)                                                                 \
-  X(photon, float4, map_power, map_hits, 1)    /* rgb flux / (footprint area x kept kernel) */              \
+  X(photon, float4, map_power, map_hits, 1)    /* rgb flux / (ellipse area x covered share) */            \
   X(photon, float4, map_incident, map_hits, 1)                                                              \
   X(photon, float4, map_cut, map_hits, 1)      /* second cut of a clipped footprint (footprint_clip.h) */   \
   X(photon, uint, gather_stats, counters, 2)   /* [0] hits accepted, [1] shading points (collect_stats) */ \

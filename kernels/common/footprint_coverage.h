@@ -8,18 +8,14 @@
    columns, cornices) that is 10-20 % of the indirect light, a bias that no photon count removes
    while the footprints keep their size.
 
-   The area is measured with probes: PM_FOOTPRINT_PROBES points spread evenly over the unit disc
-   (Vogel's spiral: each point in the middle of an equal-area cell, the pattern turned by an angle
-   drawn per hit so that its error does not line up between footprints), each weighted by the
-   kernel at its radius. A probe that the cuts exclude does not count at all (the clip's kept
-   fraction accounts for it exactly). A kept probe shoots a ray along -n through the ellipsoid's
-   thickness at that point and adds the surface the gather would accept there: each surface it
-   crosses facing the photon's side within the gather's 60 degrees (gather_reach.h), counted as
-   1 / |cos| of its tilt, the area it holds per unit of the disc. The footprint's area is then
-   multiplied by that covered share of the kept kernel mass, so each photon's flux integrates to
-   itself over the shading points it reaches: on flat ground that ends (an edge), on a curved
-   surface that tilts away from the disc (more area than the disc: without it the closed sphere
-   reads +1.7 %), and on surfaces layered inside the footprint's thickness (steps, ledges).
+   The covered share is measured with probes: PM_FOOTPRINT_PROBES points spread evenly over the
+   unit disc (Vogel's spiral: each point in the middle of an equal-area cell, the pattern turned
+   by an angle drawn per hit so that its error does not line up between footprints), each
+   weighted by the kernel at its radius. A probe that the cuts exclude does not count at all (the
+   clip's kept fraction accounts for it exactly). A kept probe is covered when a ray along -n
+   through the ellipsoid's thickness there finds a surface the gather would accept
+   (footprint_probe_covered). The footprint's area is multiplied by the covered share of the kept
+   kernel mass, so each photon's flux integrates to itself over the shading points it reaches.
 
    A footprint whose probes all miss still covers its own hit: it counts as half a probe's cell,
    so the flux never divides by zero. Cost: up to PM_FOOTPRINT_PROBES short rays per footprint,
@@ -37,6 +33,8 @@
 /* Probes per footprint (the first sits at the centre). 16 puts the share's quantisation at about
    6 % of a footprint, which averages out over the tens to hundreds of footprints of a gather. */
 #define PM_FOOTPRINT_PROBES 16
+/* Probes of the second pattern, for footprints that the first finds partly covered. */
+#define PM_FOOTPRINT_EDGE_PROBES 64
 /* The golden angle, pi (3 - sqrt(5)). */
 #define PM_GOLDEN_ANGLE 2.39996323f
 /* Random stream of the probe pattern's turn per hit. */
@@ -61,56 +59,73 @@ PM_DEVICE int footprint_cut_keeps(const FootprintCut* cut, float x, float y)
   return 1;
 }
 
-/* The surface the gather would accept for this footprint under disc point (x, y), per unit of
-   the disc's own area: a ray along -n through the ellipsoid's thickness there, from its top to
-   its bottom (plus the hit's ray offset on both sides, so the photon's own plane is always
-   inside), sums 1 / |cos| over the surfaces it crosses whose normal lies within the gather's angle
-   of n. A tilted surface (a curved one, away from the hit) holds 1 / |cos| times the area of its
-   projection onto the disc, and every layer inside the thickness (a step, a stack of ledges)
-   receives the photon: both are surface area the flux is spread over. Steeper surfaces on the
-   way (a column inside a thick footprint) are passed, up to PM_FOOTPRINT_PROBE_HITS crossings;
-   surfaces met from inside a solid (a slab's underside) are not counted. */
+/* Whether a surface the gather would accept for this footprint lies under disc point (x, y): a
+   ray along -n through the ellipsoid's thickness there, from its top to its bottom (plus the
+   hit's ray offset on both sides, so the photon's own plane is always inside), meets from open
+   space a surface whose normal lies within the gather's angle of n. Steeper surfaces on the way
+   (a column inside a thick footprint) are passed, up to PM_FOOTPRINT_PROBE_HITS crossings; after
+   an odd number of crossings the ray is inside a solid, whose far side (a slab's underside) faces
+   away from the photon. Counted as 1 whatever its tilt and however many layers lie below: a
+   footprint spreads its photon over its own surface; counting the tilted or layered area of
+   neighbouring surfaces as well (which send their own photons back less than they take) darkens
+   the flat ground measurably (Sponza, one bounce: -3.4 % instead of +1.4 %, docs/accuracy.md). */
 #define PM_FOOTPRINT_PROBE_HITS 4
-PM_DEVICE float footprint_probe_area(const KernelGlobals* kg, const Footprint* f, Vec3 center, Vec3 n, float offset,
-                                     float x, float y)
+PM_DEVICE int footprint_probe_covered(const KernelGlobals* kg, const Footprint* f, Vec3 center, Vec3 n, float offset,
+                                      float x, float y)
 {
   float reach = vec3_length(f->axis_n) * pm_sqrtf(pm_fmaxf(1.0f - x * x - y * y, 0.0f)) + offset;
   Vec3 at = vec3_add(center, vec3_add(vec3_scale(f->axis_u, x), vec3_scale(f->axis_v, y)));
   Ray ray = ray_make(vec3_madd(at, n, reach), vec3_neg(n));
-  float t_min = 0.0f, area = 0.0f;
+  float t_min = 0.0f;
   float gap = pm_fmaxf(1.0e-3f * reach, offset);
   for (int k = 0; k < PM_FOOTPRINT_PROBE_HITS; ++k) {
     SceneHit hit = scene_trace(kg->scene_nodes, kg->triangles, &ray, t_min, 2.0f * reach, 0);
-    if (hit.triangle < 0) break;
-    /* Only surfaces the ray meets from open space count: after an odd number of crossings it is
-       inside a solid (a floor slab, a column), whose far side faces away from the photon and the
-       gather skips. Triangles are two-sided, so the tilt is |cos|. */
-    float facing = pm_fabsf(vec3_dot(scene_triangle_normal(kg->triangles, hit.triangle), n));
-    if ((k & 1) == 0 && facing * facing >= PM_GATHER_MIN_NORMAL_COS2) area += 1.0f / facing;
+    if (hit.triangle < 0) return 0;
+    /* Triangles are two-sided: either side may face the gather's shading point. */
+    float facing = vec3_dot(scene_triangle_normal(kg->triangles, hit.triangle), n);
+    if ((k & 1) == 0 && facing * facing >= PM_GATHER_MIN_NORMAL_COS2) return 1;
     /* Past this surface: a crossing that hits two triangles (their shared edge, a duplicated
        face) is one crossing, or the parity would flip. */
     t_min = hit.t + gap;
   }
-  return area;
+  return 0;
 }
 
-/* The accepted surface area under the part of the disc that `cut` keeps, per unit of the kept
-   disc's area, kernel-weighted (above 0; 1 for a flat surface that fills the disc; above 1 where
-   the surface is tilted or layered). turn: the pattern's angle for this hit. */
+/* Covered and kept kernel weights of a `count`-probe pattern (see footprint_covered_share). */
+PM_DEVICE void footprint_probe_pattern(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut, Vec3 center,
+                                       Vec3 n, float offset, float turn, uint shape, uint count, float* kept,
+                                       float* covered, uint* kept_probes)
+{
+  *kept = 0.0f;
+  *covered = 0.0f;
+  *kept_probes = 0u;
+  for (uint j = 0; j < count; ++j) {
+    float x, y;
+    footprint_probe_point(j, count, turn, &x, &y);
+    if (!footprint_cut_keeps(cut, x, y)) continue;
+    float w = shape == PM_KERNEL_EPANECHNIKOV ? kernel_epanechnikov(x * x + y * y) : 1.0f;
+    *kept += w;
+    ++*kept_probes;
+    if (footprint_probe_covered(kg, f, center, n, offset, x, y)) *covered += w;
+  }
+}
+
+/* Share of the kernel mass kept by `cut` that lies over accepted surface, in (0, 1]. turn: the
+   pattern's angle for this hit. A footprint that its PM_FOOTPRINT_PROBES probes find partly
+   covered is measured again with PM_FOOTPRINT_EDGE_PROBES: the flux is divided by the share, and
+   1 / share is convex, so its noise is a bias (+1.0 % in Sponza's first bounce with 16 probes
+   throughout, footprints of a few centimetres; docs/accuracy.md). Footprints wholly on a surface,
+   most of them, cost the first pattern only. */
 PM_DEVICE float footprint_covered_share(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut,
                                         Vec3 center, Vec3 n, float offset, float turn, uint shape)
 {
-  float kept = 0.0f, covered = 0.0f;
-  uint kept_probes = 0;
-  for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) {
-    float x, y;
-    footprint_probe_point(j, PM_FOOTPRINT_PROBES, turn, &x, &y);
-    if (!footprint_cut_keeps(cut, x, y)) continue;
-    float w = shape == PM_KERNEL_EPANECHNIKOV ? kernel_epanechnikov(x * x + y * y) : 1.0f;
-    kept += w;
-    ++kept_probes;
-    covered += w * footprint_probe_area(kg, f, center, n, offset, x, y);
-  }
+  float kept, covered;
+  uint kept_probes;
+  footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, PM_FOOTPRINT_PROBES, &kept, &covered,
+                          &kept_probes);
+  if (covered > 0.0f && covered < kept)
+    footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, PM_FOOTPRINT_EDGE_PROBES, &kept, &covered,
+                            &kept_probes);
   if (!(kept > 0.0f)) return 1.0f; /* no probe inside the cuts: the clip's kept fraction is all we know */
   /* The hit itself lies on the surface: a footprint whose probes all miss (a sliver, a thin
      rail) still covers something; count it as half a probe's cell. */
@@ -147,7 +162,7 @@ PM_DEVICE float disc_covered_share(const KernelGlobals* kg, Vec3 x, Vec3 n, floa
       Ray ray = ray_make(from, vec3_scale(d, 1.0f / length));
       if (scene_trace(kg->scene_nodes, kg->triangles, &ray, 0.0f, length, 1).triangle >= 0) continue;
     }
-    covered += w * footprint_probe_area(kg, &f, x, n, offset, px, py);
+    if (footprint_probe_covered(kg, &f, x, n, offset, px, py)) covered += w;
   }
   return kept > 0.0f && covered > 0.0f ? covered / kept : 1.0f;
 }

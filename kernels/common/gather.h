@@ -31,13 +31,14 @@ PM_DEVICE void gather_at(const KernelGlobals* kg, const LaunchParams* p, const M
   int k;
   while ((k = photon_map_query_next(&q, kg->map_nodes, kg->map_lo, kg->map_hi)) >= 0) {
     float4 c = PM_LOAD(&kg->map_center[k]);
-    float r2;
-    if (!footprint_reaches(kg, k, c, x, n, &r2)) continue;
+    float r2, at_u, at_v;
+    if (!footprint_reaches_at(kg, k, c, x, n, &r2, &at_u, &at_v)) continue;
     Vec3 wi = vec3_from_float4(PM_LOAD(&kg->map_incident[k]));
     if (vec3_dot(wi, n) <= 0.0f) continue; /* arrived on the other side of this surface */
     Vec3 f = brdf_eval(m, n, wi, wo);
     Vec3 contribution = vec3_scale(vec3_mul(f, vec3_from_float4(PM_LOAD(&kg->map_power[k]))),
-                                   gather_kernel_weight(p->kernel_shape, r2));
+                                   gather_kernel_weight(p->kernel_shape, r2) /
+                                       footprint_kept_about(kg, k, c, at_u, at_v, p->kernel_shape));
     if (PM_AS_UINT(c.w) & PM_HIT_CAUSTIC) *caustic = vec3_add(*caustic, contribution);
     else *indirect = vec3_add(*indirect, contribution);
     ++*accepted;

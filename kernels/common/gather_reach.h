@@ -4,6 +4,7 @@
 #ifndef PM_GATHER_REACH_H
 #define PM_GATHER_REACH_H
 
+#include "footprint_clip.h"
 #include "kernel_globals.h"
 #include "vec3.h"
 
@@ -22,7 +23,8 @@
    adjoining face (a camera inside a closed box would see the light of the photons on its outside
    along its edges); the normal test keeps the first and stops the second. Writes the squared
    ellipsoid radius to *r2. */
-PM_DEVICE int footprint_reaches(const KernelGlobals* kg, uint k, float4 c, Vec3 x, Vec3 n, float* r2)
+PM_DEVICE int footprint_reaches_at(const KernelGlobals* kg, uint k, float4 c, Vec3 x, Vec3 n, float* r2, float* at_u,
+                                   float* at_v)
 {
   Vec3 d = vec3_sub(x, vec3_from_float4(c));
   float4 row_u = PM_LOAD(&kg->map_row_u[k]), row_v = PM_LOAD(&kg->map_row_v[k]), row_n = PM_LOAD(&kg->map_row_n[k]);
@@ -30,6 +32,8 @@ PM_DEVICE int footprint_reaches(const KernelGlobals* kg, uint k, float4 c, Vec3 
   float lv = vec3_dot(vec3_from_float4(row_v), d);
   float ln = vec3_dot(vec3_from_float4(row_n), d);
   *r2 = lu * lu + lv * lv + ln * ln;
+  *at_u = lu;
+  *at_v = lv;
   if (!(*r2 <= 1.0f) || !(row_u.w * lu + row_v.w * lv <= row_n.w)) return 0;
   if (PM_AS_UINT(c.w) & PM_HIT_SECOND_CUT) {
     float4 cut = PM_LOAD(&kg->map_cut[k]);
@@ -38,6 +42,42 @@ PM_DEVICE int footprint_reaches(const KernelGlobals* kg, uint k, float4 c, Vec3 
   Vec3 axis_n = vec3_from_float4(row_n);
   float facing = vec3_dot(axis_n, n);
   return facing > 0.0f && facing * facing >= PM_GATHER_MIN_NORMAL_COS2 * vec3_dot(axis_n, axis_n);
+}
+
+PM_DEVICE int footprint_reaches(const KernelGlobals* kg, uint k, float4 c, Vec3 x, Vec3 n, float* r2)
+{
+  float at_u, at_v;
+  return footprint_reaches_at(kg, k, c, x, n, r2, &at_u, &at_v);
+}
+
+/* Least kept kernel mass about a shading point (a point at the tip of a narrow wedge between two
+   walls): the gather's weight stays at most 16 times the open floor's. */
+#define PM_GATHER_MIN_KEPT 0.0625f
+
+/* The kernel mass of photon k's footprint, moved to centre on the shading point at disc
+   coordinates (at_u, at_v), that its cuts keep (footprint_clip.h). The gather divides by it: near
+   a wall, photons come from one side only, so a shading point at distance d from the wall sees
+   the photon density times the kept mass of a footprint centred on it; dividing by that mass
+   makes a uniform density exact at every distance from the wall (dividing each photon by its own
+   kept mass instead reads 69 % at the wall's foot and slightly too much a footprint away). */
+PM_DEVICE float footprint_kept_about(const KernelGlobals* kg, uint k, float4 c, float at_u, float at_v, uint shape)
+{
+  float4 row_u = PM_LOAD(&kg->map_row_u[k]), row_v = PM_LOAD(&kg->map_row_v[k]), row_n = PM_LOAD(&kg->map_row_n[k]);
+  float mu[PM_FOOTPRINT_CUTS], mv[PM_FOOTPRINT_CUTS], t[PM_FOOTPRINT_CUTS];
+  mu[0] = row_u.w;
+  mv[0] = row_v.w;
+  t[0] = pm_fmaxf(row_n.w - (mu[0] * at_u + mv[0] * at_v), 0.0f);
+  mu[1] = 0.0f;
+  mv[1] = 0.0f;
+  t[1] = 1.0f;
+  if (PM_AS_UINT(c.w) & PM_HIT_SECOND_CUT) {
+    float4 cut = PM_LOAD(&kg->map_cut[k]);
+    mu[1] = cut.x;
+    mv[1] = cut.y;
+    t[1] = pm_fmaxf(cut.z - (cut.x * at_u + cut.y * at_v), 0.0f);
+  }
+  if (!(t[0] < 1.0f) && !(t[1] < 1.0f)) return 1.0f;
+  return pm_fmaxf(footprint_kept_fraction(mu, mv, t, PM_FOOTPRINT_CUTS, shape), PM_GATHER_MIN_KEPT);
 }
 
 #endif

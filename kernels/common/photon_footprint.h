@@ -49,7 +49,7 @@ PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p
    k, so the photon map's leaves and the gather read contiguous memory. The gather data of a hit: the footprint clipped at the geometry around it (footprint_clip.h),
    its bounds, the rows of the inverse of its basis, whose w hold the first cut (mu, mv, t): the
    gather accepts x where mu (row_u . (x - hit)) + mv (row_v . (x - hit)) <= t, a second cut in
-   map_cut (flagged PM_HIT_SECOND_CUT), and flux / (area * kept fraction of the kernel). For
+   map_cut (flagged PM_HIT_SECOND_CUT), and flux / (area * covered share); the gather divides by the kernel mass the cuts keep about each shading point. For
    knn the bounds are the point box hit +- r_max the knn traversal expects, and the power is the
    flux (the knn gather divides by its own area). */
 PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchParams* p, uint k)
@@ -69,6 +69,7 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
   if (p->footprint_clip)
     cut = footprint_clip(kg, &f, center, vec3_normalize(vec3_from_float4(n4)),
                          ray_offset_distance(center, 0.0f, p->ray_epsilon), p->kernel_shape);
+  float coverage = 1.0f;
   if (p->footprint_coverage && p->estimator != PM_ESTIMATOR_KNN) {
     /* The pattern's turn: drawn per photon and record, the same on every backend and for any
        slot layout. */
@@ -76,19 +77,23 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     float turn = PM_TWO_PI * rng_to_unit(rng_bits4(p->seed, p->photon_frame, p->photon_offset + slot / per_photon,
                                                    slot % per_photon, PM_STREAM_FOOTPRINT_PROBE,
                                                    p->photon_offset_hi).b0);
-    cut.kept *= footprint_covered_share(kg, &f, &cut, center, vec3_normalize(vec3_from_float4(n4)),
-                                        ray_offset_distance(center, 0.0f, p->ray_epsilon), turn, p->kernel_shape);
+    coverage = footprint_covered_share(kg, &f, &cut, center, vec3_normalize(vec3_from_float4(n4)),
+                                       ray_offset_distance(center, 0.0f, p->ray_epsilon), turn, p->kernel_shape);
   }
   Vec3 lo, hi;
   footprint_bounds(f, center, &lo, &hi);
-  float area = footprint_area(f) * cut.kept;
+  /* The footprint's area on the surface (T_auto, the histogram); the flux is divided by the
+     ellipse's area times its coverage only: the gather divides by the kept mass about each
+     shading point (footprint_kept_about, gather_reach.h). */
+  float area = footprint_area(f) * cut.kept * coverage;
+  float spread = footprint_area(f) * coverage;
 
   /* Inverse of the basis (a_u, a_v, a_n): its rows are the reciprocal basis vectors. */
   Vec3 c_vn = vec3_cross(f.axis_v, f.axis_n), c_nu = vec3_cross(f.axis_n, f.axis_u), c_uv = vec3_cross(f.axis_u, f.axis_v);
   float det = vec3_dot(f.axis_u, c_vn);
   float inv_det = det != 0.0f && pm_isfinite(det) ? 1.0f / det : 0.0f; /* singular: contains nothing */
   Vec3 flux = vec3_from_float4(kg->hit_flux[slot]);
-  Vec3 power = area > 0.0f ? vec3_scale(flux, 1.0f / area) : vec3_splat(0.0f);
+  Vec3 power = area > 0.0f && spread > 0.0f ? vec3_scale(flux, 1.0f / spread) : vec3_splat(0.0f);
   if (inv_det == 0.0f || !pm_isfinite(power.x + power.y + power.z)) {
     power = vec3_splat(0.0f);
     area = 0.0f;
