@@ -58,7 +58,8 @@ std::vector<std::pair<std::string, std::string>> FrameJob::attributes(int frame,
     // What the control saw (render/bias_control.h): the estimate's upper end, the regional
     // |bias|, the signed bias of the control pixels' sum with its standard error, and the
     // control's paths per pixel.
-    a.push_back({"pmrender/error_estimate_upper", number_text(bias.rms_error_upper)});
+    a.push_back({"pmrender/error_estimate_upper", number_text(bias.mean_abs_error_upper)});
+    a.push_back({"pmrender/error_rms", number_text(bias.rms_error)});
     a.push_back({"pmrender/error_bias", number_text(bias.regional_bias)});
     a.push_back({"pmrender/error_bias_signed", number_text(bias.signed_bias)});
     a.push_back({"pmrender/error_bias_stderr", number_text(bias.bias_error)});

@@ -9,6 +9,33 @@
 
 namespace pm {
 
+namespace {
+
+// E|e + eta| for eta ~ N(0, sigma^2): the expected absolute difference between the film and a
+// control whose own noise is sigma, when the film is off by e >= 0.
+double expected_abs_difference(double e, double sigma) {
+  if (!(sigma > 0)) return e;
+  const double z = e / (sigma * std::sqrt(2.0));
+  return e * std::erf(z) + sigma * std::sqrt(2.0 / M_PI) * std::exp(-z * z);
+}
+
+// The film's |error| at one control pixel from the observed |difference|: the e >= 0 whose
+// expected absolute difference is |d| (0 where |d| is within the control's own noise). Monotone
+// in e, so bisection.
+double absolute_error_from(double d, double sigma) {
+  d = std::fabs(d);
+  if (!(sigma > 0)) return d;
+  if (d <= expected_abs_difference(0.0, sigma)) return 0.0;
+  double lo = 0.0, hi = d;
+  for (int i = 0; i < 40; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (expected_abs_difference(mid, sigma) < d ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+}  // namespace
+
 ControlGrid control_grid(int width, int height) {
   ControlGrid g;
   const double pixels = double(std::max(width, 1)) * std::max(height, 1);
@@ -30,6 +57,7 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
   std::vector<double> region_variance(region_difference.size(), 0.0);
   double control_total = 0, difference_total = 0, variance_total = 0;
   double squared_error_sum = 0, squared_error_squares = 0, counted = 0;
+  double abs_error_sum = 0, abs_error_squares = 0;
   for (uint32_t by = 0; by < grid.blocks_y; ++by)
     for (uint32_t bx = 0; bx < grid.blocks_x; ++bx) {
       const size_t c = size_t(by) * grid.blocks_x + bx;
@@ -50,6 +78,9 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
       const double squared_error = (film - mean) * (film - mean) - variance;  // unbiased for the MSE
       squared_error_sum += squared_error;
       squared_error_squares += squared_error * squared_error;
+      const double abs_error = absolute_error_from(film - mean, std::sqrt(variance));
+      abs_error_sum += abs_error;
+      abs_error_squares += abs_error * abs_error;
       counted += 1;
     }
   if (!(control_total > 0)) return e;
@@ -64,7 +95,16 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
   // The point estimate with the control's own resolution folded in (one standard error of the
   // mean squared error): an imprecise control never reports an error of zero.
   e.rms_error = std::sqrt(std::max(0.0, mse) + mse_spread) / level;
-  e.rms_error_upper = std::sqrt(std::max(0.0, mse) + 2.0 * mse_spread) / level;
+  const double mae = abs_error_sum / counted;
+  const double mae_spread = counted > 1 ? std::sqrt(std::max(0.0, (abs_error_squares / counted - mae * mae) /
+                                                                      (counted - 1)))
+                                        : 0.0;
+  // The relative mean absolute error (the tradeoff's and `compare --metric relmae`'s measure),
+  // with the control's resolution folded in: one standard error, so an imprecise control never
+  // reports zero; the stopping rule's upper end adds two.
+  e.mean_abs_error = (mae + mae_spread) / level;
+  e.mean_abs_error_upper = (mae + 2.0 * mae_spread) / level;
+  e.mean_abs_error_stderr = mae_spread / level;
   e.signed_bias = difference_total / control_total;
   e.bias_error = std::sqrt(variance_total) / control_total;
   e.regional_bias = regional / control_total;

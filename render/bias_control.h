@@ -21,9 +21,13 @@ class Device;
 // pixel c, E[d_c^2 - v_c] is the film's mean squared error there, noise and bias together: the
 // control measures the film's whole error, for any method, from one pass on.
 struct BiasEstimate {
-  double rms_error = 0;       // sqrt(mean(d_c^2 - v_c) + its standard error) / mean control: the
-                              // film's relative RMS error, never below what the control resolves
-  double rms_error_upper = 0; // the same with two standard errors (the stopping rule's)
+  double mean_abs_error = 0;   // the film's relative mean absolute error (bias and noise): per control
+                               // pixel the |e| whose E|e + control noise| is the observed |d_c|,
+                               // summed over the control mean; plus its standard error
+  double mean_abs_error_upper = 0; // the same with two standard errors (the stopping rule's)
+  double mean_abs_error_stderr = 0; // that standard error
+  double rms_error = 0;        // sqrt(mean(d_c^2 - v_c) + its standard error) / mean control: the
+                               // film's relative RMS error (an unbiased mean square)
   double signed_bias = 0;     // (film - control) summed over every control pixel / control sum
   double bias_error = 0;      // the standard error of signed_bias from the control's paths
   double regional_bias = 0;   // sum over regions of |film - control|, less the control's noise there
@@ -45,6 +49,8 @@ constexpr uint32_t kControlRegionSide = 4;
 // Paths per control pixel added by each estimate while a frame goes on (a target error asks
 // after every pass).
 constexpr uint32_t kControlPathsPerStep = 16;
+// The most paths per control pixel a frame's final estimate may grow to, in control_paths.
+constexpr uint32_t kControlPathsGrowth = 8;
 ControlGrid control_grid(int width, int height);
 
 // Deviation of the film from the control, from the per-control-pixel sums (control_sums /

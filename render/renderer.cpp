@@ -232,10 +232,17 @@ double Renderer::estimate_error(bool final, double noise_scale) {
     p.max_bounces = method_->light_bounces();
     p.film_passes = passes_done_;
     last_bias_ = control_->add_and_compare(p, uint32_t(want - have));
+    // Where the path tracer is noisy (a point light in a closed box), the control's own
+    // uncertainty can dwarf the film's error: at the end of a frame the control doubles its
+    // paths, up to kControlPathsGrowth times control_paths, until it resolves the error to a
+    // quarter of itself.
+    while (final && last_bias_.known && control_->paths() < uint64_t(settings_.control_paths) * kControlPathsGrowth &&
+           last_bias_.mean_abs_error_stderr > 0.25 * (last_bias_.mean_abs_error - last_bias_.mean_abs_error_stderr))
+      last_bias_ = control_->add_and_compare(p, uint32_t(control_->paths()));
   }
   // The control measures noise and bias together; without it, the even/odd noise is all we know.
-  last_error_upper_ = last_bias_.known ? last_bias_.rms_error_upper : noise;
-  return last_bias_.known ? last_bias_.rms_error : noise;
+  last_error_upper_ = last_bias_.known ? last_bias_.mean_abs_error_upper : noise;
+  return last_bias_.known ? last_bias_.mean_abs_error : noise;
 }
 
 double Renderer::estimate_noise() {

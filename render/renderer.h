@@ -81,7 +81,7 @@ class Renderer {
   void run_pass(uint32_t pass);
 
   // Expected relative error of the indirect light (indirect + caustic) of the passes so far.
-  // For a method that may be biased, the relative RMS error at the bias control's pixels, noise
+  // For a method that may be biased, the relative mean absolute error at the bias control's pixels, noise
   // and bias together (render/bias_control.h: each call adds paths there, up to control_paths
   // when `final`). Otherwise, or with the control off, the noise alone: the mean absolute
   // difference between the even and the odd passes' means, scaled to the mean of all passes, over
