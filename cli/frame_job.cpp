@@ -139,7 +139,7 @@ FrameOutcome FrameJob::run(int frame, const std::string& path, const std::string
   write_exr(path, image, options_.full_float);
   std::error_code ignored;
   std::filesystem::remove(state_path, ignored);  // the frame is finished: its checkpoint is spent
-  if (!preview.empty()) write_preview_png(preview, image);
+  if (!preview.empty()) write_preview_png(preview, image, options_.preview_exposure_ev);
   return outcome;
 }
 

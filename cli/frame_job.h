@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "cli/progress_line.h"
@@ -18,6 +19,7 @@ struct FrameJobOptions {
   bool full_float = false;
   bool resume = false;   // continue from a checkpoint where one fits
   bool quiet = false;
+  std::optional<double> preview_exposure_ev;  // --exposure; without it each preview's automatic one
 };
 
 struct FrameOutcome {

@@ -32,6 +32,7 @@
 #include "render/frame_claim.h"
 #include "render/interruption.h"
 #include "render/output_pattern.h"
+#include "render/preview_exposure.h"
 #include "render/preview_png.h"
 #include "render/renderer.h"
 #include "render/scene_frame.h"
@@ -55,6 +56,8 @@ struct RenderCommandOptions {
   std::string output;
   bool full_float = false;
   std::string preview;
+  double exposure_ev = 0;
+  CLI::Option* exposure_option = nullptr;
   int frame = 0;
   std::string frames;
   bool resume = false;
@@ -122,6 +125,8 @@ std::vector<int> select_frames(const RenderCommandOptions& o, const Scene& scene
 }
 
 int run_render(const RenderCommandOptions& o) {
+  if (o.exposure_option->count() > 0 && o.preview.empty())
+    throw InputError("--exposure: sets the exposure of the --preview PNG; give --preview NAME.png too");
   SceneLoadReport report;
   Scene scene = o.render.scene_path.empty() ? builtin_cornell_box() : load_scene_file(o.render.scene_path, &report);
   const RenderSettings settings = render_settings(o.render);
@@ -170,6 +175,7 @@ int run_render(const RenderCommandOptions& o) {
   job_options.full_float = o.full_float;
   job_options.resume = o.resume;
   job_options.quiet = o.quiet;
+  if (o.exposure_option->count() > 0) job_options.preview_exposure_ev = o.exposure_ev;
 
   // Devices: with several, a single frame shares its passes between them; a sequence gives each
   // device its own contiguous run of frames (camera-only runs keep their reuse on one device).
@@ -370,6 +376,11 @@ Run add_render_command(CLI::App& app) {
       ->default_str("out/<scene>_####.exr");
   cmd->add_flag("--float", options->full_float, "Write 32-bit float channels instead of half");
   cmd->add_option("--preview", options->preview, "Also write a tone-mapped 8-bit PNG of the combined layer here (# as in -o)");
+  options->exposure_option =
+      cmd->add_option("--exposure", options->exposure_ev,
+                      "Exposure of the --preview PNG in stops (radiance times 2^EV), -32 to 32; default: automatic, "
+                      "the 99th percentile of each frame's luminance as white")
+          ->transform(finite_in(-kMaxExposureStops, kMaxExposureStops));
   options->frames_option =
       cmd->add_option("--frames", options->frames,
                       "Frames to render, e.g. 1-30,47,100-200:2 (default: the scene's whole sequence)");

@@ -1,11 +1,11 @@
 # Parser fuzzing (tests/fuzz/README.md).
-#  - Always: pm_fuzz_replay_scene / pm_fuzz_replay_frame_spec run every committed corpus input
-#    (crash reproducers included) through the fuzz targets once, as the ctests fuzz_corpus_*.
-#  - With -DPMRENDER_FUZZ=ON and clang: the libFuzzer targets pm_fuzz_scene and
-#    pm_fuzz_frame_spec, with the parsers (pm_core) built with AddressSanitizer and coverage.
+#  - Always: pm_fuzz_replay_<target> runs every committed corpus input (crash reproducers
+#    included) through the fuzz target once, as the ctest fuzz_corpus_<target>.
+#  - With -DPMRENDER_FUZZ=ON and clang: the libFuzzer targets pm_fuzz_<target>, with the
+#    parsers (pm_core) built with AddressSanitizer and coverage.
 #    tests/fuzz/run.sh configures such a build in build-fuzz/ and runs them for a bounded time.
 set(PM_FUZZ_DIR ${CMAKE_CURRENT_LIST_DIR})
-set(PM_FUZZ_TARGETS scene frame_spec gltf exr)
+set(PM_FUZZ_TARGETS scene frame_spec gltf exr checkpoint)
 
 foreach(target ${PM_FUZZ_TARGETS})
   add_executable(pm_fuzz_replay_${target} ${PM_FUZZ_DIR}/${target}_fuzzer.cpp ${PM_FUZZ_DIR}/replay_main.cpp)
