@@ -109,7 +109,7 @@ TEST(ProgressiveSettings, ShrinkFollowsKnausZwicker) {
 }
 
 // Average: every pass has the same footprints, so the noise falls as 1/sqrt(passes) while the
-// bias stays; the estimate from even and odd passes tracks the true error where noise dominates.
+// bias stays; the estimate tracks the true error, bias included.
 TEST(Progressive, AverageLowersNoiseButKeepsTheBias) {
   const SphereError r4 = render_sphere(PM_ESTIMATOR_RADIUS, kProgressiveAverage, 4);
   const SphereError r64 = render_sphere(PM_ESTIMATOR_RADIUS, kProgressiveAverage, 64);
@@ -119,12 +119,23 @@ TEST(Progressive, AverageLowersNoiseButKeepsTheBias) {
     EXPECT_GT(e->estimate, e->mean_abs / 2) << "the estimate is within a factor of 2 of the true error";
     EXPECT_LT(e->estimate, e->mean_abs * 2);
   }
-  // pd's bias on the curved sphere (footprints are flat discs) does not average away.
-  const SphereError p1 = render_sphere(PM_ESTIMATOR_PD, kProgressiveAverage, 1);
-  const SphereError p64 = render_sphere(PM_ESTIMATOR_PD, kProgressiveAverage, 64);
+  // A deliberately biased pd (flux spread over the whole flat ellipse, which the curved sphere
+  // leaves before its rim: footprint coverage off) keeps its bias over passes, and the estimate
+  // (its bias control, render/bias_control.h) reports it.
+  PhotonSettings biased;
+  biased.photons = 20000;
+  biased.footprint_coverage = false;
+  PassBudget budget;
+  budget.max_passes = 64;
+  const SphereError p64 = render_sphere(biased, budget);
+  budget.max_passes = 1;
+  const SphereError p1 = render_sphere(biased, budget);
+  std::printf("pd without coverage: bias %+.4f (1 pass), %+.4f (64 passes), estimate %.4f, mean |error| %.4f\n",
+              p1.bias, p64.bias, p64.estimate, p64.mean_abs);
   EXPECT_LT(p64.bias, -0.03);
   EXPECT_NEAR(p64.bias, p1.bias, 0.04);
-  EXPECT_LT(p64.estimate, std::fabs(p64.bias) / 2) << "the estimate sees the noise, not the bias";
+  EXPECT_GE(p64.estimate, 2.0 / 3.0 * std::fabs(p64.bias)) << "the estimate sees the bias";
+  EXPECT_LT(p64.estimate, 1.5 * p64.mean_abs);
 }
 
 // Shrink: footprints (pd), radii (radius) and the k-NN bound shrink from pass to pass, so the
@@ -202,9 +213,11 @@ TEST(Progressive, ShrinkLowersTheBiasInTheCornellBox) {
                 name_of(kEstimatorNames, estimator), passes, b);
     return b;
   };
+  // pd's footprints are normalised about each shading point at the walls (gather_reach.h) and
+  // by their covered share at edges: its corners are not dark at one pass, and shrinking keeps it.
   const double pd1 = bias(PM_ESTIMATOR_PD, 1), pd64 = bias(PM_ESTIMATOR_PD, 64);
-  EXPECT_LT(pd1, -0.02) << "one pass keeps the corners dark";
-  EXPECT_LT(std::fabs(pd64), 0.25 * std::fabs(pd1));
+  EXPECT_LT(std::fabs(pd1), 0.01);
+  EXPECT_LT(std::fabs(pd64), 0.01);
   const double knn1 = bias(PM_ESTIMATOR_KNN, 1), knn64 = bias(PM_ESTIMATOR_KNN, 64);
   EXPECT_LT(std::fabs(knn64), 0.6 * std::fabs(knn1));
   for (uint32_t passes : {1u, 64u}) EXPECT_LT(std::fabs(bias(PM_ESTIMATOR_RADIUS, passes)), 0.015);

@@ -102,9 +102,11 @@ TEST_F(Radiosity, CameraOnlyFramesOnlyInterpolate) {
 
 // Both methods estimate the same indirect light (bounces 1 and 2, all diffuse). Their biases
 // differ: radiosity interpolates vertex values linearly over 3.8 cm triangles and samples
-// visibility with nC rays per vertex; photon mapping blurs over footprints (and has photon
-// noise, about 0.5 % of the image mean at 400k photons). Measured here: ratio 1.004 (PoCL). The
-// image means must agree within 3 %; a lost bounce (-33 % here) or a factor of pi cannot.
+// visibility with nC rays per vertex, and reads 2.7 % under the path-traced reference in this box
+// (docs/accuracy.md); photon mapping, with its footprints' coverage and the gather's
+// normalisation at walls, is within 0.5 % of it (and has photon noise, about 0.5 % of the image
+// mean at 400k photons). Measured here: ratio 0.964 (PoCL). The image means must agree within
+// 6 %; a lost bounce (-33 % here) or a factor of pi cannot.
 TEST_F(Radiosity, CornellBoxAgreesWithPhotonMapping) {
   Scene scene = builtin_cornell_box();
   RenderSettings radiosity = small_radiosity(48, 48, 128);
@@ -118,7 +120,7 @@ TEST_F(Radiosity, CornellBoxAgreesWithPhotonMapping) {
   const double mr = test::mean(r.find("indirect")->rgb), mp = test::mean(p.find("indirect")->rgb);
   std::printf("Cornell box indirect mean: radiosity %.6g (%g elements, %g links), photon mapping %.6g, ratio %.4f\n", mr,
               stat(stats, "elements"), stat(stats, "links"), mp, mr / mp);
-  EXPECT_NEAR(mr / mp, 1.0, 0.03);
+  EXPECT_NEAR(mr / mp, 1.0, 0.06);
   // Direct light is the same camera pass in both.
   EXPECT_TRUE(r.find("direct")->rgb == p.find("direct")->rgb);
   EXPECT_TRUE(test::all_finite(r.find("")->rgb));
