@@ -171,6 +171,19 @@ PM_DEVICE float footprint_kept_fraction(const float* mu, const float* mv, const 
   return pm_fminf(pm_fmaxf(mass / PM_PI, 0.0f), 1.0f);
 }
 
+/* The same for a single cut at distance t in [0, 1) from the centre, in closed form: the segment
+   beyond the chord holds (acos t - t sqrt(1 - t^2)) / pi of the constant kernel's mass and
+   (acos t - t (5 - 2 t^2) sqrt(1 - t^2) / 3) / pi of Epanechnikov's (the integral of
+   (8 / 3) (1 - x^2)^(3/2) from t to 1, over pi). The gather's per-candidate path: no arcs, no
+   loops. */
+PM_DEVICE float footprint_kept_one_cut(float t, uint shape)
+{
+  t = pm_fminf(pm_fmaxf(t, 0.0f), 1.0f);
+  float s = pm_sqrtf(pm_fmaxf(1.0f - t * t, 0.0f));
+  float chord = shape == PM_KERNEL_EPANECHNIKOV ? t * (5.0f - 2.0f * t * t) * s * (1.0f / 3.0f) : t * s;
+  return 1.0f - (pm_acosf(t) - chord) * (1.0f / PM_PI);
+}
+
 /* The direction, in the footprint's plane, of the normal of the line m . q = t in disc
    coordinates q = (row_u . y, row_v . y): angles between walls are judged there, since disc
    coordinates distort them (two perpendicular walls can look parallel to an elongated ellipse). */

@@ -77,7 +77,10 @@ PM_DEVICE float footprint_kept_about(const KernelGlobals* kg, uint k, float4 c, 
     t[1] = pm_fmaxf(cut.z - (cut.x * at_u + cut.y * at_v), 0.0f);
   }
   if (!(t[0] < 1.0f) && !(t[1] < 1.0f)) return 1.0f;
-  return pm_fmaxf(footprint_kept_fraction(mu, mv, t, PM_FOOTPRINT_CUTS, shape), PM_GATHER_MIN_KEPT);
+  float kept = !(t[1] < 1.0f) ? footprint_kept_one_cut(t[0], shape)
+               : !(t[0] < 1.0f) ? footprint_kept_one_cut(t[1], shape)
+                                : footprint_kept_fraction(mu, mv, t, PM_FOOTPRINT_CUTS, shape);
+  return pm_fmaxf(kept, PM_GATHER_MIN_KEPT);
 }
 
 #endif

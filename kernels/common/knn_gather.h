@@ -139,7 +139,8 @@ PM_DEVICE void knn_gather_at(const KernelGlobals* kg, const LaunchParams* p, con
   float share = 1.0f;
   if (p->footprint_coverage) {
     /* The disc's part on the surface x sees (footprint_coverage.h), its pattern turned per point. */
-    float turn = PM_TWO_PI * rng_to_unit(rng_bits4(p->seed, p->photon_frame, PM_AS_UINT(x.x) ^ PM_AS_UINT(x.y),
+    uint frame = p->photon_sequence == PM_PHOTON_SEQUENCE_HALTON ? 0u : p->photon_frame; /* the same every frame */
+    float turn = PM_TWO_PI * rng_to_unit(rng_bits4(p->seed, frame, PM_AS_UINT(x.x) ^ PM_AS_UINT(x.y),
                                                    PM_AS_UINT(x.z), PM_STREAM_FOOTPRINT_PROBE, 1u).b0);
     share = disc_covered_share(kg, x, n, pm_sqrtf(r2), ray_offset_distance(x, 0.0f, p->ray_epsilon), turn,
                                p->kernel_shape);

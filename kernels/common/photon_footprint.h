@@ -74,7 +74,8 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     /* The pattern's turn: drawn per photon and record, the same on every backend and for any
        slot layout. */
     uint per_photon = p->hit_slots_per_photon > 0u ? p->hit_slots_per_photon : 1u;
-    float turn = PM_TWO_PI * rng_to_unit(rng_bits4(p->seed, p->photon_frame, p->photon_offset + slot / per_photon,
+    uint frame = p->photon_sequence == PM_PHOTON_SEQUENCE_HALTON ? 0u : p->photon_frame; /* the same every frame */
+    float turn = PM_TWO_PI * rng_to_unit(rng_bits4(p->seed, frame, p->photon_offset + slot / per_photon,
                                                    slot % per_photon, PM_STREAM_FOOTPRINT_PROBE,
                                                    p->photon_offset_hi).b0);
     coverage = footprint_covered_share(kg, &f, &cut, center, vec3_normalize(vec3_from_float4(n4)),

@@ -12,6 +12,8 @@
 
 #include "kernels/common/compat_host.h"
 #include "kernels/common/brdf.h"
+#include "kernels/common/footprint_clip.h"
+#include "kernels/common/gather_reach.h"
 #include "render/photon/photon_mapping.h"
 #include "render/renderer.h"
 
@@ -41,6 +43,9 @@ inline PhotonSettings photon_settings(uint64_t photons, int estimator, int kerne
 
 inline void check_gather_equals_brute_force(Device& device, const Scene& scene, PhotonSettings photons, int width,
                                             int height) {
+  // k-NN divides by the covered share of its search disc, measured with probe rays into the scene
+  // (footprint_coverage.h): this check is of the search, so it compares against the whole disc.
+  if (photons.estimator == PM_ESTIMATOR_KNN) photons.footprint_coverage = false;
   RenderSettings settings;
   settings.width = width;
   settings.height = height;
@@ -100,6 +105,13 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
         }
         if (!reaches || vec3_dot(v3(incident[k]), nrm) <= 0.0f) continue;
         double w = used.kernel_shape == PM_KERNEL_EPANECHNIKOV ? 2.0 * (1.0 - r2) : 1.0;
+        // Divided by the kept kernel mass of the footprint moved to the shading point: each cut
+        // line m . q <= t is t - m . (lu, lv) from it (gather_reach.h), floored as the gather floors it.
+        float mu[2] = {row_u[k].w, second ? cut[k].x : 0.0f}, mv[2] = {row_v[k].w, second ? cut[k].y : 0.0f};
+        float t[2] = {float(std::max(0.0, row_n[k].w - (mu[0] * lu + mv[0] * lv))),
+                      second ? float(std::max(0.0, cut[k].z - (mu[1] * lu + mv[1] * lv))) : 1.0f};
+        if (t[0] < 1.0f || t[1] < 1.0f)
+          w /= std::max(double(footprint_kept_fraction(mu, mv, t, 2, used.kernel_shape)), double(PM_GATHER_MIN_KEPT));
         Vec3 f = brdf_eval(&m, nrm, v3(incident[k]), wo);
         sum[0] += sw[r].x * w * f.x * power[k].x;
         sum[1] += sw[r].y * w * f.y * power[k].y;

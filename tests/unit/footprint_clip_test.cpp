@@ -153,6 +153,37 @@ TEST(FootprintClip, UniformPhotonsKeepTheirDensityUpToTheWall) {
   EXPECT_NEAR(density(0.001f), std::log(2.0), 0.02);
   EXPECT_NEAR(density(2.5f), 1.0, 0.02);
   EXPECT_EQ(density(-0.05f), 0.0) << "behind the wall";
+  // The gather's rule (gather_reach.h): each photon divided by the kept mass of its footprint
+  // moved to the shading point. The cut line m . q <= t lies t - m . q from the point q: a
+  // uniform density comes out exact at the wall's foot too.
+  auto density_about = [&](float e) {
+    double sum = 0;
+    const Vec3 x = vec3(e, 0, 0);
+    for (const Clipped& c : photons) {
+      if (!reaches(c.f, c.cut, c.hit, x)) continue;
+      const Vec3 d = vec3_sub(x, c.hit);
+      const float qu = vec3_dot(d, c.f.axis_u) / vec3_dot(c.f.axis_u, c.f.axis_u);
+      const float qv = vec3_dot(d, c.f.axis_v) / vec3_dot(c.f.axis_v, c.f.axis_v);
+      float t[2];
+      for (int k = 0; k < 2; ++k) t[k] = std::max(0.0f, c.cut.t[k] - (c.cut.mu[k] * qu + c.cut.mv[k] * qv));
+      sum += 1.0 / (footprint_area(c.f) * footprint_kept_fraction(c.cut.mu, c.cut.mv, t, 2, PM_KERNEL_CONSTANT));
+    }
+    return sum * spacing * spacing;
+  };
+  EXPECT_NEAR(density_about(0.001f), 1.0, 0.02);
+  EXPECT_NEAR(density_about(0.5f), 1.0, 0.02);
+  EXPECT_NEAR(density_about(2.5f), 1.0, 0.02);
+}
+
+TEST(FootprintClip, OneCutInClosedFormEqualsTheGreenIntegral) {
+  for (uint32_t shape : {uint32_t(PM_KERNEL_CONSTANT), uint32_t(PM_KERNEL_EPANECHNIKOV)})
+    for (float t = 0.0f; t < 1.0f; t += 0.03125f) {
+      float mu[2] = {0.6f, 0}, mv[2] = {0.8f, 0}, tt[2] = {t, 1};
+      EXPECT_NEAR(footprint_kept_one_cut(t, shape), footprint_kept_fraction(mu, mv, tt, 2, shape), 2e-5)
+          << "kernel " << shape << ", t " << t;
+    }
+  EXPECT_NEAR(footprint_kept_one_cut(0.0f, PM_KERNEL_CONSTANT), 0.5f, 1e-6);
+  EXPECT_NEAR(footprint_kept_one_cut(1.0f, PM_KERNEL_EPANECHNIKOV), 1.0f, 1e-6);
 }
 
 TEST(FootprintClip, CoplanarNeighboursLowWallsAndGentleCurvesLeaveFootprintsAlone) {
