@@ -36,16 +36,6 @@ std::string scene_path() { return test::test_data_dir() + "/animation/moving_roo
 // Frames of a few hundred milliseconds on PoCL, so that processes overlap and a kill lands in one.
 const char kFrameOptions[] = " --backend opencl --resolution 48x36 --photons 150000";
 
-// Frames named by "wrote" lines.
-std::set<int> written_frames(const std::string& stdout_text) {
-  std::set<int> frames;
-  std::istringstream lines(stdout_text);
-  for (std::string line; std::getline(lines, line);) {
-    const size_t at = line.find("(frame ");
-    if (line.rfind("wrote ", 0) == 0 && at != std::string::npos) frames.insert(std::stoi(line.substr(at + 7)));
-  }
-  return frames;
-}
 
 class FrameClaimsCli : public test::PmrenderProcessTest {
  protected:
@@ -101,7 +91,7 @@ TEST_F(FrameClaimsCli, TwoRendersOfOnePatternAtOnceRenderEachFrameOnce) {
   const ProcessResult ra = test::wait_pmrender(a, dir_ / "a"), rb = test::wait_pmrender(b, dir_ / "b");
   ASSERT_EQ(ra.exit_code, 0) << ra.err;
   ASSERT_EQ(rb.exit_code, 0) << rb.err;
-  const std::set<int> by_a = written_frames(ra.out), by_b = written_frames(rb.out);
+  const std::set<int> by_a = test::written_frames(ra.out), by_b = test::written_frames(rb.out);
   for (int f : by_a) EXPECT_EQ(by_b.count(f), 0u) << "frame " << f << " was rendered by both\n" << ra.out << rb.out;
   std::set<int> all = by_a;
   all.insert(by_b.begin(), by_b.end());
@@ -135,8 +125,8 @@ TEST_F(FrameClaimsCli, WaitingRendersEndOnlyWhenEveryFrameIsComplete) {
   const pid_t second = first == a ? b : a;
   const ProcessResult r = test::wait_pmrender(second, dir_ / (second == a ? "a" : "b"));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::set<int> by_a = written_frames(test::read_text(dir_ / "a" / "stdout.txt"));
-  const std::set<int> by_b = written_frames(test::read_text(dir_ / "b" / "stdout.txt"));
+  const std::set<int> by_a = test::written_frames(test::read_text(dir_ / "a" / "stdout.txt"));
+  const std::set<int> by_b = test::written_frames(test::read_text(dir_ / "b" / "stdout.txt"));
   for (int f : by_a) EXPECT_EQ(by_b.count(f), 0u) << "frame " << f << " was rendered by both";
   EXPECT_EQ(by_a.size() + by_b.size(), size_t(last + 1));
   EXPECT_TRUE(claim_files().empty());
@@ -171,7 +161,7 @@ TEST_F(FrameClaimsCli, KilledRunLeavesAStaleClaimThatTheNextRunTakesOver) {
   fs::copy_file(claim_path_for(frame_path(claimed)), claim_path_for(frame_path(0)));
   r = pmrender(render_args("0-23") + " --resume -v");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(written_frames(r.out).count(0), 0u) << r.out;
+  EXPECT_EQ(test::written_frames(r.out).count(0), 0u) << r.out;
   EXPECT_NE(r.out.find("removed stale claim " + claim_path_for(frame_path(0)) + ": pid " + std::to_string(killed)),
             std::string::npos)
       << r.out;
@@ -179,7 +169,7 @@ TEST_F(FrameClaimsCli, KilledRunLeavesAStaleClaimThatTheNextRunTakesOver) {
                        std::to_string(killed) + " on "),
             std::string::npos)
       << r.out;
-  EXPECT_EQ(written_frames(r.out).count(claimed), 1u) << r.out;
+  EXPECT_EQ(test::written_frames(r.out).count(claimed), 1u) << r.out;
   expect_all_complete(0, 23);
   EXPECT_TRUE(claim_files().empty());
 }
@@ -192,7 +182,7 @@ TEST_F(FrameClaimsCli, FrameClaimedByALiveProcessIsSkippedOrWaitedFor) {
 
   ProcessResult r = pmrender(render_args("0-2"));
   EXPECT_EQ(r.exit_code, 0) << "frames another process renders are not a failure\n" << r.err;
-  EXPECT_EQ(written_frames(r.out), (std::set<int>{0, 2}));
+  EXPECT_EQ(test::written_frames(r.out), (std::set<int>{0, 2}));
   EXPECT_NE(r.out.find("skipped " + frame_path(1) + " (being rendered by pid " + std::to_string(sleeper) + " on "),
             std::string::npos)
       << r.out;
@@ -226,7 +216,7 @@ TEST_F(FrameClaimsCli, FrameClaimedByALiveProcessIsSkippedOrWaitedFor) {
                        std::to_string(sleeper) + " on "),
             std::string::npos)
       << r.out;
-  EXPECT_EQ(written_frames(r.out), (std::set<int>{1}));
+  EXPECT_EQ(test::written_frames(r.out), (std::set<int>{1}));
   expect_all_complete(0, 2);
   EXPECT_TRUE(claim_files().empty());
 }

@@ -49,16 +49,6 @@ class SequenceCli : public test::PmrenderProcessTest {
     for (const auto& e : fs::directory_iterator(dir_ / "out")) names.insert(e.path().filename().string());
     return names;
   }
-  // Frames whose "wrote" line is in a run's standard output.
-  static std::set<int> written_frames(const std::string& stdout_text) {
-    std::set<int> frames;
-    std::istringstream lines(stdout_text);
-    for (std::string line; std::getline(lines, line);) {
-      const size_t at = line.find("(frame ");
-      if (line.rfind("wrote ", 0) == 0 && at != std::string::npos) frames.insert(std::stoi(line.substr(at + 7)));
-    }
-    return frames;
-  }
   void expect_usage_error(const std::string& args, const std::string& expected) {
     const Process r = pmrender(args);
     EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.err;
@@ -133,7 +123,7 @@ TEST_F(SequenceCli, FailedFramesAreNamedAndTheOthersStillRender) {
   EXPECT_NE(r.err.find("pmrender: frame 2: "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("1 of 5 frames failed: 2"), std::string::npos) << r.err;
   for (int f : {0, 1, 3, 4}) EXPECT_TRUE(exr_is_complete(out("f_000" + std::to_string(f) + ".exr"))) << f;
-  EXPECT_EQ(written_frames(r.out), (std::set<int>{0, 1, 3, 4}));
+  EXPECT_EQ(test::written_frames(r.out), (std::set<int>{0, 1, 3, 4}));
   for (const std::string& name : files())  // the failed frame's claim too is released
     EXPECT_EQ(name.find(".claim"), std::string::npos) << "left behind: " << name;
 }
@@ -196,7 +186,7 @@ TEST_F(SequenceCli, ResumeAfterAKilledRunRendersOnlyTheMissingFrames) {
   std::set<int> expected;
   for (int f = 0; f < 24; ++f)
     if (!before.count(f) || f == truncated) expected.insert(f);
-  EXPECT_EQ(written_frames(r.out), expected) << r.out;
+  EXPECT_EQ(test::written_frames(r.out), expected) << r.out;
   for (int f : before) {
     if (f == truncated) continue;
     char name[32];

@@ -9,6 +9,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <set>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -83,5 +84,16 @@ class PmrenderProcessTest : public ::testing::Test {
 
   std::filesystem::path dir_;
 };
+
+// Frames named by the "wrote ... (frame N, ..." lines of a run's standard output.
+inline std::set<int> written_frames(const std::string& stdout_text) {
+  std::set<int> frames;
+  std::istringstream lines(stdout_text);
+  for (std::string line; std::getline(lines, line);) {
+    const size_t at = line.find("(frame ");
+    if (line.rfind("wrote ", 0) == 0 && at != std::string::npos) frames.insert(std::stoi(line.substr(at + 7)));
+  }
+  return frames;
+}
 
 }  // namespace pm::test
