@@ -30,7 +30,7 @@
 #include "rng.h"
 #include "scene_traverse.h"
 
-/* Probes per footprint (the first sits at the centre). 16 puts the share's quantisation at about
+/* Probes per footprint. 16 puts the share's quantisation at about
    6 % of a footprint, which averages out over the tens to hundreds of footprints of a gather. */
 #define PM_FOOTPRINT_PROBES 16
 /* Probes of the second pattern, for footprints that the first finds partly covered. */
@@ -130,41 +130,6 @@ PM_DEVICE float footprint_covered_share(const KernelGlobals* kg, const Footprint
   /* The hit itself lies on the surface: a footprint whose probes all miss (a sliver, a thin
      rail) still covers something; count it as half a probe's cell. */
   return covered > 0.0f ? covered / kept : 0.5f / (float)kept_probes;
-}
-
-/* The same share for the disc of radius r about a shading point x (normal n), which k-NN's density
-   estimate divides by (knn_gather.h): its photons come from the surface within r of x on x's side
-   of any wall (their reach is clipped), so its area is the part of the disc that lies on an
-   accepted surface and that x sees along the surface: each probe also casts a ray from x to the
-   probe point, both lifted as the footprint clip lifts its plane (footprint_clip.h), and a probe
-   behind a wall does not count. */
-PM_DEVICE float disc_covered_share(const KernelGlobals* kg, Vec3 x, Vec3 n, float r, float offset, float turn,
-                                   uint shape)
-{
-  Footprint f;
-  Vec3 t, b;
-  vec3_onb(n, &t, &b);
-  f.axis_u = vec3_scale(t, r);
-  f.axis_v = vec3_scale(b, r);
-  f.axis_n = vec3_scale(n, PM_FOOTPRINT_NORMAL_RATIO * r);
-  float lift = pm_fmaxf(PM_FOOTPRINT_CLIP_HEIGHT * PM_FOOTPRINT_NORMAL_RATIO * r, offset);
-  Vec3 from = vec3_madd(x, n, lift);
-  float kept = 0.0f, covered = 0.0f;
-  for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) {
-    float px, py;
-    footprint_probe_point(j, PM_FOOTPRINT_PROBES, turn, &px, &py);
-    float w = shape == PM_KERNEL_EPANECHNIKOV ? kernel_epanechnikov(px * px + py * py) : 1.0f;
-    kept += w;
-    Vec3 to = vec3_add(from, vec3_add(vec3_scale(f.axis_u, px), vec3_scale(f.axis_v, py)));
-    Vec3 d = vec3_sub(to, from);
-    float length = vec3_length(d);
-    if (length > 0.0f) {
-      Ray ray = ray_make(from, vec3_scale(d, 1.0f / length));
-      if (scene_trace(kg->scene_nodes, kg->triangles, &ray, 0.0f, length, 1).triangle >= 0) continue;
-    }
-    if (footprint_probe_covered(kg, &f, x, n, offset, px, py)) covered += w;
-  }
-  return kept > 0.0f && covered > 0.0f ? covered / kept : 1.0f;
 }
 
 #endif

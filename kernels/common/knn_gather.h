@@ -8,7 +8,6 @@
 
 #include "brdf.h"
 #include "footprint.h"
-#include "footprint_coverage.h"
 #include "gather_reach.h"
 #include "kernel_globals.h"
 #include "photon_map.h"
@@ -124,11 +123,10 @@ PM_DEVICE void knn_search(const KernelGlobals* kg, const LaunchParams* p, Vec3 x
   }
 }
 
-/* Radiance towards wo at x from the k nearest photons: sum f_r Phi K / (pi r^2 c), r the k-th
-   distance (rmax when fewer than k photons lie within rmax), c the share of that disc on the
-   surface x sees (disc_covered_share; 1 with --footprint-coverage off: near an edge or a wall the
-   whole disc's area then dilutes the photons, -40 to -57 % in the benchmark scenes). Same split
-   into indirect/caustic. */
+/* Radiance towards wo at x from the k nearest photons: sum f_r Phi K / (pi r^2), r the k-th
+   distance (rmax when fewer than k photons lie within rmax). Same split into indirect/caustic.
+   Near edges and walls the whole disc's area dilutes the photons: -26 to -56 % in the benchmark
+   scenes (docs/accuracy.md). */
 PM_DEVICE void knn_gather_at(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 x, Vec3 n,
                              Vec3 wo, Vec3* indirect, Vec3* caustic, uint* accepted)
 {
@@ -136,16 +134,7 @@ PM_DEVICE void knn_gather_at(const KernelGlobals* kg, const LaunchParams* p, con
   knn_search(kg, p, x, n, &h);
   float r2 = knn_radius2(&h, p->rmax * p->rmax);
   if (!(r2 > 0.0f)) return;
-  float share = 1.0f;
-  if (p->footprint_coverage) {
-    /* The disc's part on the surface x sees (footprint_coverage.h), its pattern turned per point. */
-    uint frame = p->photon_sequence == PM_PHOTON_SEQUENCE_HALTON ? 0u : p->photon_frame; /* the same every frame */
-    float turn = PM_TWO_PI * rng_to_unit(rng_bits4(p->seed, frame, PM_AS_UINT(x.x) ^ PM_AS_UINT(x.y),
-                                                   PM_AS_UINT(x.z), PM_STREAM_FOOTPRINT_PROBE, 1u).b0);
-    share = disc_covered_share(kg, x, n, pm_sqrtf(r2), ray_offset_distance(x, 0.0f, p->ray_epsilon), turn,
-                               p->kernel_shape);
-  }
-  float inv_area = 1.0f / (PM_PI * r2 * share);
+  float inv_area = 1.0f / (PM_PI * r2);
   for (uint i = 0; i < h.size; ++i) {
     uint k = h.index[i];
     Vec3 wi = vec3_from_float4(PM_LOAD(&kg->map_incident[k]));

@@ -43,9 +43,6 @@ inline PhotonSettings photon_settings(uint64_t photons, int estimator, int kerne
 
 inline void check_gather_equals_brute_force(Device& device, const Scene& scene, PhotonSettings photons, int width,
                                             int height) {
-  // k-NN divides by the covered share of its search disc, measured with probe rays into the scene
-  // (footprint_coverage.h): this check is of the search, so it compares against the whole disc.
-  if (photons.estimator == PM_ESTIMATOR_KNN) photons.footprint_coverage = false;
   RenderSettings settings;
   settings.width = width;
   settings.height = height;
