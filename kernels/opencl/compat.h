@@ -53,8 +53,18 @@ typedef int int32_t;
 #define pm_atomic_add_u32(p, v) atomic_add((volatile __global uint*)(p), (uint)(v))
 #define pm_atomic_add_i32(p, v) atomic_add((volatile __global int*)(p), (int)(v))
 
-/* Orders a work item's global writes before its later atomics (photon map bottom-up pass). */
+/* Orders a work item's global writes before its later atomics (photon map bottom-up pass), for
+   every work item of the launch: the sibling that reads them may run on another multiprocessor.
+   OpenCL 1.2's mem_fence promises order within the work item only, and NVIDIA's driver keeps it
+   that narrow: the same frame rendered twice there differed (rmse 1.4e-4, docs/gpu-notes.md), as
+   the second arrival at a node read a stale box. NVIDIA's compiler takes inline PTX (it defines
+   cl_nv_pragma_unroll): a device-wide membar.gl there; elsewhere (PoCL's threads share one
+   coherent memory) the OpenCL fence. */
+#if defined(cl_nv_pragma_unroll)
+#define PM_MEMORY_FENCE() asm volatile("membar.gl;" ::: "memory")
+#else
 #define PM_MEMORY_FENCE() mem_fence(CLK_GLOBAL_MEM_FENCE)
+#endif
 
 #define PM_LOAD(p) (*(p))
 /* A load that bypasses the multiprocessor's non-coherent L1 cache: data another work group wrote
