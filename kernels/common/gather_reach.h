@@ -58,8 +58,10 @@ PM_DEVICE int footprint_reaches(const KernelGlobals* kg, uint k, float4 c, Vec3 
    coordinates (at_u, at_v), that its cuts keep (footprint_clip.h). The gather divides by it: near
    a wall, photons come from one side only, so a shading point at distance d from the wall sees
    the photon density times the kept mass of a footprint centred on it; dividing by that mass
-   makes a uniform density exact at every distance from the wall (dividing each photon by its own
-   kept mass instead reads 69 % at the wall's foot and slightly too much a footprint away). */
+   keeps a uniform density within 5 % at every distance from the wall, exact at its foot and from
+   one radius on (dividing each photon by its own kept mass instead reads 69 % at the wall's foot
+   and 112 % a radius away; tests/unit/footprint_clip_test.cpp). Not exact in between: a wall
+   beyond a footprint's own radius is not among its cuts. */
 PM_DEVICE float footprint_kept_about(const KernelGlobals* kg, uint k, float4 c, float at_u, float at_v, uint shape)
 {
   float4 row_u = PM_LOAD(&kg->map_row_u[k]), row_v = PM_LOAD(&kg->map_row_v[k]), row_n = PM_LOAD(&kg->map_row_n[k]);
