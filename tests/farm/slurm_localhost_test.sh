@@ -179,7 +179,7 @@ completed_again() { [ "$(state 1)" = COMPLETED ]; }
 wait_for 90 completed_again || fail "the requeued task did not complete: $(state 1)"
 grep -q "attempt 2" "$(log 1)" || fail "the task log shows no second attempt"
 grep -q "rendered 1 of 2 frames.*1 already complete" "$(log 1)" || fail "the requeued task did not resume"
-grep -Eq '^[0-9-]+ [0-9:.]+ wrote .*\(frame 3, 48x36, .* ms\)' "$(log 1)" || fail "no timestamped per-frame line"
+grep -Eq '^[0-9-]+ [0-9:.]+ wrote .*\(frame 3, 48x36, .* ms[,)]' "$(log 1)" || fail "no timestamped per-frame line"
 
 "$PMRENDER" frames check -o "$out/f_####.exr" --frames 0-5 --resolution 48x36 || fail "frames check after the requeue"
 leftovers=$(cd "$out" && ls -A | grep -v -x -e 'f_000[0-5].exr' -e logs || true)
