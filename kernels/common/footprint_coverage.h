@@ -114,7 +114,7 @@ PM_DEVICE void footprint_probe_pattern(const KernelGlobals* kg, const Footprint*
    pattern's angle for this hit. A footprint that its PM_FOOTPRINT_PROBES probes find partly
    covered is measured again with PM_FOOTPRINT_EDGE_PROBES: the flux is divided by the share, and
    1 / share is convex, so its noise is a bias (+1.0 % in Sponza's first bounce with 16 probes
-   throughout, footprints of a few centimetres; docs/accuracy.md). Footprints wholly on a surface,
+   throughout, at the smallest footprints measured; docs/accuracy.md). Footprints wholly on a surface,
    most of them, cost the first pattern only. */
 PM_DEVICE float footprint_covered_share(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut,
                                         Vec3 center, Vec3 n, float offset, float turn, uint shape)
