@@ -65,13 +65,16 @@ PM_DEVICE int footprint_cut_keeps(const FootprintCut* cut, float x, float y)
    space a surface whose normal lies within the gather's angle of n. Steeper surfaces on the way
    (a column inside a thick footprint) are passed, up to PM_FOOTPRINT_PROBE_HITS crossings; after
    an odd number of crossings the ray is inside a solid, whose far side (a slab's underside) faces
-   away from the photon. Counted as 1 whatever its tilt and however many layers lie below: a
-   footprint spreads its photon over its own surface; counting the tilted or layered area of
-   neighbouring surfaces as well (which send their own photons back less than they take) darkens
-   the flat ground measurably (Sponza, one bounce: -3.4 % instead of +1.4 %, docs/accuracy.md). */
+   away from the photon. Returns the probe's weight: 0 where nothing is covered; where something
+   is, 1 whatever its tilt and however many layers lie below (a footprint spreads its photon over
+   its own surface; counting the tilted or layered area of neighbouring surfaces as well, which
+   send their own photons back less than they take, darkens the flat ground measurably: Sponza,
+   one bounce, -3.4 % instead of +1.4 %, docs/accuracy.md), or with `surface_area` the surface
+   area over the probe's cell, 1 / |cos| of the surface's tilt from n (the knn region counts the
+   photons that landed on that area, knn_gather.h). */
 #define PM_FOOTPRINT_PROBE_HITS 4
-PM_DEVICE int footprint_probe_covered(const KernelGlobals* kg, const Footprint* f, Vec3 center, Vec3 n, float offset,
-                                      float x, float y)
+PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, const Footprint* f, Vec3 center, Vec3 n, float offset,
+                                        float x, float y, int surface_area)
 {
   float reach = vec3_length(f->axis_n) * pm_sqrtf(pm_fmaxf(1.0f - x * x - y * y, 0.0f)) + offset;
   Vec3 at = vec3_add(center, vec3_add(vec3_scale(f->axis_u, x), vec3_scale(f->axis_v, y)));
@@ -80,21 +83,21 @@ PM_DEVICE int footprint_probe_covered(const KernelGlobals* kg, const Footprint* 
   float gap = pm_fmaxf(1.0e-3f * reach, offset);
   for (int k = 0; k < PM_FOOTPRINT_PROBE_HITS; ++k) {
     SceneHit hit = scene_trace(kg->scene_nodes, kg->triangles, &ray, t_min, 2.0f * reach, 0);
-    if (hit.triangle < 0) return 0;
+    if (hit.triangle < 0) return 0.0f;
     /* Triangles are two-sided: either side may face the gather's shading point. */
     float facing = vec3_dot(scene_triangle_normal(kg->triangles, hit.triangle), n);
-    if ((k & 1) == 0 && facing * facing >= PM_GATHER_MIN_NORMAL_COS2) return 1;
+    if ((k & 1) == 0 && facing * facing >= PM_GATHER_MIN_NORMAL_COS2) return surface_area ? 1.0f / pm_fabsf(facing) : 1.0f;
     /* Past this surface: a crossing that hits two triangles (their shared edge, a duplicated
        face) is one crossing, or the parity would flip. */
     t_min = hit.t + gap;
   }
-  return 0;
+  return 0.0f;
 }
 
 /* Covered and kept kernel weights of a `count`-probe pattern (see footprint_covered_share). */
 PM_DEVICE void footprint_probe_pattern(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut, Vec3 center,
-                                       Vec3 n, float offset, float turn, uint shape, uint count, float* kept,
-                                       float* covered, uint* kept_probes)
+                                       Vec3 n, float offset, float turn, uint shape, int surface_area, uint count,
+                                       float* kept, float* covered, uint* kept_probes)
 {
   *kept = 0.0f;
   *covered = 0.0f;
@@ -106,26 +109,27 @@ PM_DEVICE void footprint_probe_pattern(const KernelGlobals* kg, const Footprint*
     float w = shape == PM_KERNEL_EPANECHNIKOV ? kernel_epanechnikov(x * x + y * y) : 1.0f;
     *kept += w;
     ++*kept_probes;
-    if (footprint_probe_covered(kg, f, center, n, offset, x, y)) *covered += w;
+    *covered += w * footprint_probe_covered(kg, f, center, n, offset, x, y, surface_area);
   }
 }
 
-/* Share of the kernel mass kept by `cut` that lies over accepted surface, in (0, 1]. turn: the
-   pattern's angle for this hit. A footprint that its PM_FOOTPRINT_PROBES probes find partly
-   covered is measured again with PM_FOOTPRINT_EDGE_PROBES: the flux is divided by the share, and
+/* Share of the kernel mass kept by `cut` that lies over accepted surface, in (0, 1] (with
+   `surface_area`, footprint_probe_covered: that surface's area over the kept disc's, up to 2).
+   turn: the pattern's angle for this hit. A footprint that its PM_FOOTPRINT_PROBES probes find
+   partly covered (or, with `surface_area`, tilted) is measured again with PM_FOOTPRINT_EDGE_PROBES: the flux is divided by the share, and
    1 / share is convex, so its noise is a bias (+1.0 % in Sponza's first bounce with 16 probes
    throughout, at the smallest footprints measured; docs/accuracy.md). Footprints wholly on a surface,
    most of them, cost the first pattern only. */
 PM_DEVICE float footprint_covered_share(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut,
-                                        Vec3 center, Vec3 n, float offset, float turn, uint shape)
+                                        Vec3 center, Vec3 n, float offset, float turn, uint shape, int surface_area)
 {
   float kept, covered;
   uint kept_probes;
-  footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, PM_FOOTPRINT_PROBES, &kept, &covered,
-                          &kept_probes);
-  if (covered > 0.0f && covered < kept)
-    footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, PM_FOOTPRINT_EDGE_PROBES, &kept, &covered,
-                            &kept_probes);
+  footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, surface_area, PM_FOOTPRINT_PROBES, &kept,
+                          &covered, &kept_probes);
+  if (covered > 0.0f && covered != kept)
+    footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, surface_area, PM_FOOTPRINT_EDGE_PROBES, &kept,
+                            &covered, &kept_probes);
   if (!(kept > 0.0f)) return 1.0f; /* no probe inside the cuts: the clip's kept fraction is all we know */
   /* The hit itself lies on the surface: a footprint whose probes all miss (a sliver, a thin
      rail) still covers something; count it as half a probe's cell. */

@@ -17,11 +17,6 @@
 #include "photon_map.h"
 #include "photon_trace.h"
 
-PM_DEVICE float gather_kernel_weight(uint shape, float r2)
-{
-  return shape == PM_KERNEL_EPANECHNIKOV ? kernel_epanechnikov(r2) : kernel_constant(r2);
-}
-
 /* Radiance towards wo at x from the photon map, split into indirect and caustic parts. */
 PM_DEVICE void gather_at(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 x, Vec3 n, Vec3 wo,
                          Vec3* indirect, Vec3* caustic, uint* accepted)
@@ -45,8 +40,10 @@ PM_DEVICE void gather_at(const KernelGlobals* kg, const LaunchParams* p, const M
   }
 }
 
-/* Work item = pixel in tile order (pixel_order.h). */
-PM_DEVICE void kernel_gather(const KernelGlobals* kg, const LaunchParams* p, uint item)
+/* The film's indirect and caustic radiance at one pixel, summed over its shading points (the
+   mirror chain), from the footprint gather or, with `knn`, the knn gather. Both kernels inline it
+   with `knn` constant, so the footprint gather carries none of the knn gather's traversals. */
+PM_DEVICE void gather_pixel(const KernelGlobals* kg, const LaunchParams* p, uint item, int knn)
 {
   uint pixel;
   if (!pixel_of_work_item(item, p->width, p->height, &pixel)) return;
@@ -59,8 +56,9 @@ PM_DEVICE void kernel_gather(const KernelGlobals* kg, const LaunchParams* p, uin
     const Material* m = &sp.material;
     if (channel_mean(material_diffuse(m)) + channel_mean(material_glossy(m)) <= 0.0f) continue;
     Vec3 point_indirect = vec3_splat(0.0f), point_caustic = vec3_splat(0.0f);
-    if (p->estimator == PM_ESTIMATOR_KNN)
-      knn_gather_at(kg, p, m, sp.position, sp.normal, sp.outgoing, &point_indirect, &point_caustic, &accepted);
+    if (knn)
+      knn_gather_at(kg, p, m, sp.position, sp.normal, sp.outgoing, knn_region_turn(p, pixel, depth), &point_indirect,
+                    &point_caustic, &accepted);
     else gather_at(kg, p, m, sp.position, sp.normal, sp.outgoing, &point_indirect, &point_caustic, &accepted);
     indirect = vec3_add(indirect, vec3_mul(sp.weight, point_indirect));
     caustic = vec3_add(caustic, vec3_mul(sp.weight, point_caustic));
@@ -71,6 +69,15 @@ PM_DEVICE void kernel_gather(const KernelGlobals* kg, const LaunchParams* p, uin
     pm_atomic_add_u32(&kg->gather_stats[0], accepted);
     pm_atomic_add_u32(&kg->gather_stats[1], points);
   }
+}
+
+/* Work item = pixel in tile order (pixel_order.h): the footprint gather (pd, radius). */
+PM_DEVICE void kernel_gather(const KernelGlobals* kg, const LaunchParams* p, uint item) { gather_pixel(kg, p, item, 0); }
+
+/* Work item = pixel in tile order: the knn gather. */
+PM_DEVICE void kernel_knn_gather(const KernelGlobals* kg, const LaunchParams* p, uint item)
+{
+  gather_pixel(kg, p, item, 1);
 }
 
 #endif

@@ -1,6 +1,5 @@
-/* The gather's test of whether a photon's footprint reaches a shading point, shared by the
-   footprint gather (gather.h) and the knn gather (knn_gather.h, where the clipped sphere of r_max
-   masks the candidates). */
+/* The gather's test of whether a photon's footprint reaches a shading point (gather.h), with the
+   normal test and kernel weight that the knn gather (knn_gather.h) shares. */
 #ifndef PM_GATHER_REACH_H
 #define PM_GATHER_REACH_H
 
@@ -12,6 +11,21 @@
    there: 60 degrees (cos^2 = 1/4). Creases sharper than that, such as the 90-degree edges of a
    box, separate surfaces; the facets of tessellated curved surfaces are far closer. */
 #define PM_GATHER_MIN_NORMAL_COS2 0.25f
+
+/* Whether a photon whose normal axis row (map_row_n: n_hit / |a_n|) is row_n faces the way a
+   shading point's normal n does, within PM_GATHER_MIN_NORMAL_COS2. */
+PM_DEVICE int photon_faces_like(float4 row_n, Vec3 n)
+{
+  Vec3 axis_n = vec3_from_float4(row_n);
+  float facing = vec3_dot(axis_n, n);
+  return facing > 0.0f && facing * facing >= PM_GATHER_MIN_NORMAL_COS2 * vec3_dot(axis_n, axis_n);
+}
+
+/* The gather's kernel weight at squared ellipsoid radius r2 (eq. 1's K). */
+PM_DEVICE float gather_kernel_weight(uint shape, float r2)
+{
+  return shape == PM_KERNEL_EPANECHNIKOV ? kernel_epanechnikov(r2) : kernel_constant(r2);
+}
 
 /* Whether photon k's footprint reaches the shading point x with normal n: x lies in the
    ellipsoid, on the hit's side of its cuts (footprint_clip.h; the rows' w hold the first,
@@ -39,9 +53,7 @@ PM_DEVICE int footprint_reaches_at(const KernelGlobals* kg, uint k, float4 c, Ve
     float4 cut = PM_LOAD(&kg->map_cut[k]);
     if (!(cut.x * lu + cut.y * lv <= cut.z)) return 0;
   }
-  Vec3 axis_n = vec3_from_float4(row_n);
-  float facing = vec3_dot(axis_n, n);
-  return facing > 0.0f && facing * facing >= PM_GATHER_MIN_NORMAL_COS2 * vec3_dot(axis_n, axis_n);
+  return photon_faces_like(row_n, n);
 }
 
 PM_DEVICE int footprint_reaches(const KernelGlobals* kg, uint k, float4 c, Vec3 x, Vec3 n, float* r2)

@@ -15,6 +15,7 @@
   K(photon_map_bottom_up) /* S4: boxes, counts, leaf fusion under T */                       \
   K(photon_map_area)      /* S3: per-tile footprint area of the sorted hits (T_auto) */       \
   K(gather)            /* S6: indirect and caustic radiance at every shading point */        \
+  K(knn_gather)        /* S6 for knn: the k nearest photons over their region's covered area */ \
   K(path_trace)        /* path tracer: paths from every shading point into film_indirect_sum */ \
   K(film_resolve)      /* S7: sums / passes; combined = direct + indirect + caustic, NaN guard */\
   K(film_error_tiles)  /* S7: per-tile sums for the error estimate from even and odd passes */ \

@@ -2,7 +2,7 @@
    at the geometry around the hit (footprint_clip.h), and stores what the photon map and the
    gather need: the ellipsoid's AABB, the rows of its inverse basis (so the gather's containment
    test is three dot products), and flux / area. The radius estimator uses the same path with a
-   sphere of the fixed radius, knn a disc of r_max as the photon's reach. It runs after the sort,
+   sphere of the fixed radius, knn a disc of r_max (its normal only). It runs after the sort,
    over the valid hits only, in sorted order; a tile reduction then gives the total footprint
    area for T_auto (photon_map_stage.h). */
 #ifndef PM_PHOTON_FOOTPRINT_H
@@ -17,9 +17,8 @@
 
 /* Footprint of one hit under the estimator in use, before clipping: the photon-differential
    ellipsoid (pd), a sphere of the fixed radius (radius, the multi-pass paper's gather), or, for
-   knn, a disc of the search radius r_max: the photon's reach, which the knn gather uses as a mask
-   only. The disc has the pd footprints' normal half-axis, PM_FOOTPRINT_NORMAL_RATIO of its radius:
-   a sphere of r_max would reach through a box's lid onto the floor inside it. (The radius
+   knn, a disc of the search radius r_max, of which the knn gather reads only the normal (its
+   region is its own, knn_gather.h). (The radius
    estimator keeps its sphere: a flat disc cut by a curved surface loses the ring near its rim,
    -10 % in the closed diffuse sphere of tests/opencl/analytic_sphere_test.cpp.) */
 PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p, uint slot)
@@ -66,7 +65,8 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     f.axis_n = vec3_scale(f.axis_n, p->footprint_scale);
   }
   FootprintCut cut = footprint_uncut();
-  if (p->footprint_clip)
+  /* knn's region is clipped about each shading point instead (knn_gather.h). */
+  if (p->footprint_clip && p->estimator != PM_ESTIMATOR_KNN)
     cut = footprint_clip(kg, &f, center, vec3_normalize(vec3_from_float4(n4)),
                          ray_offset_distance(center, 0.0f, p->ray_epsilon), p->kernel_shape);
   float coverage = 1.0f;
@@ -79,7 +79,7 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
                                                    slot % per_photon, PM_STREAM_FOOTPRINT_PROBE,
                                                    p->photon_offset_hi).b0);
     coverage = footprint_covered_share(kg, &f, &cut, center, vec3_normalize(vec3_from_float4(n4)),
-                                       ray_offset_distance(center, 0.0f, p->ray_epsilon), turn, p->kernel_shape);
+                                       ray_offset_distance(center, 0.0f, p->ray_epsilon), turn, p->kernel_shape, 0);
   }
   Vec3 lo, hi;
   footprint_bounds(f, center, &lo, &hi);

@@ -155,7 +155,8 @@ void PhotonMapping::run_pass(const FrameContext& frame, uint32_t pass) {
 
 void PhotonMapping::gather(const LaunchParams& params, StageTimer* timer) {
   StageScope scope(timer, "gather");
-  device_.launch(KernelId::gather, pixel_work_items(params.width, params.height), params);
+  const KernelId gather = settings_.estimator == PM_ESTIMATOR_KNN ? KernelId::knn_gather : KernelId::gather;
+  device_.launch(gather, pixel_work_items(params.width, params.height), params);
 }
 
 void PhotonMapping::reserve_map(uint32_t hits) {

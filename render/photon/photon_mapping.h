@@ -35,6 +35,8 @@ class PhotonMapping final : public IndirectMethod {
   const PhotonSettings& settings() const { return settings_; }
   // Valid hits of the last pass: the sorted prefix the photon map covers.
   uint32_t last_hit_count() const { return map_params_.hit_count; }
+  // The parameters the last pass's gather ran with.
+  const LaunchParams& last_gather_params() const { return map_params_; }
   // Hit records of one pass (photons per pass * records per photon).
   uint32_t hit_slots() const { return photons_per_pass_ * slots_per_photon_; }
 

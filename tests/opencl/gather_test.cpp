@@ -41,6 +41,9 @@ TEST_F(OpenclGather, RadiusEqualsBruteForce) {
 TEST_F(OpenclGather, NearestNeighboursEqualBruteForce) {
   test::check_gather_equals_brute_force(*device_, builtin_cornell_box(), photons(PM_ESTIMATOR_KNN, PM_KERNEL_EPANECHNIKOV, 4), 24, 24);
 }
+TEST_F(OpenclGather, NearestNeighboursWithTheConstantKernelEqualBruteForce) {
+  test::check_gather_equals_brute_force(*device_, builtin_cornell_box(), photons(PM_ESTIMATOR_KNN, PM_KERNEL_CONSTANT, 4), 24, 24);
+}
 
 // The photon map is rebuilt in parallel every frame: the same frame must come out bit-identical,
 // whatever order the work items ran in (atomics decide only who finishes a node, not its value).

@@ -14,6 +14,7 @@
 #include "kernels/common/brdf.h"
 #include "kernels/common/footprint_clip.h"
 #include "kernels/common/gather_reach.h"
+#include "kernels/common/knn_gather.h"
 #include "render/photon/photon_mapping.h"
 #include "render/renderer.h"
 
@@ -71,6 +72,18 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   auto indirect = read_slot<float4>(device, renderer, BufferSlot::film_indirect, pixels);
   auto caustic = read_slot<float4>(device, renderer, BufferSlot::film_caustic, pixels);
   std::vector<Material> materials = to_device_materials(scene);
+  // knn's region (its clip at the walls and its covered area) is measured on the host by the
+  // kernels' own function over the device's scene BVH; what is checked is the search and the sum.
+  auto whole_slot = [&](BufferSlot slot) {
+    return read_slot<float4>(device, renderer, slot, renderer.buffers()[slot].bytes() / sizeof(float4));
+  };
+  auto scene_nodes = whole_slot(BufferSlot::scene_nodes);
+  auto triangles = whole_slot(BufferSlot::triangles);
+  KernelGlobals scene_globals{};
+  scene_globals.scene_nodes = scene_nodes.data();
+  scene_globals.triangles = triangles.data();
+  const LaunchParams& gather_params = method->last_gather_params();
+  const double region_stretch = 1.0 / std::pow(double(knn_region_thickness(&gather_params)), 2) - 1.0;
 
   double worst = 0;
   size_t nonzero = 0;
@@ -96,8 +109,11 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
                        (!second || cut[k].x * lu + cut[k].y * lv <= cut[k].z) && facing > 0 &&
                        facing * facing >= 0.25 * axis2;
         if (used.estimator == PM_ESTIMATOR_KNN) {
-          double d2 = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z;
-          if (d2 < double(used.rmax) * used.rmax && reaches) near.push_back({d2, k});
+          // knn: in the region's metric (knn_gather.h), on a surface facing like x's.
+          double h = double(d.x) * nrm.x + double(d.y) * nrm.y + double(d.z) * nrm.z;
+          double d2 = double(d.x) * d.x + double(d.y) * d.y + double(d.z) * d.z + region_stretch * h * h;
+          if (d2 < double(gather_params.rmax) * gather_params.rmax && facing > 0 && facing * facing >= 0.25 * axis2)
+            near.push_back({d2, k});
           continue;
         }
         if (!reaches || vec3_dot(v3(incident[k]), nrm) <= 0.0f) continue;
@@ -114,16 +130,29 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
         sum[1] += sw[r].y * w * f.y * power[k].y;
         sum[2] += sw[r].z * w * f.z * power[k].z;
       }
-      if (used.estimator == PM_ESTIMATOR_KNN) {
+      if (used.estimator == PM_ESTIMATOR_KNN && !near.empty()) {
         std::sort(near.begin(), near.end());
-        size_t k_used = std::min(near.size(), size_t(used.knn_k));
-        double radius2 = near.size() >= size_t(used.knn_k) ? near[used.knn_k - 1].first : double(used.rmax) * used.rmax;
-        for (size_t i = 0; i < k_used; ++i) {
+        const size_t k_want = size_t(used.knn_k);
+        const bool full = near.size() >= k_want;
+        const double rmax = gather_params.rmax;
+        const float radius = float(full ? std::sqrt(near[k_want - 1].first) : rmax);
+        Footprint region;
+        FootprintCut region_cut;
+        const double area = knn_region_area(&scene_globals, &gather_params, x, nrm, radius,
+                                            knn_region_turn(&gather_params, uint(px), uint(depth)), &region, &region_cut);
+        // Of k photons within r, the k-th marks the radius and is not counted (knn_gather.h).
+        for (size_t i = 0; i + (full ? 1 : 0) < std::min(near.size(), k_want); ++i) {
           size_t k = near[i].second;
+          Vec3 d = vec3_sub(v3(center[k]), x);
+          double lu = vec3_dot(region.axis_u, d) / vec3_dot(region.axis_u, region.axis_u);
+          double lv = vec3_dot(region.axis_v, d) / vec3_dot(region.axis_v, region.axis_v);
+          double ln = vec3_dot(region.axis_n, d) / vec3_dot(region.axis_n, region.axis_n);
+          double r2 = lu * lu + lv * lv + ln * ln;
+          if (r2 > 1.0 || !footprint_cut_keeps(&region_cut, float(lu), float(lv))) continue;
           if (vec3_dot(v3(incident[k]), nrm) <= 0.0f) continue;
-          double w = used.kernel_shape == PM_KERNEL_EPANECHNIKOV ? 2.0 * (1.0 - near[i].first / radius2) : 1.0;
+          double w = used.kernel_shape == PM_KERNEL_EPANECHNIKOV ? 2.0 * (1.0 - r2) : 1.0;
           Vec3 f = brdf_eval(&m, nrm, v3(incident[k]), wo);
-          double scale = w / (double(PM_PI) * radius2);
+          double scale = w / area;
           sum[0] += sw[r].x * scale * f.x * power[k].x;
           sum[1] += sw[r].y * scale * f.y * power[k].y;
           sum[2] += sw[r].z * scale * f.z * power[k].z;
