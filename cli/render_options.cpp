@@ -25,6 +25,11 @@ void add_render_options(CLI::App* cmd, RenderOptions& o) {
   o.passes_option = cmd->add_option("--passes", o.passes, "Passes of the indirect-light method per frame, summed in the film "
                                         "(photon mapping: independent photon batches; memory is one pass's)")
       ->capture_default_str()->transform(any_unsigned32());
+  cmd->add_option("--control-paths", o.control_paths,
+                  "Paths per control pixel of the frame's error estimate (a sparse path-traced control beside "
+                  "biased methods; docs/accuracy.md), grown up to 8x where it cannot resolve the error; 0: the "
+                  "estimate sees the noise between passes only")
+      ->capture_default_str()->transform(integer_in(0, 65536));
   std::string method_help = "Indirect-light method:";
   for (const MethodEntry& m : methods()) method_help += std::string(" ") + m.name + " (" + m.summary + ")";
   cmd->add_option("--method", o.method, method_help)->capture_default_str()->check(CLI::IsMember(method_names()));
@@ -42,6 +47,7 @@ RenderSettings render_settings(const RenderOptions& o) {
   settings.mirror_depth = o.mirror_depth;
   settings.seed = o.seed;
   settings.passes = o.passes;
+  settings.control_paths = o.control_paths;
   settings.reuse_lighting = !o.no_reuse;
   if (!o.resolution.empty()) parse_resolution(o.resolution, &settings.width, &settings.height);
   settings.method = o.method_options.at(o.method)->settings();

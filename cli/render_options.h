@@ -22,6 +22,7 @@ struct RenderOptions {
   int mirror_depth = 1;
   uint32_t seed = 1;
   uint32_t passes = 1;
+  uint32_t control_paths = 1024;  // the error estimate's bias control (RenderSettings::control_paths)
   std::string method = "photon";
   bool no_reuse = false;
   CLI::Option* passes_option = nullptr;  // given on the command line (a budget's cap then)

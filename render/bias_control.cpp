@@ -39,7 +39,7 @@ double absolute_error_from(double d, double sigma) {
 ControlGrid control_grid(int width, int height) {
   ControlGrid g;
   const double pixels = double(std::max(width, 1)) * std::max(height, 1);
-  g.stride = uint32_t(std::max(1.0, std::floor(std::sqrt(pixels / kControlPixelsTarget))));
+  g.stride = uint32_t(std::max(1.0, std::ceil(std::sqrt(pixels / kControlPixelsTarget))));
   g.blocks_x = (uint32_t(std::max(width, 1)) + g.stride - 1) / g.stride;
   g.blocks_y = (uint32_t(std::max(height, 1)) + g.stride - 1) / g.stride;
   return g;
@@ -57,7 +57,7 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
   std::vector<double> region_variance(region_difference.size(), 0.0);
   double control_total = 0, difference_total = 0, variance_total = 0;
   double squared_error_sum = 0, squared_error_squares = 0, counted = 0;
-  double abs_error_sum = 0, abs_error_squares = 0;
+  double abs_error_sum = 0, abs_error_squares = 0, noise_sum = 0;
   for (uint32_t by = 0; by < grid.blocks_y; ++by)
     for (uint32_t bx = 0; bx < grid.blocks_x; ++bx) {
       const size_t c = size_t(by) * grid.blocks_x + bx;
@@ -80,6 +80,7 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
       squared_error_squares += squared_error * squared_error;
       const double abs_error = absolute_error_from(film - mean, std::sqrt(variance));
       abs_error_sum += abs_error;
+      noise_sum += std::sqrt(variance);
       abs_error_squares += abs_error * abs_error;
       counted += 1;
     }
@@ -108,6 +109,7 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
   e.signed_bias = difference_total / control_total;
   e.bias_error = std::sqrt(variance_total) / control_total;
   e.regional_bias = regional / control_total;
+  e.control_noise = noise_sum / control_total;
   e.known = true;
   return e;
 }

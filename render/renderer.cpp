@@ -205,6 +205,7 @@ void Renderer::begin_frame(int frame) {
   next_pass_ = 0;
   control_->begin_frame();
   last_bias_ = BiasEstimate{};
+  frame_begun_ = std::chrono::steady_clock::now();
   if (method_) method_->begin_frame(frame_, change);
 }
 
@@ -232,13 +233,27 @@ double Renderer::estimate_error(bool final, double noise_scale) {
     p.max_bounces = method_->light_bounces();
     p.film_passes = passes_done_;
     last_bias_ = control_->add_and_compare(p, uint32_t(want - have));
-    // Where the path tracer is noisy (a point light in a closed box), the control's own
-    // uncertainty can dwarf the film's error: at the end of a frame the control doubles its
-    // paths, up to kControlPathsGrowth times control_paths, until it resolves the error to a
-    // quarter of itself.
+    // Where the path tracer is noisy (a small lamp in a closed box), the control's own noise
+    // can dwarf the film's error: at the end of a frame the control doubles its paths, up to
+    // kControlPathsGrowth times control_paths, until its noise per pixel is below the error it
+    // reads there and the mean over pixels resolves that error to a quarter of itself; and
+    // only while the growth takes no longer than the frame had taken (a doubling costs about
+    // twice the paths already there).
+    auto unresolved = [](const BiasEstimate& b) {
+      const double error = b.mean_abs_error - b.mean_abs_error_stderr;
+      return b.control_noise > error || b.mean_abs_error_stderr > 0.25 * error;
+    };
+    using Clock = std::chrono::steady_clock;
+    const Clock::time_point growth_begun = Clock::now();
+    const double frame_s = std::chrono::duration<double>(growth_begun - frame_begun_).count();
+    double last_step_s = frame_s, growth_s = 0;
     while (final && last_bias_.known && control_->paths() < uint64_t(settings_.control_paths) * kControlPathsGrowth &&
-           last_bias_.mean_abs_error_stderr > 0.25 * (last_bias_.mean_abs_error - last_bias_.mean_abs_error_stderr))
+           unresolved(last_bias_) && growth_s + (growth_s > 0 ? 2.0 * last_step_s : 0.0) <= frame_s) {
+      const Clock::time_point step_begun = Clock::now();
       last_bias_ = control_->add_and_compare(p, uint32_t(control_->paths()));
+      last_step_s = std::chrono::duration<double>(Clock::now() - step_begun).count();
+      growth_s = std::chrono::duration<double>(Clock::now() - growth_begun).count();
+    }
   }
   // The control measures noise and bias together; without it, the even/odd noise is all we know.
   last_error_upper_ = last_bias_.known ? last_bias_.mean_abs_error_upper : noise;

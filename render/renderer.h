@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <chrono>
 #include <memory>
 #include <string>
 #include <vector>
@@ -33,7 +34,7 @@ struct RenderSettings {
   bool reuse_lighting = true;
   // Paths per control pixel of the error estimate's bias control (render/bias_control.h) by the
   // time a frame's error is estimated; 0: the estimate sees noise only.
-  uint32_t control_paths = 128;
+  uint32_t control_paths = 1024;
   std::shared_ptr<const MethodSettings> method;  // null: direct light only
 
   // Throws SettingError naming the first setting out of range (the method's too).
@@ -137,6 +138,7 @@ class Renderer {
   std::unique_ptr<BiasControl> control_;
   BiasEstimate last_bias_;
   double last_error_upper_ = -1;
+  std::chrono::steady_clock::time_point frame_begun_;  // begin_frame's call: the frame's time so far
 
   FrameContext frame_;            // the frame being rendered (timer and stats switch persist)
   uint32_t passes_done_ = 0;      // passes summed in the film

@@ -1,0 +1,91 @@
+// The error estimate's comparison with its path-traced control (render/bias_control.h), on
+// synthetic controls whose truth is known: per control pixel, paths drawn from a skewed
+// distribution around the true value, and a film off by a known error.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "render/bias_control.h"
+
+namespace pm {
+namespace {
+
+struct SyntheticControl {
+  std::vector<float4> sums, film;
+  double true_mae = 0;  // the film's relative mean absolute error
+};
+
+// `pixels` control pixels of true value 1, `paths` paths each from a gamma distribution of
+// shape `shape` (mean 1: the smaller the shape, the heavier the tail), and a film off by +-error
+// (signs alternating in runs of 16, so regions see a bias), plus `offset` everywhere.
+SyntheticControl synthetic(int pixels, int paths, double shape, double error, double offset, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::gamma_distribution<double> path_value(shape, 1.0 / shape);
+  SyntheticControl c;
+  double abs_sum = 0;
+  for (int i = 0; i < pixels; ++i) {
+    double sum = 0, squares = 0;
+    for (int k = 0; k < paths; ++k) {
+      const double v = path_value(rng);
+      sum += v;
+      squares += v * v;
+    }
+    c.sums.push_back({float(sum), float(sum), float(sum), float(squares)});
+    const double e = ((i / 16) % 2 ? error : -error) + offset;
+    c.film.push_back({float(1 + e), float(1 + e), float(1 + e), 0.0f});
+    abs_sum += std::fabs(e);
+  }
+  c.true_mae = abs_sum / pixels;
+  return c;
+}
+
+ControlGrid grid_of(int side) {
+  ControlGrid g;
+  g.blocks_x = uint32_t(side);
+  g.blocks_y = uint32_t(side);
+  return g;
+}
+
+TEST(BiasControl, GridHoldsAtMostAboutItsTargetOfControlPixels) {
+  for (auto [w, h] : {std::pair{96, 54}, {960, 540}, {1920, 1080}, {3840, 2160}}) {
+    const ControlGrid g = control_grid(w, h);
+    EXPECT_LE(g.pixels(), kControlPixelsTarget * 11 / 10) << w << "x" << h;
+    EXPECT_GE(g.pixels(), kControlPixelsTarget / 2) << w << "x" << h;
+  }
+  EXPECT_EQ(control_grid(16, 16).stride, 1u);  // a film smaller than the target: every pixel
+  EXPECT_EQ(control_grid(16, 16).pixels(), 256u);
+}
+
+TEST(BiasControl, ReadsTheFilmsErrorWhereTheControlResolvesIt) {
+  // 1024 paths of a skewed distribution: the control's noise per pixel is about 4 %, under the
+  // film's 10 %.
+  const SyntheticControl c = synthetic(1024, 1024, 0.5, 0.10, 0.0, 1);
+  const BiasEstimate e = compare_with_control(c.sums, c.film, grid_of(32), 1024, kControlRegionSide);
+  ASSERT_TRUE(e.known);
+  EXPECT_NEAR(e.mean_abs_error, c.true_mae, 0.15 * c.true_mae);
+  EXPECT_LT(e.control_noise, 0.06);
+  EXPECT_NEAR(e.signed_bias, 0.0, 3 * e.bias_error + 1e-3);
+  EXPECT_GT(e.regional_bias, 0.05) << "runs of +-10 % are a regional bias";
+}
+
+TEST(BiasControl, ABiasShowsInTheSignedBiasAndTheError) {
+  const SyntheticControl c = synthetic(1024, 1024, 0.5, 0.0, -0.05, 2);
+  const BiasEstimate e = compare_with_control(c.sums, c.film, grid_of(32), 1024, kControlRegionSide);
+  EXPECT_NEAR(e.signed_bias, -0.05, 3 * e.bias_error);
+  EXPECT_GE(e.mean_abs_error, 2.0 / 3.0 * 0.05);
+  EXPECT_LE(e.mean_abs_error, 1.5 * 0.05);
+}
+
+TEST(BiasControl, ANoisyControlSaysSoInsteadOfReadingNoiseAsAccuracy) {
+  // 32 paths: the control's noise per pixel (about 25 %) dwarfs the film's 5 %. The estimate
+  // then errs high, never low, and control_noise tells the renderer to add paths.
+  const SyntheticControl c = synthetic(1024, 32, 0.5, 0.05, 0.0, 3);
+  const BiasEstimate e = compare_with_control(c.sums, c.film, grid_of(32), 32, kControlRegionSide);
+  EXPECT_GE(e.mean_abs_error, 2.0 / 3.0 * c.true_mae);
+  EXPECT_GT(e.control_noise, e.mean_abs_error - e.mean_abs_error_stderr);
+}
+
+}  // namespace
+}  // namespace pm
