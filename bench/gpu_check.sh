@@ -22,7 +22,9 @@
 #   accuracy    bench/accuracy_suite.sh on CUDA: the CI-size references (96x54, 65536 paths per
 #               pixel, every benchmark and golden scene, 2 and 1 bounces) as accuracy-ci.tgz, then at
 #               $ACCURACY_SIZE (default 960x540; 4096-path references) every method's defaults
-#               and $ACCURACY_CONFIGS (extra "NAME|ARGS" rows, separated by ';') (docs/accuracy.md)
+#               and $ACCURACY_CONFIGS (extra "NAME|ARGS" rows, separated by ';') (docs/accuracy.md);
+#               ACCURACY_CI=0 skips the CI-size references, ACCURACY_DEFAULTS=0 the default rows;
+#               ACCURACY_SCENES and ACCURACY_BOUNCES pass --scenes and --bounces
 #   mitsuba     per scene of $MITSUBA_SCENES (default sponza; conference, sibenik, cornell-mcguire) at
 #               960x540: `pmrender tradeoff` (CUDA; a 16 x 256-path reference) and Mitsuba 3's
 #               cuda_ad_rgb path tracer against the same reference (docs/tradeoff.md); needs the
@@ -52,16 +54,20 @@ for step in "$@"; do
     accuracy)
       suite=$bundle/bench/accuracy_suite.sh
       all="builtin cornell-mcguire sponza sibenik conference glossy mirror-box ring three-lights"
-      "$suite" --backend cuda --out "$out/accuracy-ci" --size 96x54 --ref-spp 65536 --scenes "$all" --only-references \
-        >"$out/accuracy-ci.log" 2>&1
-      "$suite" --backend cuda --out "$out/accuracy-ci" --size 96x54 --ref-spp 65536 --bounces 1 --only-references \
-        >>"$out/accuracy-ci.log" 2>&1
-      tar czf "$out/accuracy-ci.tgz" -C "$out" accuracy-ci && rm -rf "$out/accuracy-ci"
+      if [ "${ACCURACY_CI:-1}" != 0 ]; then
+        "$suite" --backend cuda --out "$out/accuracy-ci" --size 96x54 --ref-spp 65536 --scenes "$all" --only-references \
+          >"$out/accuracy-ci.log" 2>&1
+        "$suite" --backend cuda --out "$out/accuracy-ci" --size 96x54 --ref-spp 65536 --bounces 1 --only-references \
+          >>"$out/accuracy-ci.log" 2>&1
+        tar czf "$out/accuracy-ci.tgz" -C "$out" accuracy-ci && rm -rf "$out/accuracy-ci"
+      fi
       extra=()
       IFS=';' read -r -a rows <<<"${ACCURACY_CONFIGS:-}"
       for r in ${rows[@]+"${rows[@]}"}; do extra+=(--config "$r"); done
+      [ "${ACCURACY_DEFAULTS:-1}" = 0 ] && extra+=(--no-defaults)
+      [ -n "${ACCURACY_SCENES:-}" ] && extra+=(--scenes "$ACCURACY_SCENES")
       "$suite" --backend cuda --out "$out/accuracy" --size "${ACCURACY_SIZE:-960x540}" --ref-spp 4096 \
-        ${extra[@]+"${extra[@]}"} >"$out/accuracy.log" 2>&1
+        --bounces "${ACCURACY_BOUNCES:-2}" ${extra[@]+"${extra[@]}"} >"$out/accuracy.log" 2>&1
       echo "accuracy suite exit $?" | tee -a "$out/summary.txt"; cat "$out/accuracy/accuracy.tsv" >>"$out/summary.txt"
       cat "$out/accuracy/references.txt" >>"$out/summary.txt" 2>/dev/null
       rm -f "$out"/accuracy/*.exr
