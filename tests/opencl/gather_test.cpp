@@ -38,11 +38,21 @@ TEST_F(OpenclGather, VoxelVolumeHeuristicMapEqualsBruteForce) {
 TEST_F(OpenclGather, RadiusEqualsBruteForce) {
   test::check_gather_equals_brute_force(*device_, builtin_cornell_box(), photons(PM_ESTIMATOR_RADIUS, PM_KERNEL_CONSTANT, 4), 24, 24);
 }
+// knn's region is measured again on the host (support/gather_checks.h), without its coverage
+// probes: a probe ray that grazes a triangle's edge may hit on the device and miss on the host
+// (NVIDIA's OpenCL contracts multiply-adds), and one probe moves a pixel by a few percent. The
+// probes are the footprints' (footprint_coverage.h), checked there and by ctest accuracy.
+PhotonSettings without_coverage(PhotonSettings p) {
+  p.footprint_coverage = false;
+  return p;
+}
 TEST_F(OpenclGather, NearestNeighboursEqualBruteForce) {
-  test::check_gather_equals_brute_force(*device_, builtin_cornell_box(), photons(PM_ESTIMATOR_KNN, PM_KERNEL_EPANECHNIKOV, 4), 24, 24);
+  test::check_gather_equals_brute_force(*device_, builtin_cornell_box(),
+                                        without_coverage(photons(PM_ESTIMATOR_KNN, PM_KERNEL_EPANECHNIKOV, 4)), 24, 24);
 }
 TEST_F(OpenclGather, NearestNeighboursWithTheConstantKernelEqualBruteForce) {
-  test::check_gather_equals_brute_force(*device_, builtin_cornell_box(), photons(PM_ESTIMATOR_KNN, PM_KERNEL_CONSTANT, 4), 24, 24);
+  test::check_gather_equals_brute_force(*device_, builtin_cornell_box(),
+                                        without_coverage(photons(PM_ESTIMATOR_KNN, PM_KERNEL_CONSTANT, 4)), 24, 24);
 }
 
 // The photon map is rebuilt in parallel every frame: the same frame must come out bit-identical,
