@@ -73,23 +73,10 @@ PM_DEVICE float radiosity_element_light(const KernelGlobals* kg, const LaunchPar
   float power = 0.0f, area = 0.0f;
   float at_vertex = -1.0f; /* visibility at the vertex, traced once when first needed */
   for (uint r = first; r < end; ++r) {
-    uint ring = PM_LOAD(&kg->rad_adjacency[r]);
-    uint tri = ring >> 2, corner = ring & 3u;
-    uint4 front = PM_LOAD(&kg->rad_triangles[2u * tri]);
-    uint4 back = PM_LOAD(&kg->rad_triangles[2u * tri + 1u]);
-    /* The other two corners' positions (either side's element has the vertex's position). */
-    uint ids[3];
-    ids[0] = front.x != PM_RADIOSITY_NONE ? front.x : back.x;
-    ids[1] = front.y != PM_RADIOSITY_NONE ? front.y : back.y;
-    ids[2] = front.z != PM_RADIOSITY_NONE ? front.z : back.z;
-    Vec3 b = radiosity_element_position(kg, ids[(corner + 1u) % 3u]);
-    Vec3 c = radiosity_element_position(kg, ids[(corner + 2u) % 3u]);
-    Vec3 cross = vec3_cross(vec3_sub(b, v), vec3_sub(c, v));
-    float twice_area = vec3_length(cross);
+    Vec3 b, c, face_n;
+    float twice_area = radiosity_ring_triangle(kg, e, PM_LOAD(&kg->rad_adjacency[r]), &b, &c, &face_n);
     if (!(twice_area > 0.0f)) continue;
     area += twice_area * (0.5f / 3.0f);
-    Vec3 face_n = vec3_scale(cross, 1.0f / twice_area);
-    if (vec3_dot(face_n, n) < 0.0f) face_n = vec3_neg(face_n); /* the element's side */
     if (vec3_dot(face_n, vec3_sub(light_pos, v)) <= 0.0f) continue; /* lit from the other side */
     if (at_vertex < 0.0f) at_vertex = radiosity_light_visible(kg, p, light_pos, v, n);
     float visible = at_vertex;

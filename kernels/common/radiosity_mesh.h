@@ -121,6 +121,31 @@ PM_DEVICE RadiosityLocation radiosity_surface_point(const KernelGlobals* kg, int
   return loc;
 }
 
+/* Triangle `ring_entry` of element e's one-ring (an rad_adjacency entry: refined triangle << 2 |
+   the element's corner): the other two corners b and c, in the triangle's winding after the
+   element's vertex, and the face normal turned to the element's side. Returns twice the
+   triangle's area; 0 for a degenerate triangle (b, c and the normal then undefined). */
+PM_DEVICE float radiosity_ring_triangle(const KernelGlobals* kg, uint e, uint ring_entry, Vec3* b, Vec3* c, Vec3* face_n)
+{
+  uint tri = ring_entry >> 2, corner = ring_entry & 3u;
+  uint4 front = PM_LOAD(&kg->rad_triangles[2u * tri]);
+  uint4 back = PM_LOAD(&kg->rad_triangles[2u * tri + 1u]);
+  /* The other two corners' positions (either side's element has the vertex's position). */
+  uint ids[3];
+  ids[0] = front.x != PM_RADIOSITY_NONE ? front.x : back.x;
+  ids[1] = front.y != PM_RADIOSITY_NONE ? front.y : back.y;
+  ids[2] = front.z != PM_RADIOSITY_NONE ? front.z : back.z;
+  Vec3 v = radiosity_element_position(kg, e);
+  *b = radiosity_element_position(kg, ids[(corner + 1u) % 3u]);
+  *c = radiosity_element_position(kg, ids[(corner + 2u) % 3u]);
+  Vec3 cross = vec3_cross(vec3_sub(*b, v), vec3_sub(*c, v));
+  float twice_area = vec3_length(cross);
+  if (!(twice_area > 0.0f)) return 0.0f;
+  *face_n = vec3_scale(cross, 1.0f / twice_area);
+  if (vec3_dot(*face_n, radiosity_element_normal(kg, e)) < 0.0f) *face_n = vec3_neg(*face_n);
+  return twice_area;
+}
+
 /* Direction k of nC in the element's frame: cosine-weighted over the hemisphere by mapping an
    area-uniform point of the unit disk straight up (Malley's method), the disk points on
    Vogel's golden-angle spiral so that any nC covers the disk evenly (the paper maps a 16 x 16

@@ -32,6 +32,7 @@ LaunchParams VertexLinkRadiosity::launch_params(const FrameContext& frame) const
   p.element_count = element_count_;
   p.link_directions = settings_.directions;
   p.light_sampling = uint32_t(settings_.light_samples);
+  p.link_origins = uint32_t(settings_.link_origins);
   p.feature_cos = float(std::cos(double(settings_.feature_angle) * M_PI / 180.0));
   return p;
 }
