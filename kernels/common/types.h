@@ -129,8 +129,8 @@ typedef struct LaunchParams {
 /* Vertex link radiosity (docs/radiosity.md). An element index that does not exist (the back side
    of a one-sided surface, an empty link slot). */
 #define PM_RADIOSITY_NONE 0xffffffffu
-/* Light links (section 3.3): the vertex alone, or the vertex and the midpoints of its one-ring
-   edges (the paper's 1:4 subdivision), weighted as a quadrature of the vertex's hat function. */
+/* Light links (section 3.3): the vertex alone, or the centroids of the paper's 1:4 subdivision
+   of its one-ring triangles, weighted as a quadrature of the vertex's hat function. */
 #define PM_RADIOSITY_LIGHT_VERTEX 0
 #define PM_RADIOSITY_LIGHT_ONE_RING 1
 /* Link rays (section 3.2): all from the vertex, or each from a point of the vertex's one-ring

@@ -61,7 +61,7 @@ void VertexLinkRadiosity::prepare(StageTimer* timer) {
   light_samples_ = 0;
   for (size_t e = 0; e < elements.count(); ++e) {
     const uint64_t ring = ranges_[e + 1].x - ranges_[e].x;
-    light_samples_ += settings_.light_samples == PM_RADIOSITY_LIGHT_VERTEX ? 1 : 1 + 2 * ring;
+    light_samples_ += settings_.light_samples == PM_RADIOSITY_LIGHT_VERTEX ? 1 : 4 * ring;
   }
   buffers_.upload(BufferSlot::rad_elements, elements.data);
   buffers_.upload(BufferSlot::rad_tree, mesh.tree);
