@@ -24,17 +24,22 @@ PM_DEVICE int radiosity_element_material(const KernelGlobals* kg, uint e)
   return PM_AS_INT(PM_LOAD(&kg->rad_elements[2u * e]).w);
 }
 
-/* Unit normal on the element's side. */
+/* Unit normal on the element's side (its w: radiosity_element_reflectance's glossy albedo). */
 PM_DEVICE Vec3 radiosity_element_normal(const KernelGlobals* kg, uint e)
 {
   return vec3_from_float4(PM_LOAD(&kg->rad_elements[2u * e + 1u]));
 }
 
-/* Diffuse reflectance rho_d of the element's material: the paper's f_d is rho_d / pi. */
+/* Reflectance of the element's material as the method's diffuse f_d = rho / pi (eq. 4): rho_d
+   plus the glossy lobe's rho_s times its albedo for light arriving uniformly from the hemisphere
+   (the cosine-weighted mean of brdf_glossy_albedo over theta_o, computed per material on the host
+   and kept in the normal's w). The method carries no directions, so the glossy lobe's light
+   leaves diffusely; dropping it would lose all the light the scene's glossy surfaces reflect. */
 PM_DEVICE Vec3 radiosity_element_reflectance(const KernelGlobals* kg, uint e)
 {
   Material m = material_load(kg->materials, radiosity_element_material(kg, e));
-  return material_diffuse(&m);
+  float glossy_albedo = PM_LOAD(&kg->rad_elements[2u * e + 1u]).w;
+  return vec3_madd(material_diffuse(&m), material_glossy(&m), glossy_albedo);
 }
 
 /* Barycentric coordinates (u, v) of p in triangle (a, b, c): p = (1 - u - v) a + u b + v c,
