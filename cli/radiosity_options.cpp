@@ -43,7 +43,7 @@ std::shared_ptr<MethodOptions> add_radiosity_options(CLI::App* cmd) {
   cmd->add_option("--directions", r.directions, "Hemisphere directions nC shot per element (link rays)")
       ->capture_default_str()->transform(any_unsigned32())->group(group);
   cmd->add_option("--max-edge", r.max_edge, "Longest triangle edge after refinement, metres (default: the scene "
-                                            "diagonal / 25)")->transform(finite_float())->group(group);
+                                            "diagonal / 50)")->transform(finite_float())->group(group);
   cmd->add_option("--feature-angle", r.feature_angle, "Feature angle alpha_f, degrees: vertices split and smoothing "
                                                       "stops where normals differ more")
       ->capture_default_str()->transform(finite_float())->group(group);

@@ -21,7 +21,7 @@ class RadiositySettings final : public MethodSettings {
  public:
   uint32_t directions = 256;  // nC: cosine-weighted hemisphere directions per element (section 3.2)
   int bounces = 2;            // nB: gathering iterations, one bounce each (eq. 3, 4), as --bounces
-  float max_edge = 0.0f;      // refinement: longest triangle edge, metres; 0: the scene diagonal / 25
+  float max_edge = 0.0f;      // refinement: longest triangle edge, metres; 0: the scene diagonal / 50
   float feature_angle = 40.0f;  // alpha_f, degrees: normals split and smoothing stops beyond it (eq. 6)
   int smooth_passes = 1;      // one-ring smoothing passes (eq. 5); 0: none
   int sides = 2;              // 2: an element on each side of every surface; 1: the winding's side only

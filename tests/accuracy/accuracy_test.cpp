@@ -89,8 +89,8 @@ TEST_P(SceneAccuracy, ABiasedEstimateIsCaughtByTheBiasCheckAndTheErrorEstimate) 
 }
 
 // Vertex link radiosity at its defaults, per bounce (the first bounce alone, then both), against
-// the same references and the same 1.5 % target. The closed boxes only: they take 2 to 3 s each
-// on PoCL, the benchmark scenes 90 to 300 s (39 million link rays in Sponza), too long for the
+// the same references and the same 1.5 % target. The closed boxes only: they take 4 to 6 s each
+// on PoCL, the benchmark scenes 2 to 7 minutes (69 million link rays in Sponza), too long for the
 // suite; bench/accuracy_suite.sh measures those (docs/accuracy.md, radiosity section).
 class RadiosityAccuracy : public testing::TestWithParam<std::tuple<const char*, int>> {};
 
