@@ -17,12 +17,14 @@ class RadiosityOptions final : public MethodOptions {
   RadiositySettings settings_;
   std::string sides = "two";
   std::string light_samples = "one-ring";
+  std::string link_origins = "one-ring";
   CLI::Option* bounces = nullptr;  // --bounces, whoever registered it
 
   std::shared_ptr<const MethodSettings> settings() const override {
     auto s = std::make_shared<RadiositySettings>(settings_);
     value_of(kRadiositySidesNames, sides, &s->sides);
     value_of(kRadiosityLightSamplesNames, light_samples, &s->light_samples);
+    value_of(kRadiosityLinkOriginsNames, link_origins, &s->link_origins);
     if (bounces && bounces->count() > 0) s->bounces = bounces->as<int>();
     s->validate();
     return s;
@@ -41,7 +43,7 @@ std::shared_ptr<MethodOptions> add_radiosity_options(CLI::App* cmd) {
   cmd->add_option("--directions", r.directions, "Hemisphere directions nC shot per element (link rays)")
       ->capture_default_str()->transform(any_unsigned32())->group(group);
   cmd->add_option("--max-edge", r.max_edge, "Longest triangle edge after refinement, metres (default: the scene "
-                                            "diagonal / 25)")->transform(finite_float())->group(group);
+                                            "diagonal / 50)")->transform(finite_float())->group(group);
   cmd->add_option("--feature-angle", r.feature_angle, "Feature angle alpha_f, degrees: vertices split and smoothing "
                                                       "stops where normals differ more")
       ->capture_default_str()->transform(finite_float())->group(group);
@@ -51,6 +53,9 @@ std::shared_ptr<MethodOptions> add_radiosity_options(CLI::App* cmd) {
       ->capture_default_str()->check(CLI::IsMember(names_of(kRadiositySidesNames)))->group(group);
   cmd->add_option("--light-samples", o->light_samples, "Light links at the vertex only, or over its one-ring (1:4)")
       ->capture_default_str()->check(CLI::IsMember(names_of(kRadiosityLightSamplesNames)))->group(group);
+  cmd->add_option("--link-origins", o->link_origins, "Link rays from the vertex only, or from points over its "
+                                                     "one-ring drawn by its hat function")
+      ->capture_default_str()->check(CLI::IsMember(names_of(kRadiosityLinkOriginsNames)))->group(group);
   cmd->add_option("--link-batch", r.link_batch, "Elements per link-build batch (0: as many as 256 MiB of scratch hold)")
       ->capture_default_str()->transform(any_unsigned32())->group(group);
   return o;

@@ -80,6 +80,28 @@ PM_DEVICE float brdf_glossy_sample_weight(float exponent, float cos_theta)
   return cos_theta > 0.0f ? (exponent + 2.0f) / (exponent + 1.0f) * cos_theta : 0.0f;
 }
 
+/* Directional albedo of the glossy lobe per unit rho_s at cos theta_o = mu: the share of light
+   arriving uniformly from the hemisphere that the lobe reflects towards a direction at theta_o
+   (by reciprocity, the share of light from that direction that it reflects above the surface),
+   a_n(mu) = integral (n + 2) / (2 pi) cos^n(alpha) cos theta_i d omega_i. It is 1 at mu = 1 and
+   less towards grazing, where part of the lobe lies below the horizon. Midpoint rule over the
+   lobe's importance sampling (brdf_sample_glossy, weight brdf_glossy_sample_weight), 16 x 16
+   points: cos theta_i = cos alpha mu + sin alpha sin theta_o cos phi about the mirror direction. */
+PM_DEVICE float brdf_glossy_albedo(float exponent, float mu)
+{
+  float sin_o = pm_sqrtf(pm_fmaxf(0.0f, 1.0f - mu * mu));
+  float sum = 0.0f;
+  for (int i = 0; i < 16; ++i) {
+    float cos_a = pm_powf(((float)i + 0.5f) * (1.0f / 16.0f), 1.0f / (exponent + 1.0f));
+    float sin_a = pm_sqrtf(pm_fmaxf(0.0f, 1.0f - cos_a * cos_a));
+    for (int j = 0; j < 16; ++j) {
+      float cos_i = cos_a * mu + sin_a * sin_o * pm_cosf(PM_TWO_PI * ((float)j + 0.5f) * (1.0f / 16.0f));
+      sum += pm_fmaxf(cos_i, 0.0f);
+    }
+  }
+  return (exponent + 2.0f) / (exponent + 1.0f) * sum * (1.0f / 256.0f);
+}
+
 /* The sample as a world direction, (t, b, axis) an orthonormal frame. */
 PM_DEVICE Vec3 lobe_direction(LobeSample s, Vec3 t, Vec3 b, Vec3 axis)
 {

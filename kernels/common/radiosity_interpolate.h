@@ -2,7 +2,10 @@
    gathered indirect irradiance is interpolated barycentrically from the corner elements of the
    refined triangle the point lies on, on the side the viewer sees, and reflected diffusely:
    L_indirect = shade_weight * rho_d / pi * sum_k w_k I_total(element_k). Direct light stays the
-   camera pass's exact ray-traced direct light (the paper used shadow maps). The result is
+   camera pass's exact ray-traced direct light (the paper used shadow maps). A glossy lobe
+   reflects the interpolated irradiance as if it arrived uniformly from the hemisphere: rho_d
+   becomes rho_d + rho_s a_n(cos theta_o) (brdf_glossy_albedo), the light the lobe sends towards
+   the viewer. The result is
    added into film_indirect_sum like a photon-mapping pass; the caustic layer gets nothing (the
    method is diffuse only). */
 #ifndef PM_RADIOSITY_INTERPOLATE_H
@@ -37,7 +40,10 @@ PM_DEVICE void kernel_radiosity_interpolate(const KernelGlobals* kg, const Launc
     int material_index = PM_AS_INT(pos.w);
     if (material_index < 0) break;
     Material m = material_load(kg->materials, material_index);
-    Vec3 rho = material_diffuse(&m);
+    float cos_o = pm_fabsf(vec3_dot(vec3_from_float4(kg->shade_outgoing[record]), vec3_from_float4(kg->shade_normal[record])));
+    Vec3 rho = material_diffuse(&m), rho_s = material_glossy(&m);
+    if (rho_s.x > 0.0f || rho_s.y > 0.0f || rho_s.z > 0.0f)
+      rho = vec3_madd(rho, rho_s, brdf_glossy_albedo(m.glossy.w, cos_o));
     if (rho.x <= 0.0f && rho.y <= 0.0f && rho.z <= 0.0f) continue;
     float4 normal = kg->shade_normal[record];
     int leaf = PM_AS_INT(normal.w);

@@ -15,10 +15,13 @@
    d omega), exact for any distance. Each one-ring triangle gives its vertex a third of the power
    it receives, times its visibility; the element's irradiance is that power over a third of
    the one-ring's area, so the linearly interpolated irradiance carries exactly the power that
-   reaches the surface (unshadowed). Visibility is sampled at the points the paper's 1:4
-   subdivision adds around the vertex, the midpoints of its one-ring edges, and the vertex,
-   weighted 1 : 3/2 : 3/2 per triangle (the vertex's hat function integrated over the 1:4
-   sub-triangles with their corner averages: A/12 * (1, 3/2, 3/2)). Far from the light both
+   reaches the surface (unshadowed). Visibility is sampled on the paper's 1:4 subdivision of
+   each one-ring triangle, at the centroids of its four sub-triangles, weighted by the vertex's
+   hat function integrated over each: A/6, A/24, A/24 and A/12 for the sub-triangles at the
+   vertex, at the other two corners and in the middle (4 : 1 : 1 : 2). The centroids lie inside
+   the triangle: the 1:4 points themselves (the vertex, the edge midpoints) lie on edges of the
+   mesh, and where that edge is the foot of a wall a shadow ray from it starts in the wall's
+   plane, and the wall may block it at t = 0. Far from the light both
    modes agree to O(h^2). */
 #ifndef PM_RADIOSITY_LIGHT_H
 #define PM_RADIOSITY_LIGHT_H
@@ -61,6 +64,12 @@ PM_DEVICE float radiosity_solid_angle(Vec3 o, Vec3 a, Vec3 b, Vec3 c)
   return 2.0f * pm_atan2f(num, den);
 }
 
+/* (wa a + wb b + wc c) / 6: a point of triangle (a, b, c) for weights summing to 6. */
+PM_DEVICE Vec3 radiosity_affine(Vec3 a, Vec3 b, Vec3 c, float wa, float wb, float wc)
+{
+  return vec3_scale(vec3_add(vec3_add(vec3_scale(a, wa), vec3_scale(b, wb)), vec3_scale(c, wc)), 1.0f / 6.0f);
+}
+
 /* Element e's irradiance from a light of unit power at light_pos (see above for the modes). */
 PM_DEVICE float radiosity_element_light(const KernelGlobals* kg, const LaunchParams* p, uint e, Vec3 light_pos)
 {
@@ -71,31 +80,18 @@ PM_DEVICE float radiosity_element_light(const KernelGlobals* kg, const LaunchPar
   }
   uint first = PM_LOAD(&kg->rad_element_ranges[e]).x, end = PM_LOAD(&kg->rad_element_ranges[e + 1u]).x;
   float power = 0.0f, area = 0.0f;
-  float at_vertex = -1.0f; /* visibility at the vertex, traced once when first needed */
   for (uint r = first; r < end; ++r) {
-    uint ring = PM_LOAD(&kg->rad_adjacency[r]);
-    uint tri = ring >> 2, corner = ring & 3u;
-    uint4 front = PM_LOAD(&kg->rad_triangles[2u * tri]);
-    uint4 back = PM_LOAD(&kg->rad_triangles[2u * tri + 1u]);
-    /* The other two corners' positions (either side's element has the vertex's position). */
-    uint ids[3];
-    ids[0] = front.x != PM_RADIOSITY_NONE ? front.x : back.x;
-    ids[1] = front.y != PM_RADIOSITY_NONE ? front.y : back.y;
-    ids[2] = front.z != PM_RADIOSITY_NONE ? front.z : back.z;
-    Vec3 b = radiosity_element_position(kg, ids[(corner + 1u) % 3u]);
-    Vec3 c = radiosity_element_position(kg, ids[(corner + 2u) % 3u]);
-    Vec3 cross = vec3_cross(vec3_sub(b, v), vec3_sub(c, v));
-    float twice_area = vec3_length(cross);
+    Vec3 b, c, face_n;
+    float twice_area = radiosity_ring_triangle(kg, e, PM_LOAD(&kg->rad_adjacency[r]), &b, &c, &face_n);
     if (!(twice_area > 0.0f)) continue;
     area += twice_area * (0.5f / 3.0f);
-    Vec3 face_n = vec3_scale(cross, 1.0f / twice_area);
-    if (vec3_dot(face_n, n) < 0.0f) face_n = vec3_neg(face_n); /* the element's side */
     if (vec3_dot(face_n, vec3_sub(light_pos, v)) <= 0.0f) continue; /* lit from the other side */
-    if (at_vertex < 0.0f) at_vertex = radiosity_light_visible(kg, p, light_pos, v, n);
-    float visible = at_vertex;
-    visible += 1.5f * radiosity_light_visible(kg, p, light_pos, vec3_scale(vec3_add(v, b), 0.5f), face_n);
-    visible += 1.5f * radiosity_light_visible(kg, p, light_pos, vec3_scale(vec3_add(v, c), 0.5f), face_n);
-    power += (1.0f / 3.0f) * (0.25f * visible) * radiosity_solid_angle(light_pos, v, b, c) * (1.0f / (4.0f * PM_PI));
+    /* Centroids of the 1:4 sub-triangles at v, b, c and in the middle, weighted 4 : 1 : 1 : 2. */
+    float visible = 4.0f * radiosity_light_visible(kg, p, light_pos, radiosity_affine(v, b, c, 4.0f, 1.0f, 1.0f), face_n);
+    visible += radiosity_light_visible(kg, p, light_pos, radiosity_affine(v, b, c, 1.0f, 4.0f, 1.0f), face_n);
+    visible += radiosity_light_visible(kg, p, light_pos, radiosity_affine(v, b, c, 1.0f, 1.0f, 4.0f), face_n);
+    visible += 2.0f * radiosity_light_visible(kg, p, light_pos, radiosity_affine(v, b, c, 2.0f, 2.0f, 2.0f), face_n);
+    power += (1.0f / 3.0f) * (0.125f * visible) * radiosity_solid_angle(light_pos, v, b, c) * (1.0f / (4.0f * PM_PI));
   }
   return area > 0.0f ? power / area : 0.0f;
 }

@@ -24,6 +24,51 @@ PM_DEVICE void radiosity_put_entry(const KernelGlobals* kg, uint entry, uint tar
   kg->rad_batch_links[2u * entry + 1u] = PM_AS_UINT(weight);
 }
 
+/* Where link ray k of element e starts and the normal of the surface there (its hemisphere).
+   PM_RADIOSITY_ORIGINS_VERTEX: the vertex, the paper's choice. Its point value is the vertex's
+   irradiance, which is wrong for the area the vertex's hat function interpolates over wherever
+   the vertex is not a typical point of it: at a concave edge (a floor vertex at the foot of a
+   wall starts its rays in the wall's plane, and those towards the wall pass through it at t = 0
+   and gather the back of the scene) and where meshes interpenetrate (a floor vertex under a
+   column sees the column's inside, dark).
+   PM_RADIOSITY_ORIGINS_ONE_RING: a point of the one-ring drawn with density proportional to
+   the vertex's hat function phi_v (a triangle in proportion to its area, then the barycentric
+   weight b_v of the vertex distributed as the median of three uniforms, CDF 3b^2 - 2b^3, which
+   is the marginal of a density proportional to b_v; the other two weights uniform on what
+   remains), with the triangle's own normal. With cosine-weighted directions the vertex then
+   gathers E_v = integral phi_v E dA / integral phi_v dA, the projection whose linear
+   interpolation carries the irradiance's power over the surface (as the light links' one-ring
+   integration does for the direct light; radiosity_light.h). No origin lies on an edge of the
+   mesh, and only the part of the one-ring that is inside other geometry gathers its darkness. */
+PM_DEVICE Vec3 radiosity_link_origin(const KernelGlobals* kg, const LaunchParams* p, uint e, uint k, Vec3* normal)
+{
+  Vec3 v = radiosity_element_position(kg, e);
+  *normal = radiosity_element_normal(kg, e);
+  if (p->link_origins != PM_RADIOSITY_ORIGINS_ONE_RING) return v;
+  uint first = PM_LOAD(&kg->rad_element_ranges[e]).x, end = PM_LOAD(&kg->rad_element_ranges[e + 1u]).x;
+  float total = 0.0f;
+  for (uint r = first; r < end; ++r) {
+    Vec3 b, c, face_n;
+    total += radiosity_ring_triangle(kg, e, PM_LOAD(&kg->rad_adjacency[r]), &b, &c, &face_n);
+  }
+  if (!(total > 0.0f)) return v; /* no area around the vertex: the vertex alone */
+  Uniform4 u = rng_uniform4(0u, k, e, 1u, PM_STREAM_RADIOSITY) /* event 0: the rotation */;
+  float pick = u.u0 * total;
+  for (uint r = first; r < end; ++r) {
+    Vec3 b, c, face_n;
+    float twice_area = radiosity_ring_triangle(kg, e, PM_LOAD(&kg->rad_adjacency[r]), &b, &c, &face_n);
+    if (!(twice_area > 0.0f)) continue;
+    if (pick >= twice_area && r + 1u < end) { pick -= twice_area; continue; }
+    /* The median of three uniforms; what remains of u0 within this triangle splits the rest. */
+    float w_v = pm_fmaxf(pm_fminf(u.u1, u.u2), pm_fminf(pm_fmaxf(u.u1, u.u2), u.u3));
+    float split = pm_fminf(pm_fmaxf(pick / twice_area, 0.0f), 1.0f);
+    float w_b = (1.0f - w_v) * split;
+    *normal = face_n;
+    return vec3_add(vec3_add(vec3_scale(v, w_v), vec3_scale(b, w_b)), vec3_scale(c, 1.0f - w_v - w_b));
+  }
+  return v;
+}
+
 /* One work item per (element of the batch, direction): entries [3 index, 3 index + 3). */
 PM_DEVICE void kernel_radiosity_link_trace(const KernelGlobals* kg, const LaunchParams* p, uint index)
 {
@@ -33,7 +78,8 @@ PM_DEVICE void kernel_radiosity_link_trace(const KernelGlobals* kg, const Launch
   uint entry = 3u * index;
   for (uint c = 0; c < 3u; ++c) radiosity_put_entry(kg, entry + c, PM_RADIOSITY_NONE, 0.0f);
 
-  Vec3 pos = radiosity_element_position(kg, e), n = radiosity_element_normal(kg, e);
+  Vec3 n;
+  Vec3 pos = radiosity_link_origin(kg, p, e, k, &n);
   Vec3 d = radiosity_world_direction(n, e, k, nc);
   Ray ray = ray_make(offset_ray_origin(pos, n, ray_offset_distance(pos, 0.0f, p->ray_epsilon)), d);
   SceneHit hit = scene_trace(kg->scene_nodes, kg->triangles, &ray, 0.0f, 1e30f, 0);

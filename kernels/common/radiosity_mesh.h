@@ -24,17 +24,22 @@ PM_DEVICE int radiosity_element_material(const KernelGlobals* kg, uint e)
   return PM_AS_INT(PM_LOAD(&kg->rad_elements[2u * e]).w);
 }
 
-/* Unit normal on the element's side. */
+/* Unit normal on the element's side (its w: radiosity_element_reflectance's glossy albedo). */
 PM_DEVICE Vec3 radiosity_element_normal(const KernelGlobals* kg, uint e)
 {
   return vec3_from_float4(PM_LOAD(&kg->rad_elements[2u * e + 1u]));
 }
 
-/* Diffuse reflectance rho_d of the element's material: the paper's f_d is rho_d / pi. */
+/* Reflectance of the element's material as the method's diffuse f_d = rho / pi (eq. 4): rho_d
+   plus the glossy lobe's rho_s times its albedo for light arriving uniformly from the hemisphere
+   (the cosine-weighted mean of brdf_glossy_albedo over theta_o, computed per material on the host
+   and kept in the normal's w). The method carries no directions, so the glossy lobe's light
+   leaves diffusely; dropping it would lose all the light the scene's glossy surfaces reflect. */
 PM_DEVICE Vec3 radiosity_element_reflectance(const KernelGlobals* kg, uint e)
 {
   Material m = material_load(kg->materials, radiosity_element_material(kg, e));
-  return material_diffuse(&m);
+  float glossy_albedo = PM_LOAD(&kg->rad_elements[2u * e + 1u]).w;
+  return vec3_madd(material_diffuse(&m), material_glossy(&m), glossy_albedo);
 }
 
 /* Barycentric coordinates (u, v) of p in triangle (a, b, c): p = (1 - u - v) a + u b + v c,
@@ -119,6 +124,31 @@ PM_DEVICE RadiosityLocation radiosity_surface_point(const KernelGlobals* kg, int
   elements[1] = corners.y;
   elements[2] = corners.z;
   return loc;
+}
+
+/* Triangle `ring_entry` of element e's one-ring (an rad_adjacency entry: refined triangle << 2 |
+   the element's corner): the other two corners b and c, in the triangle's winding after the
+   element's vertex, and the face normal turned to the element's side. Returns twice the
+   triangle's area; 0 for a degenerate triangle (b, c and the normal then undefined). */
+PM_DEVICE float radiosity_ring_triangle(const KernelGlobals* kg, uint e, uint ring_entry, Vec3* b, Vec3* c, Vec3* face_n)
+{
+  uint tri = ring_entry >> 2, corner = ring_entry & 3u;
+  uint4 front = PM_LOAD(&kg->rad_triangles[2u * tri]);
+  uint4 back = PM_LOAD(&kg->rad_triangles[2u * tri + 1u]);
+  /* The other two corners' positions (either side's element has the vertex's position). */
+  uint ids[3];
+  ids[0] = front.x != PM_RADIOSITY_NONE ? front.x : back.x;
+  ids[1] = front.y != PM_RADIOSITY_NONE ? front.y : back.y;
+  ids[2] = front.z != PM_RADIOSITY_NONE ? front.z : back.z;
+  Vec3 v = radiosity_element_position(kg, e);
+  *b = radiosity_element_position(kg, ids[(corner + 1u) % 3u]);
+  *c = radiosity_element_position(kg, ids[(corner + 2u) % 3u]);
+  Vec3 cross = vec3_cross(vec3_sub(*b, v), vec3_sub(*c, v));
+  float twice_area = vec3_length(cross);
+  if (!(twice_area > 0.0f)) return 0.0f;
+  *face_n = vec3_scale(cross, 1.0f / twice_area);
+  if (vec3_dot(*face_n, radiosity_element_normal(kg, e)) < 0.0f) *face_n = vec3_neg(*face_n);
+  return twice_area;
 }
 
 /* Direction k of nC in the element's frame: cosine-weighted over the hemisphere by mapping an

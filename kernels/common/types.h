@@ -108,7 +108,7 @@ typedef struct LaunchParams {
   uint radiosity_source; /* radiosity: which half of a ping-pong buffer holds the input (0 or 1) */
   uint light_sampling;   /* radiosity: PM_RADIOSITY_LIGHT_* */
   float feature_cos;     /* radiosity: cos alpha_f, the feature angle of the smoothing (eq. 6) */
-  uint radiosity_unused;
+  uint link_origins;     /* radiosity: PM_RADIOSITY_ORIGINS_*, where link rays start */
 
   uint footprint_coverage; /* 1: footprints' area is the part on a surface (footprint_coverage.h) */
   uint control_stride;     /* bias control: one control pixel per stride x stride block (bias_control.h) */
@@ -129,10 +129,14 @@ typedef struct LaunchParams {
 /* Vertex link radiosity (docs/radiosity.md). An element index that does not exist (the back side
    of a one-sided surface, an empty link slot). */
 #define PM_RADIOSITY_NONE 0xffffffffu
-/* Light links (section 3.3): the vertex alone, or the vertex and the midpoints of its one-ring
-   edges (the paper's 1:4 subdivision), weighted as a quadrature of the vertex's hat function. */
+/* Light links (section 3.3): the vertex alone, or the centroids of the paper's 1:4 subdivision
+   of its one-ring triangles, weighted as a quadrature of the vertex's hat function. */
 #define PM_RADIOSITY_LIGHT_VERTEX 0
 #define PM_RADIOSITY_LIGHT_ONE_RING 1
+/* Link rays (section 3.2): all from the vertex, or each from a point of the vertex's one-ring
+   drawn in proportion to the vertex's hat function (radiosity_links.h). */
+#define PM_RADIOSITY_ORIGINS_VERTEX 0
+#define PM_RADIOSITY_ORIGINS_ONE_RING 1
 /* Deepest refinement tree (render/radiosity/mesh_refinement.h guarantees it). */
 #define PM_RADIOSITY_MAX_TREE_DEPTH 128
 

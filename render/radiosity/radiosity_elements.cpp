@@ -6,6 +6,8 @@
 #include <cmath>
 #include <numeric>
 
+#include "kernels/common/compat_host.h"
+#include "kernels/common/brdf.h"
 #include "render/errors.h"
 
 namespace pm {
@@ -132,6 +134,20 @@ RadiosityElements build_radiosity_elements(const Scene& scene, const RefinedMesh
   for (uint32_t& e : corner_element)
     if (e != PM_RADIOSITY_NONE) e = rank[e];
 
+  // Per material, the glossy lobe's albedo for light arriving uniformly from the hemisphere:
+  // brdf_glossy_albedo averaged over theta_o with weight 2 mu (midpoint rule, 64 points).
+  std::vector<float> glossy_albedo(scene.materials.size(), 0.0f);
+  for (size_t m = 0; m < scene.materials.size(); ++m) {
+    const MaterialDesc& desc = scene.materials[m];
+    if (!(desc.glossy.x > 0 || desc.glossy.y > 0 || desc.glossy.z > 0)) continue;
+    double mean = 0;
+    for (int i = 0; i < 64; ++i) {
+      const float mu = (float(i) + 0.5f) / 64.0f;
+      mean += 2.0 * double(mu) * brdf_glossy_albedo(desc.glossy_exponent, mu) / 64.0;
+    }
+    glossy_albedo[m] = float(mean);
+  }
+
   out.data.resize(2 * count);
   out.vertex.resize(count);
   out.back.resize(count);
@@ -142,7 +158,8 @@ RadiosityElements build_radiosity_elements(const Scene& scene, const RefinedMesh
     const Dvec n = len > 0 ? scaled(group.sum, 1.0 / len) : group.seed;
     const Float3& p = mesh.positions[group_vertex[g]];
     out.data[2 * e] = float4{p.x, p.y, p.z, PM_AS_FLOAT(group.material)};
-    out.data[2 * e + 1] = float4{float(n.x), float(n.y), float(n.z), 0.0f};
+    out.data[2 * e + 1] = float4{float(n.x), float(n.y), float(n.z),
+                                 group.material < glossy_albedo.size() ? glossy_albedo[group.material] : 0.0f};
     out.vertex[e] = group_vertex[g];
     out.back[e] = group.back;
   }

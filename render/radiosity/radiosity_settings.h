@@ -15,16 +15,18 @@ namespace pm {
 
 extern const NameTable kRadiositySidesNames;         // one, two
 extern const NameTable kRadiosityLightSamplesNames;  // vertex, one-ring (PM_RADIOSITY_LIGHT_*)
+extern const NameTable kRadiosityLinkOriginsNames;   // vertex, one-ring (PM_RADIOSITY_ORIGINS_*)
 
 class RadiositySettings final : public MethodSettings {
  public:
   uint32_t directions = 256;  // nC: cosine-weighted hemisphere directions per element (section 3.2)
   int bounces = 2;            // nB: gathering iterations, one bounce each (eq. 3, 4), as --bounces
-  float max_edge = 0.0f;      // refinement: longest triangle edge, metres; 0: the scene diagonal / 25
+  float max_edge = 0.0f;      // refinement: longest triangle edge, metres; 0: the scene diagonal / 50
   float feature_angle = 40.0f;  // alpha_f, degrees: normals split and smoothing stops beyond it (eq. 6)
   int smooth_passes = 1;      // one-ring smoothing passes (eq. 5); 0: none
   int sides = 2;              // 2: an element on each side of every surface; 1: the winding's side only
   int light_samples = PM_RADIOSITY_LIGHT_ONE_RING;  // light links at the vertex, or oversampled (1:4)
+  int link_origins = PM_RADIOSITY_ORIGINS_ONE_RING;  // link rays from the vertex, or over its one-ring
   uint32_t link_batch = 0;    // elements per link batch; 0: as many as 256 MiB of scratch holds
 
   const char* method_name() const override { return "radiosity"; }

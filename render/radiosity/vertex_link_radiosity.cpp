@@ -32,6 +32,7 @@ LaunchParams VertexLinkRadiosity::launch_params(const FrameContext& frame) const
   p.element_count = element_count_;
   p.link_directions = settings_.directions;
   p.light_sampling = uint32_t(settings_.light_samples);
+  p.link_origins = uint32_t(settings_.link_origins);
   p.feature_cos = float(std::cos(double(settings_.feature_angle) * M_PI / 180.0));
   return p;
 }
@@ -60,7 +61,7 @@ void VertexLinkRadiosity::prepare(StageTimer* timer) {
   light_samples_ = 0;
   for (size_t e = 0; e < elements.count(); ++e) {
     const uint64_t ring = ranges_[e + 1].x - ranges_[e].x;
-    light_samples_ += settings_.light_samples == PM_RADIOSITY_LIGHT_VERTEX ? 1 : 1 + 2 * ring;
+    light_samples_ += settings_.light_samples == PM_RADIOSITY_LIGHT_VERTEX ? 1 : 4 * ring;
   }
   buffers_.upload(BufferSlot::rad_elements, elements.data);
   buffers_.upload(BufferSlot::rad_tree, mesh.tree);

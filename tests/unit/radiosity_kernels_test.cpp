@@ -5,6 +5,7 @@
 // quadrature.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <random>
@@ -55,6 +56,75 @@ struct HostMesh {
     p.feature_cos = std::cos(feature_angle * float(M_PI) / 180.0f);
   }
 };
+
+// Link origins over the one-ring (PM_RADIOSITY_ORIGINS_ONE_RING): every origin lies in a triangle
+// of the element's one-ring, with that triangle's normal on the element's side, and their mean is
+// the hat-weighted centroid of the one-ring, sum A_t (2 v + b + c) / 12 over sum A_t / 3 (the
+// integral of x phi_v over each triangle): the density is proportional to the hat function.
+TEST(RadiosityLinkOrigins, OneRingPointsDistributedByTheHatFunction) {
+  Scene flat = test::folded_sheet(1.0f, 1.0f, 0.0f);  // a flat 1 x 2 m sheet, normal +y
+  HostMesh h(flat, 0.3, 40.0f, true);
+  h.p.link_origins = PM_RADIOSITY_ORIGINS_ONE_RING;
+  size_t checked = 0;
+  for (uint32_t e = 0; e < h.el.count(); ++e) {
+    const Vec3 v = vec3_from_float4(h.el.data[2 * e]), n = vec3_from_float4(h.el.data[2 * e + 1]);
+    Vec3 weighted = vec3_splat(0.0f);
+    double mass = 0, reach = 0;
+    for (uint32_t r = h.el.ranges[e].x; r < h.el.ranges[e + 1].x; ++r) {
+      Vec3 b, c, face_n;
+      const float twice_area = radiosity_ring_triangle(&h.kg, e, h.el.adjacency[r], &b, &c, &face_n);
+      weighted = vec3_add(weighted, vec3_scale(vec3_add(vec3_add(vec3_scale(v, 2.0f), b), c), twice_area / 24.0f));
+      mass += twice_area / 6.0;
+      reach = std::max({reach, double(vec3_length(vec3_sub(b, v))), double(vec3_length(vec3_sub(c, v)))});
+    }
+    const uint32_t draws = 4096;
+    Vec3 mean = vec3_splat(0.0f);
+    for (uint32_t k = 0; k < draws; ++k) {
+      Vec3 normal;
+      const Vec3 x = radiosity_link_origin(&h.kg, &h.p, e, k, &normal);
+      ASSERT_NEAR(x.y, 0.0f, 1e-6f) << "on the sheet";
+      ASSERT_LE(vec3_length(vec3_sub(x, v)), reach * (1 + 1e-5)) << "within the one-ring";
+      ASSERT_GT(vec3_dot(normal, n), 0.999f) << "the face normal on the element's side";
+      mean = vec3_add(mean, vec3_scale(x, 1.0f / draws));
+    }
+    const Vec3 expected = vec3_scale(weighted, float(1.0 / mass));
+    // 4096 draws over a one-ring of 0.3 m triangles: the mean's noise is about 0.1 / 64 m.
+    EXPECT_NEAR(mean.x, expected.x, 0.006) << "element " << e;
+    EXPECT_NEAR(mean.z, expected.z, 0.006) << "element " << e;
+    ++checked;
+  }
+  EXPECT_GT(checked, 20u);
+}
+
+// The glossy lobe's directional albedo (brdf_glossy_albedo, which radiosity uses for glossy
+// materials) against brdf_eval integrated over the hemisphere on a fine grid in (cos theta, phi).
+TEST(RadiosityGlossyAlbedo, MatchesTheLobeIntegratedOverTheHemisphere) {
+  Material m{};
+  m.glossy = float4{1, 1, 1, 0};
+  for (float exponent : {1.28f, 8.0f, 64.0f}) {
+    m.glossy.w = exponent;
+    double previous = 2;
+    for (float mu : {1.0f, 0.8f, 0.5f, 0.2f}) {
+      const Vec3 n = vec3(0, 0, 1), wo = vec3(std::sqrt(1 - mu * mu), 0, mu);
+      const int steps = 1024;
+      double integral = 0;
+      for (int i = 0; i < steps; ++i)
+        for (int j = 0; j < steps; ++j) {
+          const double cos_t = (i + 0.5) / steps, phi = 2 * M_PI * (j + 0.5) / steps;
+          const double sin_t = std::sqrt(1 - cos_t * cos_t);
+          const Vec3 wi = vec3(float(sin_t * std::cos(phi)), float(sin_t * std::sin(phi)), float(cos_t));
+          integral += brdf_eval(&m, n, wi, wo).x * cos_t * (2 * M_PI / (double(steps) * steps));
+        }
+      const double albedo = brdf_glossy_albedo(exponent, mu);
+      EXPECT_NEAR(albedo, integral, 0.01 * integral + 1e-3) << "n " << exponent << " mu " << mu;
+      EXPECT_LE(albedo, previous + 1e-6) << "falls towards grazing";
+      if (mu == 1.0f) {
+        EXPECT_NEAR(albedo, 1.0, 0.01);
+      }
+      previous = albedo;
+    }
+  }
+}
 
 TEST(RadiosityDirections, CosineWeightedOverTheHemisphere) {
   for (uint32_t n : {16u, 256u, 1000u}) {
