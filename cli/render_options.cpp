@@ -27,7 +27,7 @@ void add_render_options(CLI::App* cmd, RenderOptions& o) {
       ->capture_default_str()->transform(any_unsigned32());
   cmd->add_option("--control-paths", o.control_paths,
                   "Paths per control pixel of the frame's error estimate (a sparse path-traced control beside "
-                  "biased methods; docs/accuracy.md), grown up to 8x where it cannot resolve the error; 0: the "
+                  "biased methods; docs/accuracy.md), grown up to 16x (within the frame's own time) where it cannot resolve the error; 0: the "
                   "estimate sees the noise between passes only")
       ->capture_default_str()->transform(integer_in(0, 65536));
   std::string method_help = "Indirect-light method:";

@@ -56,12 +56,6 @@ PM_DEVICE int footprint_reaches_at(const KernelGlobals* kg, uint k, float4 c, Ve
   return photon_faces_like(row_n, n);
 }
 
-PM_DEVICE int footprint_reaches(const KernelGlobals* kg, uint k, float4 c, Vec3 x, Vec3 n, float* r2)
-{
-  float at_u, at_v;
-  return footprint_reaches_at(kg, k, c, x, n, r2, &at_u, &at_v);
-}
-
 /* Least kept kernel mass about a shading point (a point at the tip of a narrow wedge between two
    walls): the gather's weight stays at most 16 times the open floor's. */
 #define PM_GATHER_MIN_KEPT 0.0625f

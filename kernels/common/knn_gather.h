@@ -76,11 +76,13 @@ PM_DEVICE void knn_offer(KnnHeap* h, float d2, uint index)
 }
 
 /* The metric of the search region (an ellipsoid with in-plane radius 1 and normal half-axis
-   `thickness` about x, normal n): rho^2 = |d|^2 + (1 / thickness^2 - 1) (d . n)^2. rho >= |d|, so
-   the traversal's Euclidean box distances still prune safely. */
+   `thickness` about x, normal n): rho^2 = |d|^2 + (1 / thickness^2 - 1) (d . n)^2, which is at
+   least |d|^2 min(1, 1 / thickness^2): the traversal prunes with Euclidean box distances scaled
+   by that factor (1 for the default thickness 0.5; --footprint-thickness allows up to 4). */
 typedef struct KnnRegion {
   Vec3 x, n;
   float normal_stretch; /* 1 / thickness^2 - 1 */
+  float box_scale;      /* min(1, 1 / thickness^2) */
 } KnnRegion;
 
 PM_DEVICE float knn_region_distance2(const KnnRegion* q, Vec3 photon)
@@ -122,7 +124,7 @@ PM_DEVICE void knn_search(const KernelGlobals* kg, const LaunchParams* p, const 
     for (uint side = 0; side < 2u; ++side) {
       float4 lo = PM_LOAD(&kg->map_nodes[4 * node + 2 * side]);
       float4 hi = PM_LOAD(&kg->map_nodes[4 * node + 2 * side + 1]);
-      float d2 = knn_box_distance2(lo, hi, p->rmax, x);
+      float d2 = knn_box_distance2(lo, hi, p->rmax, x) * q->box_scale;
       if (d2 >= knn_radius2(h, rmax2)) continue;
       uint ref = PM_AS_UINT(lo.w);
       if (ref & PM_PHOTON_MAP_LEAF) knn_consider_range(kg, h, q, ref & ~PM_PHOTON_MAP_LEAF, PM_AS_UINT(hi.w), rmax2);
@@ -196,6 +198,7 @@ PM_DEVICE void knn_gather_at(const KernelGlobals* kg, const LaunchParams* p, con
   q.x = x;
   q.n = n;
   q.normal_stretch = 1.0f / (thickness * thickness) - 1.0f;
+  q.box_scale = pm_fminf(1.0f, 1.0f / (thickness * thickness));
   KnnHeap h;
   knn_search(kg, p, &q, &h);
   float r = pm_sqrtf(knn_radius2(&h, p->rmax * p->rmax));

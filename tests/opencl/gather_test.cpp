@@ -50,6 +50,13 @@ TEST_F(OpenclGather, NearestNeighboursEqualBruteForce) {
   test::check_gather_equals_brute_force(*device_, builtin_cornell_box(),
                                         without_coverage(photons(PM_ESTIMATOR_KNN, PM_KERNEL_EPANECHNIKOV, 4)), 24, 24);
 }
+TEST_F(OpenclGather, NearestNeighboursInAThickRegionEqualBruteForce) {
+  // A normal half-axis over the radius above 1: the region's metric is then shorter than the
+  // Euclidean distance along the normal, and the traversal must prune with scaled box distances.
+  PhotonSettings p = without_coverage(photons(PM_ESTIMATOR_KNN, PM_KERNEL_CONSTANT, 4));
+  p.footprint_thickness = 3.0f;
+  test::check_gather_equals_brute_force(*device_, builtin_cornell_box(), p, 24, 24);
+}
 TEST_F(OpenclGather, NearestNeighboursWithTheConstantKernelEqualBruteForce) {
   test::check_gather_equals_brute_force(*device_, builtin_cornell_box(),
                                         without_coverage(photons(PM_ESTIMATOR_KNN, PM_KERNEL_CONSTANT, 4)), 24, 24);
