@@ -73,8 +73,13 @@ std::vector<std::pair<std::string, std::string>> FrameJob::attributes(int frame,
   return a;
 }
 
-FrameOutcome FrameJob::run(int frame, const std::string& path, const std::string& preview, ProgressLine& progress) {
-  FrameOutcome outcome;
+RenderedFrame FrameJob::render(int frame, const std::string& path, const std::string& preview,
+                              ProgressLine& progress) {
+  RenderedFrame rendered;
+  rendered.frame = frame;
+  rendered.path = path;
+  rendered.preview = preview;
+  FrameOutcome& outcome = rendered.outcome;
   const std::string state_path = checkpoint_state_path(path);
   std::optional<FrameCheckpoint> checkpoint;
   if (options_.resume && std::filesystem::exists(state_path)) {
@@ -108,6 +113,7 @@ FrameOutcome FrameJob::run(int frame, const std::string& path, const std::string
     std::snprintf(text, sizeof(text), "frame %d  pass %u%s  %.3g %ss  error %s  ETA %s", frame, r.passes,
                   options_.budget.open_ended() ? "" : ("/" + std::to_string(cap)).c_str(), per_pass * r.passes,
                   unit.c_str(), percent_text(r.error).c_str(), seconds_text(eta).c_str());
+    std::lock_guard<std::mutex> lock(*pass_progress_);
     progress.show(text);
   };
   callbacks.checkpoint = [&](const PassReport& r) {
@@ -129,18 +135,22 @@ FrameOutcome FrameJob::run(int frame, const std::string& path, const std::string
   outcome.result = pool_.render_progressive(frame, options_.budget, checkpoint ? &checkpoint->sums : nullptr,
                                             checkpoint ? checkpoint->seconds : 0.0, callbacks);
   FrameStats stats;
-  FrameImage image = renderer_.read_image(&stats);
+  FrameImage& image = rendered.image;
+  image = renderer_.read_image(&stats);
   outcome.render_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   outcome.repaired_pixels = stats.repaired_pixels;
   if (image_check_) image_check_(frame, image, stats.repaired_pixels);
   outcome.photons_reused = method && method->stats().get("photons_reused") != 0;
   image.attributes = attributes(frame, outcome.result, outcome.result.stopped_by);
   image.attributes.push_back({"pmrender/render_ms", number_text(outcome.render_ms)});
-  write_exr(path, image, options_.full_float);
+  return rendered;
+}
+
+void FrameJob::write(const RenderedFrame& rendered) const {
+  write_exr(rendered.path, rendered.image, options_.full_float);
   std::error_code ignored;
-  std::filesystem::remove(state_path, ignored);  // the frame is finished: its checkpoint is spent
-  if (!preview.empty()) write_preview_png(preview, image, options_.preview_exposure_ev);
-  return outcome;
+  std::filesystem::remove(checkpoint_state_path(rendered.path), ignored);  // the frame is finished: its checkpoint is spent
+  if (!rendered.preview.empty()) write_preview_png(rendered.preview, rendered.image, options_.preview_exposure_ev);
 }
 
 }  // namespace pm::cli

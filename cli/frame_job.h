@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <mutex>
 #include <optional>
 #include <string>
 
@@ -30,15 +31,34 @@ struct FrameOutcome {
   bool resumed = false;  // continued from a checkpoint
 };
 
+// A frame rendered and read back, waiting for its file: FrameJob::write may run on another thread
+// while the devices render the next frame.
+struct RenderedFrame {
+  int frame = 0;
+  std::string path, preview;  // preview: empty for none
+  FrameImage image;           // with the header attributes
+  FrameOutcome outcome;
+};
+
 class FrameJob {
  public:
   // The pool's devices share each frame's passes (one device: the plain pass loop, checkpoints).
   FrameJob(RendererPool& pool, const Scene& scene, const FrameJobOptions& options);
 
   // Renders frame into path (and preview, when not empty) and returns what happened.
-  FrameOutcome run(int frame, const std::string& path, const std::string& preview, ProgressLine& progress);
-  // Whether run() draws the pass progress inside a frame (only where one frame renders at a time).
-  void set_pass_progress(bool on) { pass_progress_ = on; }
+  FrameOutcome run(int frame, const std::string& path, const std::string& preview, ProgressLine& progress) {
+    RenderedFrame rendered = render(frame, path, preview, progress);
+    write(rendered);
+    return rendered.outcome;
+  }
+  // run() in two steps: the passes (checkpoints included) and the image read back; then its file,
+  // its preview and the end of its checkpoint. write() touches no device and no member that
+  // render() changes, so it may overlap the next render().
+  RenderedFrame render(int frame, const std::string& path, const std::string& preview, ProgressLine& progress);
+  void write(const RenderedFrame& rendered) const;
+  // Draw the pass progress inside a frame (only where one frame renders at a time), holding output
+  // (the lock of everything printed, which a frame being written meanwhile takes too).
+  void set_pass_progress(std::mutex* output) { pass_progress_ = output; }
   // Called with each finished frame's image before it is written (warnings about what the file
   // cannot hold).
   using ImageCheck = std::function<void(int frame, const FrameImage& image, int repaired_pixels)>;
@@ -59,7 +79,7 @@ class FrameJob {
   std::string backend_, device_names_;
   FrameJobOptions options_;
   std::string fingerprint_;
-  bool pass_progress_ = false;
+  std::mutex* pass_progress_ = nullptr;  // not null: draw, holding it
   ImageCheck image_check_;
 };
 

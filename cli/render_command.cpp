@@ -11,7 +11,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <future>
 #include <memory>
+#include <optional>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -27,9 +30,11 @@
 #include "cli/signals.h"
 #include "cli/render_options.h"
 #include "render/device.h"
+#include "render/device_threads.h"
 #include "render/errors.h"
 #include "render/exr_io.h"
 #include "render/frame_claim.h"
+#include "render/frame_runs.h"
 #include "render/interruption.h"
 #include "render/output_pattern.h"
 #include "render/preview_exposure.h"
@@ -177,8 +182,9 @@ int run_render(const RenderCommandOptions& o) {
   job_options.quiet = o.quiet;
   if (o.exposure_option->count() > 0) job_options.preview_exposure_ev = o.exposure_ev;
 
-  // Devices: with several, a single frame shares its passes between them; a sequence gives each
-  // device its own contiguous run of frames (camera-only runs keep their reuse on one device).
+  // Devices: with several, a single frame shares its passes between them; in a sequence each device
+  // starts on a contiguous run of frames (camera-only runs keep their reuse on one device) and
+  // takes over half of the longest run left when its own is done.
   const std::vector<int> device_list = parse_device_list(o.devices);
   const bool share_frames = todo.size() > 1;
   std::vector<std::unique_ptr<Device>> devices;
@@ -191,9 +197,12 @@ int run_render(const RenderCommandOptions& o) {
       throw InputError("--checkpoint-every: a single frame on several --devices cannot be checkpointed");
     std::vector<Device*> all;
     for (auto& d : devices) all.push_back(d.get());
-    if (share_frames)
-      for (Device* d : all) pools.push_back(std::make_unique<RendererPool>(std::vector<Device*>{d}, scene, settings));
-    else
+    if (share_frames) {
+      pools.resize(all.size());  // each device's scene upload on its own thread
+      for_each_device(all.size(), [&](size_t d) {
+        pools[d] = std::make_unique<RendererPool>(std::vector<Device*>{all[d]}, scene, settings);
+      });
+    } else
       pools.push_back(std::make_unique<RendererPool>(all, scene, settings));
     for (auto& d : devices)  // before PoCL commits the buffers: a refusal instead of an abort
       check_device_memory(d->allocated_bytes(), d->info(), width, height);
@@ -222,8 +231,10 @@ int run_render(const RenderCommandOptions& o) {
   install_interrupt_handlers();
   ClaimRefresher claim_refresher;
   // The "wrote" line of a frame this process rendered; called with output locked.
+  std::vector<size_t> frames_per_job(jobs.size(), 0);
   auto report_written = [&](const FrameJob& job, int f, const std::string& path, const FrameOutcome& outcome) {
     if (++rendered == 1) first_frame_memory = {host_rss_bytes(), devices.front()->allocated_bytes()};
+    for (size_t j = 0; j < jobs.size(); ++j) frames_per_job[j] += jobs[j].get() == &job ? 1 : 0;
     reused += outcome.photons_reused ? 1 : 0;
     if (!o.quiet) {
       std::printf("wrote %s (frame %d, %dx%d, %s, %.2f ms", path.c_str(), f, job.width(), job.height(),
@@ -237,9 +248,29 @@ int run_render(const RenderCommandOptions& o) {
       std::fflush(stdout);
     }
   };
-  // Claims frame f and renders it. waited: f was held by another process before (and said so), so
-  // a complete file now is that process's work, with or without --resume.
-  auto render_frame = [&](FrameJob& job, int f, bool waited) {
+  // A frame this process claimed and rendered, waiting for its file.
+  struct PendingFrame {
+    FrameJob* job = nullptr;
+    RenderedFrame rendered;
+    FrameClaim claim;
+  };
+  auto count_done = [&](int f) {
+    std::lock_guard<std::mutex> lock(output);
+    progress.show_count("frame " + std::to_string(f), ++done, todo.size(),
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), "frame");
+  };
+  // Whether a failure of frame f is reported here (the others go on) or thrown to main().
+  auto report_failure = [&](int f, const std::exception& e) {
+    if (todo.size() == 1 && frames.size() == 1) throw;  // a single frame: main() reports it as before
+    std::lock_guard<std::mutex> lock(output);
+    progress.clear();
+    std::fprintf(stderr, "pmrender: frame %d: %s\n", f, e.what());
+    failed.push_back(f);
+  };
+  // Claims frame f and renders it; returns the frame to write, or nothing where it was not rendered
+  // here. waited: f was held by another process before (and said so), so a complete file now is
+  // that process's work, with or without --resume.
+  auto render_frame = [&](FrameJob& job, int f, bool waited) -> std::shared_ptr<PendingFrame> {
     const std::string path = expand_output_pattern(pattern, f);
     try {
       ClaimAttempt attempt = claim_frame(path, o.claims);
@@ -250,7 +281,7 @@ int run_render(const RenderCommandOptions& o) {
         if (!waited && !o.quiet)
           std::printf("skipped %s (being rendered by %s)\n", path.c_str(), claim_holder_text(*attempt.other).c_str());
         std::fflush(stdout);
-        return;  // counted once it is done, here or there
+        return nullptr;  // counted once it is done, here or there
       }
       if (attempt.other && !o.quiet)
         std::printf("took over the stale claim %s: %s\n", attempt.other->path.c_str(), attempt.other->why_stale.c_str());
@@ -262,42 +293,78 @@ int run_render(const RenderCommandOptions& o) {
         ++finished_elsewhere;
         if (o.verbose) std::printf("skipped %s (complete)\n", path.c_str());
       } else {
-        const FrameOutcome outcome =
-            job.run(f, path, o.preview.empty() ? "" : expand_output_pattern(o.preview, f), progress);
-        attempt.claim.release();  // the file is in place
-        lock.lock();
-        progress.clear();
-        report_written(job, f, path, outcome);
+        auto pending = std::make_shared<PendingFrame>();
+        pending->job = &job;
+        pending->rendered = job.render(f, path, o.preview.empty() ? "" : expand_output_pattern(o.preview, f), progress);
+        pending->claim = std::move(attempt.claim);
+        return pending;
       }
     } catch (const Interrupted&) {
-      return;  // the frame in progress is abandoned (its checkpoint, if any, stays)
+      return nullptr;  // the frame in progress is abandoned (its checkpoint, if any, stays)
     } catch (const std::bad_alloc&) {
       throw;  // not this frame's fault: main() reports it and the run ends
     } catch (const std::exception& e) {
-      if (todo.size() == 1 && frames.size() == 1) throw;  // a single frame: main() reports it as before
+      report_failure(f, e);
+    }
+    count_done(f);
+    return nullptr;
+  };
+  // Writes a rendered frame's file, then releases its claim (the file is in place).
+  auto write_frame = [&](PendingFrame& pending) {
+    const int f = pending.rendered.frame;
+    try {
+      pending.job->write(pending.rendered);
+      pending.claim.release();
       std::lock_guard<std::mutex> lock(output);
       progress.clear();
-      std::fprintf(stderr, "pmrender: frame %d: %s\n", f, e.what());
-      failed.push_back(f);
+      report_written(*pending.job, f, pending.rendered.path, pending.rendered.outcome);
+    } catch (const Interrupted&) {
+      return;  // no partial file is left (atomic_file.h); the claim goes with `pending`
+    } catch (const std::bad_alloc&) {
+      throw;
+    } catch (const std::exception& e) {
+      report_failure(f, e);
     }
-    std::lock_guard<std::mutex> lock(output);
-    progress.show_count("frame " + std::to_string(f), ++done, todo.size(),
-                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), "frame");
+    count_done(f);
+  };
+  // The frames next_frame() hands out, on one job: each frame's file is written on a thread of its
+  // own while the job's devices render the next frame (at most one frame waits per job). A single
+  // frame is written at once.
+  auto render_frames = [&](FrameJob& job, const std::function<std::optional<int>()>& next_frame) {
+    std::future<void> writing;
+    while (interruption_signal() == 0) {
+      const std::optional<int> f = next_frame();
+      if (!f) break;
+      std::shared_ptr<PendingFrame> pending = render_frame(job, *f, false);
+      if (writing.valid()) writing.get();
+      if (!pending) continue;
+      if (todo.size() == 1) write_frame(*pending);
+      else writing = std::async(std::launch::async, [&write_frame, pending] { write_frame(*pending); });
+    }
+    if (writing.valid()) writing.get();
   };
   if (jobs.size() <= 1) {
-    if (!jobs.empty()) jobs.front()->set_pass_progress(true);  // one frame at a time: its passes may show
-    for (size_t i = 0; i < todo.size() && interruption_signal() == 0; ++i) render_frame(*jobs.front(), todo[i], false);
+    if (!jobs.empty()) {
+      jobs.front()->set_pass_progress(&output);  // one frame at a time: its passes may show
+      size_t i = 0;
+      render_frames(*jobs.front(), [&]() -> std::optional<int> {
+        if (i < todo.size()) return todo[i++];
+        return std::nullopt;
+      });
+    }
   } else {
-    // Contiguous runs of frames, one per device, each on its own thread.
+    // One thread per device, each on its own contiguous run of frames, taking over half of the
+    // longest run left when its own is done (render/frame_runs.h).
+    FrameRuns runs(todo.size(), jobs.size());
     std::vector<std::thread> threads;
     std::exception_ptr failure;
-    const size_t per_device = (todo.size() + jobs.size() - 1) / jobs.size();
     for (size_t d = 0; d < jobs.size(); ++d)
       threads.emplace_back([&, d] {
         try {
-          for (size_t i = d * per_device; i < std::min(todo.size(), (d + 1) * per_device) && interruption_signal() == 0;
-               ++i)
-            render_frame(*jobs[d], todo[i], false);
+          render_frames(*jobs[d], [&]() -> std::optional<int> {
+            if (std::optional<size_t> i = runs.next(d)) return todo[*i];
+            return std::nullopt;
+          });
         } catch (...) {
           std::lock_guard<std::mutex> lock(output);
           if (!failure) failure = std::current_exception();
@@ -320,7 +387,8 @@ int run_render(const RenderCommandOptions& o) {
     std::vector<int> waiting;
     waiting.swap(held_elsewhere);
     std::sort(waiting.begin(), waiting.end());
-    for (size_t i = 0; i < waiting.size() && interruption_signal() == 0; ++i) render_frame(*jobs.front(), waiting[i], true);
+    for (size_t i = 0; i < waiting.size() && interruption_signal() == 0; ++i)
+      if (std::shared_ptr<PendingFrame> pending = render_frame(*jobs.front(), waiting[i], true)) write_frame(*pending);
   }
   progress.clear();
   if (interruption_signal() != 0) return report_interruption(rendered, todo.size());
@@ -334,6 +402,10 @@ int run_render(const RenderCommandOptions& o) {
       std::printf(", %zu already complete", skipped.size() + finished_elsewhere);
     if (!held_elsewhere.empty()) std::printf(", %zu being rendered by other processes", held_elsewhere.size());
     if (!failed.empty()) std::printf(", %zu failed", failed.size());
+    if (jobs.size() > 1) {
+      std::printf(", frames per device:");
+      for (size_t j = 0; j < jobs.size(); ++j) std::printf("%s %zu", j ? "," : "", frames_per_job[j]);
+    }
     std::printf("\n");
   }
   if (o.verbose && !devices.empty()) print_memory_summary(first_frame_memory, *devices.front());

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "kernels/opencl/opencl_device.h"
+#include "render/device_threads.h"
 #include "render/errors.h"
 #if PMRENDER_HAVE_CUDA
 #include "kernels/cuda/cuda_device.h"
@@ -87,8 +88,10 @@ std::vector<std::unique_ptr<Device>> create_devices(const std::string& backend, 
     for (const DeviceInfo& info : list_devices())
       if (info.backend == resolved) chosen.push_back(info.index);
   if (chosen.empty()) throw DeviceError(resolved + ": no device found");
-  std::vector<std::unique_ptr<Device>> devices;
-  for (int index : chosen) devices.push_back(create_device(resolved, index));
+  // Each device opens on a thread of its own: an OpenCL device compiles its program on opening
+  // (seconds on some drivers), and the devices need not wait for each other.
+  std::vector<std::unique_ptr<Device>> devices(chosen.size());
+  for_each_device(chosen.size(), [&](size_t i) { devices[i] = create_device(resolved, chosen[i]); });
   return devices;
 }
 

@@ -8,6 +8,7 @@
 #include <mutex>
 #include <thread>
 
+#include "render/device_threads.h"
 #include "render/errors.h"
 #include "render/interruption.h"
 
@@ -15,7 +16,10 @@ namespace pm {
 
 RendererPool::RendererPool(const std::vector<Device*>& devices, const Scene& scene, const RenderSettings& settings) {
   if (devices.empty()) throw InputError("no device to render with");
-  for (Device* d : devices) renderers_.push_back(std::make_unique<Renderer>(*d, scene, settings));
+  renderers_.resize(devices.size());
+  // Each device uploads the scene and allocates on a thread of its own (its BVH build and the
+  // uploads overlap those of the others).
+  for_each_device(devices.size(), [&](size_t d) { renderers_[d] = std::make_unique<Renderer>(*devices[d], scene, settings); });
 }
 
 ProgressiveResult RendererPool::render_progressive(int frame, const PassBudget& budget, const FilmSums* resume,
@@ -31,8 +35,9 @@ ProgressiveResult RendererPool::render_progressive(int frame, const PassBudget& 
   if (!method) cap = 0;
   else if (method->max_passes() > 0 && method->max_passes() < cap) cap = method->max_passes();
 
-  // The frame begins on every device (camera pass, film cleared) before any pass is handed out.
-  for (auto& r : renderers_) r->begin_frame(frame);
+  // The frame begins on every device (camera pass, film cleared), in parallel, and the first device's
+  // film takes the resumed sums before any pass is handed out.
+  for_each_device(renderers_.size(), [&](size_t d) { renderers_[d]->begin_frame(frame); });
   if (resume) first().set_film_sums(*resume);
   std::atomic<uint32_t> next_pass{resume ? resume->passes : 0u};
   std::atomic<uint32_t> passes_done{resume ? resume->passes : 0u};

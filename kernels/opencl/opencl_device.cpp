@@ -11,6 +11,7 @@
 #include <array>
 #include <cstdio>
 #include <cstring>
+#include <mutex>
 #include <string>
 
 #include "render/errors.h"
@@ -53,6 +54,10 @@ struct DeviceEntry {
 };
 
 std::vector<DeviceEntry> enumerate() {
+  // One enumeration at a time: devices open on threads of their own (render/device_threads.h), and
+  // PoCL counted only one of its devices when two threads made the process's first call at once.
+  static std::mutex enumerating;
+  std::lock_guard<std::mutex> lock(enumerating);
   std::vector<DeviceEntry> entries;
   cl_uint platform_count = 0;
   // No ICD or no platform is "no OpenCL devices", not an error.

@@ -135,11 +135,15 @@ TEST_F(FrameClaimsCli, WaitingRendersEndOnlyWhenEveryFrameIsComplete) {
 TEST_F(FrameClaimsCli, KilledRunLeavesAStaleClaimThatTheNextRunTakesOver) {
   const pid_t killed = test::start_pmrender(render_args("0-23"), dir_ / "a");
   ASSERT_GT(killed, 0);
-  // Kill it as soon as it has claimed frame 2 (frames 0 and 1 are done then), while it renders.
+  // Kill it while it renders frame 2 with frames 0 and 1 done: frame 2 claimed, frame 1's file in
+  // place and its claim released (a frame's file is written while the next one renders, so for a
+  // moment both are claimed).
   const int claimed = 2;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (!fs::exists(claim_path_for(frame_path(claimed))) && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  while (!(fs::exists(claim_path_for(frame_path(claimed))) && fs::exists(frame_path(claimed - 1)) &&
+           !fs::exists(claim_path_for(frame_path(claimed - 1)))) &&
+         std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   ASSERT_EQ(kill(killed, SIGKILL), 0);
   int status = 0;
   waitpid(killed, &status, 0);

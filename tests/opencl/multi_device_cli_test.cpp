@@ -1,0 +1,95 @@
+// `pmrender render --devices` end to end: a sequence's frames shared between two devices are the
+// frames one device renders, bit for bit, and both devices take part; a frame's passes shared
+// between two devices add up to the one-device frame up to float rounding. PoCL stands in for two
+// GPUs: POCL_DEVICES lists its CPU device twice (the GPU machine runs bench/multi_gpu_suite.sh).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <regex>
+#include <sstream>
+
+#include "render/exr_io.h"
+#include "support/paths.h"
+#include "support/pmrender_process.h"
+#include "support/same_image.h"
+
+namespace pm {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char kSmall[] = " --backend opencl --resolution 40x30 --photons 20000 --float";
+
+class MultiDeviceCli : public test::PmrenderProcessTest {
+ protected:
+  void SetUp() override {
+    PmrenderProcessTest::SetUp();
+    // PoCL 3 names its CPU driver "pthread", PoCL 5 "cpu"; the first that gives two devices serves.
+    for (const char* twice : {"pthread pthread", "cpu cpu"}) {
+      setenv("POCL_DEVICES", twice, 1);
+      const test::ProcessResult r = pmrender("devices");
+      std::istringstream lines(r.out);
+      pocl_.clear();
+      for (std::string line; std::getline(lines, line);) {
+        std::smatch m;
+        if (std::regex_search(line, m, std::regex("^opencl +--device ([0-9]+) .*Portable Computing Language")))
+          pocl_.push_back(m[1]);
+      }
+      if (pocl_.size() == 2) return;
+    }
+    unsetenv("POCL_DEVICES");
+  }
+  void TearDown() override {
+    unsetenv("POCL_DEVICES");
+    PmrenderProcessTest::TearDown();
+  }
+  std::string out(const std::string& name) { return (dir_ / name).string(); }
+  std::string scene() const { return test::test_data_dir() + "/animation/moving_room.json"; }
+
+  std::vector<std::string> pocl_;  // the indices of PoCL's two devices
+};
+
+TEST_F(MultiDeviceCli, SequenceFramesOnTwoDevicesAreTheFramesOfOne) {
+  ASSERT_EQ(pocl_.size(), 2u) << "PoCL did not list two devices with POCL_DEVICES";
+  const std::string render = "render " + scene() + kSmall + " --frames 0-7";
+  const test::ProcessResult one = pmrender(render + " --device " + pocl_[0] + " -o " + out("one_####.exr"));
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  const test::ProcessResult two = pmrender(render + " --devices " + pocl_[0] + "," + pocl_[1] + " -o " + out("two_####.exr"));
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  EXPECT_EQ(test::written_frames(two.out).size(), 8u) << two.out;
+  std::smatch m;
+  const std::string& text = two.out;
+  ASSERT_TRUE(std::regex_search(text, m, std::regex("frames per device: ([0-9]+), ([0-9]+)"))) << two.out;
+  EXPECT_EQ(std::stoi(m[1]) + std::stoi(m[2]), 8);
+  EXPECT_GT(std::stoi(m[1]), 0) << two.out;
+  EXPECT_GT(std::stoi(m[2]), 0) << two.out;
+  for (int f = 0; f < 8; ++f) {
+    char a[32], b[32];
+    std::snprintf(a, sizeof(a), "one_%04d.exr", f);
+    std::snprintf(b, sizeof(b), "two_%04d.exr", f);
+    test::expect_same_image(read_exr(out(a)), read_exr(out(b)), "frame " + std::to_string(f));
+  }
+}
+
+TEST_F(MultiDeviceCli, AFrameWhosePassesTwoDevicesShareIsTheFrameOfOne) {
+  ASSERT_EQ(pocl_.size(), 2u) << "PoCL did not list two devices with POCL_DEVICES";
+  const std::string render = "render " + scene() + kSmall + " --frame 3 --passes 8 --progressive shrink";
+  ASSERT_EQ(pmrender(render + " --device " + pocl_[0] + " -o " + out("one.exr")).exit_code, 0);
+  const test::ProcessResult two = pmrender(render + " --devices " + pocl_[0] + "," + pocl_[1] + " -o " + out("two.exr"));
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  const FrameImage a = read_exr(out("one.exr")), b = read_exr(out("two.exr"));
+  EXPECT_EQ(a.find("direct")->rgb, b.find("direct")->rgb);
+  const std::vector<float>& x = a.find("indirect")->rgb;
+  const std::vector<float>& y = b.find("indirect")->rgb;
+  double worst = 0, total = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    worst = std::max(worst, std::fabs(double(x[i]) - y[i]) / std::max(1e-6, std::fabs(double(x[i]))));
+    total += x[i];
+  }
+  EXPECT_GT(total, 0.0);
+  EXPECT_LT(worst, 1e-5) << "largest relative difference of a pixel: the same 8 passes, summed in another order";
+}
+
+}  // namespace
+}  // namespace pm
