@@ -86,26 +86,27 @@ suite_vector_of() { grep -o "\"$1\": *\[[^]]*\]" "$2" | head -n 1 | sed 's/.*\[/
 suite_add() {  # suite_add "x, y, z" "dx, dy, dz"
   awk -v a="$1" -v b="$2" 'BEGIN { split(a, p, ","); split(b, q, ","); printf "%g, %g, %g", p[1] + q[1], p[2] + q[2], p[3] + q[3] }'
 }
-# suite_animated_scene SCENE KIND DIR: writes DIR/SCENE-KIND.json and prints its path: the bench
-# scene with its light (KIND light) or its camera (KIND camera) moving linearly over frames 0..24
-# and held after.
+# suite_animated_scene SCENE KIND DIR [FRAMES]: writes DIR/SCENE-KIND.json and prints its path: the
+# bench scene with its light (KIND light) or its camera (KIND camera) moving linearly over frames
+# 0..FRAMES (default 24) by the scene's motion, and held after.
 suite_animated_scene() {
-  local s=$1 kind=$2 src=$suite_dir/scenes/$1.json dst=$3/$1-$2.json track
+  local s=$1 kind=$2 src=$suite_dir/scenes/$1.json dst=$3/$1-$2.json track frames=${4:-24}
+  local end_time; end_time=$(awk -v f="$frames" 'BEGIN { printf "%g", f / 24 }')
   local light camera
   light=$(grep -o '"lights": *\[{ *"name": *"[^"]*"' "$src" | sed 's/.*"name": *"//; s/"$//')
   if [ "$kind" = light ]; then
     local from; from=$(suite_vector_of position "$src")  # the light's is the first "position"
     track="\"lights\": { \"$light\": { \"position\": { \"interpolation\": \"linear\", \"keys\": [
-      { \"time\": 0, \"value\": [$from] }, { \"time\": 1, \"value\": [$(suite_add "$from" "$(suite_light_motion "$s")")] } ] } } }"
+      { \"time\": 0, \"value\": [$from] }, { \"time\": $end_time, \"value\": [$(suite_add "$from" "$(suite_light_motion "$s")")] } ] } } }"
   else
     camera=$(sed -n '/"camera"/,/}/p' "$src")
     local from; from=$(echo "$camera" | grep -o '"position": *\[[^]]*\]' | sed 's/.*\[//; s/\]//')
     track="\"camera\": { \"position\": { \"interpolation\": \"linear\", \"keys\": [
-      { \"time\": 0, \"value\": [$from] }, { \"time\": 1, \"value\": [$(suite_add "$from" "$(suite_camera_motion "$s")")] } ] } }"
+      { \"time\": 0, \"value\": [$from] }, { \"time\": $end_time, \"value\": [$(suite_add "$from" "$(suite_camera_motion "$s")")] } ] } }"
   fi
   # Mesh paths relative to bench/scenes become absolute; the animation goes before the last brace.
   sed "s#\"file\": *\"\([^/\"][^\"]*\)\"#\"file\": \"$suite_dir/scenes/\1\"#" "$src" | sed '$ d' |
     sed '$ s/$/,/' >"$dst"
-  printf '  "animation": { "frame_rate": 24, "frames": [0, 24],\n    %s }\n}\n' "$track" >>"$dst"
+  printf '  "animation": { "frame_rate": 24, "frames": [0, %d],\n    %s }\n}\n' "$frames" "$track" >>"$dst"
   echo "$dst"
 }
