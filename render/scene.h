@@ -78,6 +78,10 @@ struct Scene {
   std::vector<Float3> positions;          // vertex positions, metres
   std::vector<uint32_t> indices;          // three vertex indices per triangle
   std::vector<uint32_t> triangle_material;  // one material index per triangle
+  // The object each triangle belongs to (a JSON mesh entry, a glTF node, a Cornell box wall or
+  // block), for the object_id layer. Empty: the whole scene is object 0.
+  std::vector<uint32_t> triangle_object;
+  std::vector<std::string> object_names;  // by object index, as loaded (may be empty)
   std::vector<MaterialDesc> materials;
   std::vector<LightDesc> lights;
   CameraDesc camera;            // the camera where no camera track says otherwise
