@@ -140,9 +140,12 @@ std::vector<std::pair<std::string, std::string>> film_layer_attributes(const Fil
     miss << (full_float ? PM_LAYER_MISS_DEPTH : kLargestHalf);
     attributes.push_back({"pmrender/depth_miss", miss.str()});
   }
-  if (layers.has(FilmLayer::object_id))
-    attributes.push_back({"pmrender/object_ids", id_list(scene.object_names.empty() ? std::vector<std::string>{scene.name}
-                                                                                    : scene.object_names)});
+  if (layers.has(FilmLayer::object_id)) {
+    // Triangles without an object of their own are the object after the named ones (scene.h).
+    std::vector<std::string> names = scene.object_names;
+    if (scene.triangle_object.size() < scene.triangle_count()) names.push_back(names.empty() ? scene.name : "unnamed");
+    attributes.push_back({"pmrender/object_ids", id_list(names)});
+  }
   if (layers.has(FilmLayer::material_id)) {
     std::vector<std::string> names;
     for (const MaterialDesc& m : scene.materials) names.push_back(m.name);

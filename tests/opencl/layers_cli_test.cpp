@@ -1,8 +1,9 @@
 // `pmrender render --layers` as a user meets it on the OpenCL backend: the channels and header
 // attributes of the written file (read back with the project's own reader), half and float files,
 // a file without --layers holding only the four colour layers, the one-line refusal of an unknown
-// layer before anything is loaded, and the commands that read frames (compare, frames check,
-// --resume over a checkpoint, --preview) working on files with layers.
+// layer before anything is loaded, the commands that read frames (compare, frames check,
+// --resume over a checkpoint, --preview) working on files with layers, and farm scripts passing
+// the option on.
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -127,6 +128,18 @@ TEST_F(LayersCli, CompareFramesCheckAndPreviewReadFilesWithLayers) {
   r = pmrender(args + " --resume -v");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("skipped " + out("s_0.exr") + " (complete)"), std::string::npos) << r.out;
+}
+
+TEST_F(LayersCli, FarmScriptsPassTheLayersOnAndRefuseUnknownOnes) {
+  const std::string farm = "farm slurm --chunk 2 --frames 0-3 -o " + out("f_#.exr") + " --script " + out("job.sh");
+  ProcessResult r = pmrender(farm + " --layers albedo,depth");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(test::read_text(out("job.sh")).find(" render --layers albedo,depth "), std::string::npos);
+  fs::remove(out("job.sh"));
+  r = pmrender(farm + " --layers bogus");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--layers: unknown layer 'bogus'"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(out("job.sh")));
 }
 
 TEST_F(LayersCli, AFrameResumedFromItsCheckpointHasItsLayers) {

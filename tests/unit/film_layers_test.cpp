@@ -175,5 +175,23 @@ TEST(FilmLayers, HeaderAttributesListLayersChannelsAndIds) {
   EXPECT_EQ(full.count("pmrender/material_ids"), 0u);
 }
 
+TEST(FilmLayers, TrianglesAddedWithoutAnObjectFormOneMore) {
+  Scene scene = test::layer_scene(4, 4);
+  const uint32_t base = uint32_t(scene.positions.size());
+  scene.positions.insert(scene.positions.end(), {{0, 0, -5}, {1, 0, -5}, {0, 1, -5}});
+  scene.indices.insert(scene.indices.end(), {base, base + 1, base + 2});
+  scene.triangle_material.push_back(0);  // no triangle_object entry, as a program extending a scene writes it
+  const SceneBvh bvh = build_scene_bvh(scene);
+  for (size_t i = 0; i < bvh.triangle_count(); ++i) {
+    const uint32_t original = bvh.original_index[i];
+    EXPECT_EQ(PM_AS_INT(bvh.triangles[3 * i + 2].w), original < 6 ? int(scene.triangle_object[original]) : 3);
+  }
+  std::map<std::string, std::string> a;
+  for (auto& [name, value] : film_layer_attributes(parse_film_layers("object_id"), scene, true)) a[name] = value;
+  EXPECT_EQ(a["pmrender/object_ids"], "0=plane; 1=mirror; 2=wall; 3=unnamed");
+  scene.triangle_object.resize(9, 0);  // more entries than triangles: a broken scene
+  EXPECT_THROW(build_scene_bvh(scene), InputError);
+}
+
 }  // namespace
 }  // namespace pm
