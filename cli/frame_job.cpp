@@ -65,6 +65,8 @@ std::vector<std::pair<std::string, std::string>> FrameJob::attributes(int frame,
     a.push_back({"pmrender/error_bias_stderr", number_text(bias.bias_error)});
     a.push_back({"pmrender/error_control_paths", std::to_string(bias.paths)});
   }
+  for (auto& layer_attribute : film_layer_attributes(renderer_.layers(), scene_, options_.full_float))
+    a.push_back(std::move(layer_attribute));
   if (const IndirectMethod* method = renderer_.method()) {
     const auto [unit, per_pass] = method->work_per_pass();
     a.push_back({"pmrender/" + unit + "s_total", number_text(per_pass * report.passes)});

@@ -64,10 +64,12 @@ HostMemory available_host_memory() {
   return memory;
 }
 
-uint64_t host_frame_bytes(int width, int height) { return uint64_t(width) * uint64_t(height) * 128; }
+uint64_t host_frame_bytes(int width, int height, bool extra_layers) {
+  return uint64_t(width) * uint64_t(height) * (extra_layers ? 256 : 128);
+}
 
-void check_host_memory_for_frame(int width, int height) {
-  const uint64_t needed = host_frame_bytes(width, height);
+void check_host_memory_for_frame(int width, int height, bool extra_layers) {
+  const uint64_t needed = host_frame_bytes(width, height, extra_layers);
   const HostMemory host = available_host_memory();
   if (needed <= host.available_bytes) return;
   throw InputError("--resolution " + std::to_string(width) + "x" + std::to_string(height) + ": a frame needs about " +
@@ -75,7 +77,7 @@ void check_host_memory_for_frame(int width, int height) {
                    " are available (" + host.limited_by + ")");
 }
 
-void check_device_memory(uint64_t device_bytes, const DeviceInfo& device, int width, int height) {
+void check_device_memory(uint64_t device_bytes, const DeviceInfo& device, int width, int height, bool extra_layers) {
   const std::string what = "the render needs " + bytes_text(device_bytes) + " of device memory";
   if (!device.buffers_in_host_memory) {
     if (device.memory_bytes > 0 && device_bytes > device.memory_bytes)
@@ -85,10 +87,10 @@ void check_device_memory(uint64_t device_bytes, const DeviceInfo& device, int wi
   }
   // A CPU device's reported global memory is no limit (PoCL 3.1 reports 4.7 GiB on a 23 GiB
   // machine and allocates beyond it): its buffers are host memory.
-  const uint64_t needed = device_bytes + host_frame_bytes(width, height);
+  const uint64_t needed = device_bytes + host_frame_bytes(width, height, extra_layers);
   const HostMemory host = available_host_memory();
   if (needed > host.available_bytes)
-    throw InputError(what + " and " + bytes_text(host_frame_bytes(width, height)) + " for the frame on the host; " +
+    throw InputError(what + " and " + bytes_text(host_frame_bytes(width, height, extra_layers)) + " for the frame on the host; " +
                      "the buffers of " + device.name + " are host memory, where " + bytes_text(host.available_bytes) +
                      " are available (" + host.limited_by + "); lower --resolution or --photons");
 }

@@ -22,17 +22,19 @@ HostMemory available_host_memory();
 // Host memory one frame of width x height needs at its peak: Renderer::read_image holds the four
 // layers read back as float4 (64 bytes a pixel) and their RGB copies (48), the EXR writer half
 // copies of them (24), the preview 3 bytes: 112 bytes a pixel at the worst moment, counted as 128.
-uint64_t host_frame_bytes(int width, int height);
+// The extra layers (--layers) add their three float4 buffers (48), their copies (44) and half
+// copies (22): another 128.
+uint64_t host_frame_bytes(int width, int height, bool extra_layers);
 
 // Refuses (InputError naming --resolution, with the numbers) a frame whose host memory cannot fit.
-void check_host_memory_for_frame(int width, int height);
+void check_host_memory_for_frame(int width, int height, bool extra_layers);
 
 // Refuses (InputError, with the numbers) a render whose device buffers, device_bytes in all,
 // do not fit: a CUDA device's memory, or, on OpenCL (whose buffers may be host memory, as on
 // PoCL, and whose reported capacity is no limit there), the host memory beside the frame's own. Called with the bytes the renderer has
 // allocated before its first frame (Device::allocated_bytes()); an estimate made before any
 // allocation can be passed the same way.
-void check_device_memory(uint64_t device_bytes, const DeviceInfo& device, int width, int height);
+void check_device_memory(uint64_t device_bytes, const DeviceInfo& device, int width, int height, bool extra_layers);
 
 // Resident set size of this process now and at its peak (VmRSS, VmHWM of /proc/self/status).
 uint64_t host_rss_bytes();

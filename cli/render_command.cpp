@@ -60,6 +60,7 @@ struct RenderCommandOptions {
   RenderOptions render;
   std::string output;
   bool full_float = false;
+  std::string layers;  // --layers: extra layers (render/film_layers.h), checked while parsing
   std::string preview;
   double exposure_ev = 0;
   CLI::Option* exposure_option = nullptr;
@@ -102,6 +103,20 @@ std::vector<int> parse_device_list(const std::string& text) {
   return indices;
 }
 
+// --layers: each name known, before anything is loaded (parse_film_layers says what is wrong).
+CLI::Validator film_layer_list() {
+  return CLI::Validator(
+      [](std::string& text) {
+        try {
+          parse_film_layers(text);
+          return std::string();
+        } catch (const SettingError& e) {
+          return std::string(e.what()).substr(e.setting().size() + 2);  // CLI11 puts the option's name first
+        }
+      },
+      "", "film_layer_list");
+}
+
 std::string frame_list(const std::vector<int>& frames) {
   std::string list;
   for (int f : frames) list += (list.empty() ? "" : ", ") + std::to_string(f);
@@ -134,7 +149,8 @@ int run_render(const RenderCommandOptions& o) {
     throw InputError("--exposure: sets the exposure of the --preview PNG; give --preview NAME.png too");
   SceneLoadReport report;
   Scene scene = o.render.scene_path.empty() ? builtin_cornell_box() : load_scene_file(o.render.scene_path, &report);
-  const RenderSettings settings = render_settings(o.render);
+  RenderSettings settings = render_settings(o.render);
+  settings.layers = parse_film_layers(o.layers);
   const std::string pattern = o.output.empty() ? default_output_pattern(scene.name) : o.output;
 
   const std::vector<int> frames = select_frames(o, scene);
@@ -168,7 +184,7 @@ int run_render(const RenderCommandOptions& o) {
   check_output_paths("--preview", previews, ".png");
   const int width = settings.width > 0 ? settings.width : scene.camera.width;
   const int height = settings.height > 0 ? settings.height : scene.camera.height;
-  if (!todo.empty()) check_host_memory_for_frame(width, height);
+  if (!todo.empty()) check_host_memory_for_frame(width, height, !settings.layers.empty());
 
   FrameJobOptions job_options;
   job_options.budget.max_passes = settings.passes;
@@ -205,7 +221,7 @@ int run_render(const RenderCommandOptions& o) {
     } else
       pools.push_back(std::make_unique<RendererPool>(all, scene, settings));
     for (auto& d : devices)  // before PoCL commits the buffers: a refusal instead of an abort
-      check_device_memory(d->allocated_bytes(), d->info(), width, height);
+      check_device_memory(d->allocated_bytes(), d->info(), width, height, !settings.layers.empty());
     for (auto& pool : pools) jobs.push_back(std::make_unique<FrameJob>(*pool, scene, job_options));
     remove_stale_temporaries(targets, o.verbose);
   }
@@ -447,6 +463,10 @@ Run add_render_command(CLI::App& app) {
   cmd->add_option("-o,--output", options->output, "Output pattern; runs of # are the zero-padded frame number")
       ->default_str("out/<scene>_####.exr");
   cmd->add_flag("--float", options->full_float, "Write 32-bit float channels instead of half");
+  cmd->add_option("--layers", options->layers,
+                  "Extra EXR layers for compositing and denoising, a comma list of albedo, normal, depth, position, "
+                  "object_id, material_id, or all (docs/layers.md); default: none")
+      ->check(film_layer_list());
   cmd->add_option("--preview", options->preview, "Also write a tone-mapped 8-bit PNG of the combined layer here (# as in -o)");
   options->exposure_option =
       cmd->add_option("--exposure", options->exposure_ev,

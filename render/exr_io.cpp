@@ -62,14 +62,25 @@ void check_image_shape(const std::string& path, const FrameImage& image) {
     fail("image size is " + std::to_string(image.width) + "x" + std::to_string(image.height));
   }
   if (image.layers.empty()) fail("image has no layers");
-  const size_t expected = size_t(image.width) * size_t(image.height) * 3;
-  std::set<std::string> seen;
+  const size_t pixels = size_t(image.width) * size_t(image.height);
+  const size_t expected = pixels * 3;
+  std::set<std::string> seen, channels;
   for (const ImageLayer& layer : image.layers) {
     if (!seen.insert(layer.name).second) fail("duplicate layer " + layer_label(layer.name));
     if (layer.rgb.size() != expected) {
       fail("layer " + layer_label(layer.name) + " has " + std::to_string(layer.rgb.size()) +
            " values, expected " + std::to_string(expected));
     }
+    for (const char* component : kComponents) channels.insert(channel_name(layer.name, component));
+  }
+  for (const DataLayer& layer : image.data_layers) {
+    if (layer.channels.empty()) fail("data layer " + layer_label(layer.name) + " has no channels");
+    if (layer.values.size() != pixels * layer.channels.size()) {
+      fail("data layer " + layer_label(layer.name) + " has " + std::to_string(layer.values.size()) +
+           " values, expected " + std::to_string(pixels * layer.channels.size()));
+    }
+    for (size_t c = 0; c < layer.channels.size(); ++c)
+      if (!channels.insert(layer.channel_name(c)).second) fail("duplicate channel '" + layer.channel_name(c) + "'");
   }
 }
 
@@ -83,6 +94,16 @@ void check_finite(const std::string& path, const FrameImage& image) {
                         std::to_string(pixel % size_t(image.width)) + ", " +
                         std::to_string(pixel / size_t(image.width)) + ") channel " +
                         kComponents[i % 3] + " is " + std::to_string(layer.rgb[i]));
+    }
+  }
+  for (const DataLayer& layer : image.data_layers) {
+    for (size_t i = 0; i < layer.values.size(); ++i) {
+      if (std::isfinite(layer.values[i])) continue;
+      const size_t pixel = i / layer.channels.size();
+      throw DeviceError("refusing to write NaN/Inf to '" + path + "': channel '" +
+                        layer.channel_name(i % layer.channels.size()) + "' pixel (" +
+                        std::to_string(pixel % size_t(image.width)) + ", " +
+                        std::to_string(pixel / size_t(image.width)) + ") is " + std::to_string(layer.values[i]));
     }
   }
 }
@@ -167,6 +188,26 @@ void write_exr_atomically(const std::string& path, const FrameImage& image, bool
       frame_buffer.insert(channel, Imf::Slice(type, base + c * value_size, x_stride, y_stride));
     }
   }
+  // Data layers: the same pixel type, except the ones that must stay float (integer ids).
+  for (const DataLayer& layer : image.data_layers) {
+    const bool as_float = full_float || layer.full_float;
+    const Imf::PixelType layer_type = as_float ? Imf::FLOAT : Imf::HALF;
+    const size_t size = as_float ? sizeof(float) : sizeof(half);
+    const size_t stride = layer.channels.size() * size;
+    char* base = nullptr;
+    if (as_float) {
+      base = reinterpret_cast<char*>(const_cast<float*>(layer.values.data()));  // read only, as above
+    } else {
+      std::vector<half>& copy = half_copies.emplace_back(layer.values.size());
+      for (size_t i = 0; i < layer.values.size(); ++i) copy[i] = half(std::clamp(layer.values[i], -kHalfMax, kHalfMax));
+      base = reinterpret_cast<char*>(copy.data());
+    }
+    for (size_t c = 0; c < layer.channels.size(); ++c) {
+      header.channels().insert(layer.channel_name(c), Imf::Channel(layer_type));
+      frame_buffer.insert(layer.channel_name(c),
+                          Imf::Slice(layer_type, base + c * size, stride, stride * size_t(image.width)));
+    }
+  }
 
   AtomicFile file(path);
   AtomicFileOStream stream(file);
@@ -189,8 +230,10 @@ FrameImage read_exr_layers(const std::string& path) {
   const int64_t height = int64_t(window.max.y) - window.min.y + 1;
   if (width <= 0 || height <= 0) throw InputError("EXR file '" + path + "' has an empty image");
 
-  // Which of R, G, B each prefix has. std::map sorts "" (the combined layer) first.
+  // Which of R, G, B each prefix has, and its other channels. std::map sorts "" (the combined
+  // layer) first.
   std::map<std::string, std::array<bool, 3>> groups;
+  std::map<std::string, DataLayer> data_groups;
   const Imf::ChannelList& channels = header.channels();
   for (auto it = channels.begin(); it != channels.end(); ++it) {
     const std::string name = it.name();
@@ -199,8 +242,16 @@ FrameImage read_exr_layers(const std::string& path) {
     const std::string component = dot == std::string::npos ? name : name.substr(dot + 1);
     const auto found = std::find_if(kComponents.begin(), kComponents.end(),
                                     [&](const char* c) { return component == c; });
-    if (found == kComponents.end()) continue;  // A, Z and other non-colour channels
-    if (it.channel().xSampling != 1 || it.channel().ySampling != 1) {
+    const bool subsampled = it.channel().xSampling != 1 || it.channel().ySampling != 1;
+    if (found == kComponents.end()) {  // A, Z, N.X and other non-colour channels
+      if (subsampled) continue;
+      DataLayer& data = data_groups[prefix];
+      data.name = prefix;
+      data.full_float = (data.channels.empty() || data.full_float) && it.channel().type == Imf::FLOAT;
+      data.channels.push_back(component);
+      continue;
+    }
+    if (subsampled) {
       throw InputError("EXR file '" + path + "': subsampled channel '" + name +
                        "' is not supported");
     }
@@ -228,6 +279,16 @@ FrameImage read_exr_layers(const std::string& path) {
       frame_buffer.insert(channel_name(prefix, kComponents[c]),
                           Imf::Slice::Make(Imf::FLOAT, layer.rgb.data() + c, window,
                                            3 * sizeof(float), 3 * sizeof(float) * size_t(width)));
+    }
+  }
+  for (auto& [prefix, data] : data_groups) {
+    DataLayer& layer = image.data_layers.emplace_back(std::move(data));
+    const size_t count = layer.channels.size();
+    layer.values.resize(size_t(width) * size_t(height) * count);
+    for (size_t c = 0; c < count; ++c) {
+      frame_buffer.insert(layer.channel_name(c),
+                          Imf::Slice::Make(Imf::FLOAT, layer.values.data() + c, window, count * sizeof(float),
+                                           count * sizeof(float) * size_t(width)));
     }
   }
   file.setFrameBuffer(frame_buffer);

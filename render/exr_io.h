@@ -11,7 +11,8 @@ namespace pm {
 
 // Writes the image as a scanline OpenEXR file with ZIP compression. Channels are HALF unless
 // full_float is true, then FLOAT. Layers become channel prefixes (combined = R,G,B; "direct" =
-// direct.R, direct.G, direct.B); each attribute becomes a string attribute in the header.
+// direct.R, direct.G, direct.B); data layers follow with their own channel names (N.X, Z),
+// FLOAT where the layer asks for it; each attribute becomes a string attribute in the header.
 //
 // - Any NaN or Inf in any layer is refused (pm::DeviceError "refusing to write NaN/Inf ...").
 //   The renderer guarantees finite output; this is the last guard before the file.
@@ -27,7 +28,8 @@ void write_exr(const std::string& path, const FrameImage& image, bool full_float
 
 // What writing the image with half channels loses (write_exr without full_float): values beyond
 // +-65504, which are clamped, and non-zero values below half's smallest step (2^-24; anything
-// under half of it rounds to 0), which become 0. Counted over every value of every layer.
+// under half of it rounds to 0), which become 0. Counted over every value of every colour layer;
+// data layers are left out (a miss's depth is clamped to 65504 on purpose: docs/layers.md).
 struct HalfRangeLoss {
   size_t values = 0;          // all values of all layers
   size_t nonzero = 0;         // of which not 0
@@ -36,10 +38,12 @@ struct HalfRangeLoss {
 };
 HalfRangeLoss half_range_loss(const FrameImage& image);
 
-// Reads every RGB layer of the file's first part. Channels are grouped by the text before their
+// Reads every layer of the file's first part. Channels are grouped by the text before their
 // last '.'; R, G, B without a prefix form the combined layer "", which comes first in layers;
-// other layers follow in channel-list (alphabetical) order. Groups with none of R, G, B (e.g. a
-// lone "A" or "Z") are ignored. Every string attribute of the header is returned, including
+// other layers follow in channel-list (alphabetical) order. A group's other channels (A, Z,
+// N.X, ...) form its data layer in data_layers ("" for bare ones such as Z), channels in the
+// file's (alphabetical) order, full_float when all of them are stored as float; subsampled ones
+// are skipped. Every string attribute of the header is returned, including
 // standard ones such as "owner" when present. Values are returned as read; no finiteness check.
 // A missing or unreadable file, a non-EXR file, an image wider or taller than 16384, a layer lacking one of R, G, B, or a file with no
 // RGB layer at all is a pm::InputError naming the file.

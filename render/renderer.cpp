@@ -97,6 +97,7 @@ Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& set
   extents.pixels = uint64_t(width_) * uint64_t(height_);
   extents.shading_points = extents.pixels * uint64_t(settings_.mirror_depth + 1);
   extents.error_tiles = (extents.pixels + PM_FILM_ERROR_TILE - 1) / PM_FILM_ERROR_TILE;
+  extents.layer_pixels = settings_.layers.empty() ? 0 : extents.pixels;
   extents.control_pixels = control_grid(width_, height_).pixels();
   buffers_.allocate(BufferGroup::frame, extents);
   control_ = std::make_unique<BiasControl>(device_, buffers_, width_, height_);
@@ -197,6 +198,8 @@ void Renderer::begin_frame(int frame) {
   {
     StageScope scope(frame_.timer, "camera");
     device_.launch(KernelId::camera_pass, pixel_work_items(p.width, p.height), p);
+    // The extra layers read the shading points just recorded, before any method's pass.
+    if (!settings_.layers.empty()) device_.launch(KernelId::film_layers, p.width * p.height, p);
   }
   for (BufferSlot sum : {BufferSlot::film_indirect_sum, BufferSlot::film_caustic_sum, BufferSlot::film_odd_sum})
     device_.fill_zero(buffers_[sum], buffers_[sum].bytes());
@@ -378,6 +381,9 @@ FrameImage Renderer::read_image(FrameStats* stats) {
   image.layers.push_back(ImageLayer{"direct", rgb_from_float4(layer(BufferSlot::film_direct))});
   image.layers.push_back(ImageLayer{"indirect", rgb_from_float4(layer(BufferSlot::film_indirect))});
   image.layers.push_back(ImageLayer{"caustic", rgb_from_float4(layer(BufferSlot::film_caustic))});
+  if (!settings_.layers.empty())
+    add_film_layers(image, settings_.layers, layer(BufferSlot::film_albedo), layer(BufferSlot::film_normal),
+                    layer(BufferSlot::film_position));
   if (stats) stats->repaired_pixels = repaired;
   return image;
 }

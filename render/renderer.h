@@ -15,6 +15,7 @@
 #include "render/bias_control.h"
 #include "render/buffer_table.h"
 #include "render/device.h"
+#include "render/film_layers.h"
 #include "render/image.h"
 #include "render/indirect_method.h"
 #include "render/scene.h"
@@ -36,6 +37,9 @@ struct RenderSettings {
   // time a frame's error is estimated; 0: the estimate sees noise only.
   uint32_t control_paths = 1024;
   std::shared_ptr<const MethodSettings> method;  // null: direct light only
+  // Extra layers of the image (render/film_layers.h): none by default, and then no buffers,
+  // no launch and no read-back for them.
+  FilmLayers layers;
 
   // Throws SettingError naming the first setting out of range (the method's too).
   void validate() const;
@@ -102,7 +106,8 @@ class Renderer {
   FilmSums film_sums();
   void set_film_sums(const FilmSums& sums);
   void add_film_sums(const FilmSums& sums);
-  // The film of the last resolve: layers combined, direct, indirect and caustic.
+  // The film of the last resolve: layers combined, direct, indirect and caustic, then the
+  // extra layers settings.layers asks for (their order in film_layers.cpp).
   FrameImage read_image(FrameStats* stats = nullptr);
 
   // Benchmarks attach a timer to get per-stage device times; null (the default) records nothing.
@@ -110,6 +115,7 @@ class Renderer {
   // Methods count their per-stage work (e.g. photons per gather) into their stats.
   void set_collect_stats(bool on) { frame_.collect_stats = on; }
 
+  const FilmLayers& layers() const { return settings_.layers; }
   int width() const { return width_; }
   int height() const { return height_; }
   Device& device() const { return device_; }

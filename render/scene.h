@@ -78,6 +78,11 @@ struct Scene {
   std::vector<Float3> positions;          // vertex positions, metres
   std::vector<uint32_t> indices;          // three vertex indices per triangle
   std::vector<uint32_t> triangle_material;  // one material index per triangle
+  // The object each triangle belongs to (a JSON mesh entry, a glTF node, a Cornell box wall or
+  // block), for the object_id layer. Triangles past its end (all of them when it is empty, or
+  // those a program added to a loaded scene) form one more object: scene_object_of.
+  std::vector<uint32_t> triangle_object;
+  std::vector<std::string> object_names;  // by object index, as loaded (may be empty)
   std::vector<MaterialDesc> materials;
   std::vector<LightDesc> lights;
   CameraDesc camera;            // the camera where no camera track says otherwise
@@ -85,5 +90,11 @@ struct Scene {
 
   size_t triangle_count() const { return indices.size() / 3; }
 };
+
+// The object of triangle t: triangle_object[t], or past its end the object after the named ones
+// (object 0 of a scene without objects).
+inline uint32_t scene_object_of(const Scene& scene, size_t t) {
+  return t < scene.triangle_object.size() ? scene.triangle_object[t] : uint32_t(scene.object_names.size());
+}
 
 }  // namespace pm

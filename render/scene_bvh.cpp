@@ -322,7 +322,8 @@ class Builder {
       const Float3& v2 = scene_.positions[scene_.indices[3 * tri + 2]];
       out_.triangles[3 * i + 0] = float4{v0.x, v0.y, v0.z, PM_AS_FLOAT(scene_.triangle_material[tri])};
       out_.triangles[3 * i + 1] = float4{v1.x, v1.y, v1.z, PM_AS_FLOAT(tri)};
-      out_.triangles[3 * i + 2] = float4{v2.x, v2.y, v2.z, 0.0f};
+      const uint32_t object = scene_object_of(scene_, tri);
+      out_.triangles[3 * i + 2] = float4{v2.x, v2.y, v2.z, PM_AS_FLOAT(object)};
     }
   }
 
@@ -348,6 +349,9 @@ void validate(const Scene& scene) {
   if (scene.triangle_material.size() != n)
     throw InputError("scene '" + scene.name + "': " + std::to_string(scene.triangle_material.size()) +
                      " triangle materials for " + std::to_string(n) + " triangles");
+  if (scene.triangle_object.size() > n)
+    throw InputError("scene '" + scene.name + "': " + std::to_string(scene.triangle_object.size()) +
+                     " triangle objects for " + std::to_string(n) + " triangles");
   for (size_t i = 0; i < scene.indices.size(); ++i)
     if (scene.indices[i] >= scene.positions.size())
       throw InputError("scene '" + scene.name + "': vertex index " + std::to_string(scene.indices[i]) +

@@ -43,7 +43,7 @@ constexpr int kSceneBvhMaxLeafSize = 8;
 //
 // triangles holds 3 float4 per triangle in leaf order:
 //   (v0.xyz, material index as int bits), (v1.xyz, original triangle index as int bits),
-//   (v2.xyz, 0).
+//   (v2.xyz, object index as int bits; 0 when the scene has no triangle_object).
 struct SceneBvh {
   std::vector<float4> nodes;
   std::vector<float4> triangles;

@@ -76,6 +76,12 @@ void add_quad(Scene& scene, const Millimetres& a, const Millimetres& b, const Mi
   scene.triangle_material.push_back(material);
 }
 
+// Closes the object the quads added since the last call belong to (the object_id layer).
+void name_object(Scene& scene, const char* name) {
+  scene.triangle_object.resize(scene.triangle_material.size(), uint32_t(scene.object_names.size()));
+  scene.object_names.push_back(name);
+}
+
 void add_wall(Scene& scene, const Millimetres (&corners)[4], uint32_t material) {
   add_quad(scene, corners[0], corners[1], corners[2], corners[3], material);
 }
@@ -105,12 +111,19 @@ Scene builtin_cornell_box() {
                      diffuse_material("green", kGreen)};
 
   add_wall(scene, kFloor, kWhiteMaterial);
+  name_object(scene, "floor");
   add_wall(scene, kCeiling, kWhiteMaterial);
+  name_object(scene, "ceiling");
   add_wall(scene, kBackWall, kWhiteMaterial);
+  name_object(scene, "back wall");
   add_wall(scene, kGreenWall, kGreenMaterial);
+  name_object(scene, "green wall");
   add_wall(scene, kRedWall, kRedMaterial);
+  name_object(scene, "red wall");
   add_block(scene, kShortBlockTop, kWhiteMaterial);
+  name_object(scene, "short block");
   add_block(scene, kTallBlockTop, kWhiteMaterial);
+  name_object(scene, "tall block");
 
   LightDesc light;
   light.name = "ceiling";

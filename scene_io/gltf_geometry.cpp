@@ -168,6 +168,9 @@ void GltfLoader::read_meshes(Scene& scene) {
     for (size_t p = 0; p < mesh.primitives.size(); ++p)
       append_primitive(mesh.primitives[p], indexed(indexed("meshes", size_t(n.mesh)) + ".primitives", p), world, scene,
                        material_index);
+    // Each node with a mesh is one object of the object_id layer (a mesh instanced twice: two).
+    scene.triangle_object.resize(scene.triangle_material.size(), uint32_t(scene.object_names.size()));
+    scene.object_names.push_back(n.name.empty() ? where : n.name);
   }
   if (scene.triangle_count() == 0)
     fail("meshes", "the scene has no triangles (" + std::to_string(report_->degenerate_triangles_dropped) +

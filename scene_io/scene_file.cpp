@@ -225,6 +225,9 @@ void append_mesh(const JsonField& field, LoadContext& ctx, MaterialTable& table,
     scene.positions.push_back(to_metres(p, ctx.meters_per_unit, file_field));
   for (uint32_t index : mesh.indices) scene.indices.push_back(static_cast<uint32_t>(base + index));
   for (int32_t usemtl : mesh.triangle_usemtl) scene.triangle_material.push_back(material_for(usemtl));
+  // Each meshes[] entry is one object of the object_id layer, named by its OBJ file.
+  scene.triangle_object.resize(scene.triangle_material.size(), uint32_t(scene.object_names.size()));
+  scene.object_names.push_back(std::filesystem::path(obj_path).filename().string());
 
   ctx.report->warnings.insert(ctx.report->warnings.end(), mesh.warnings.begin(), mesh.warnings.end());
   if (mesh.degenerate_triangles_dropped > 0) {

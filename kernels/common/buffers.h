@@ -34,6 +34,10 @@
   X(frame, float4, film_indirect, pixels, 1)  /* resolved: sum / passes */                                  \
   X(frame, float4, film_caustic, pixels, 1)                                                                 \
   X(frame, float4, film_combined, pixels, 1)  /* direct + indirect + caustic; w = 1: repaired pixel */      \
+  /* extra layers (film_layers.h), allocated only when asked for: layer_pixels is 0 otherwise */            \
+  X(frame, float4, film_albedo, layer_pixels, 1)   /* rgb albedo, w = first hit's material (int bits) */    \
+  X(frame, float4, film_normal, layer_pixels, 1)   /* xyz normal, w = depth (camera to first hit) */        \
+  X(frame, float4, film_position, layer_pixels, 1) /* xyz first hit, w = its object (int bits) */           \
   /* the error estimate's bias control (bias_control.h), one entry per control pixel */                    \
   X(frame, float4, control_sums, control_pixels, 1) /* paths' rgb sum, w = sum of squared channel means */ \
   X(frame, float4, control_film, control_pixels, 1) /* the film's indirect + caustic there; w = pixel */   \

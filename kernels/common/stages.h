@@ -7,6 +7,7 @@
 #include "kernel_list.h"
 #include "camera_pass.h"
 #include "film.h"
+#include "film_layers.h"
 #include "gather.h"
 #include "path_trace.h"
 #include "bias_control.h"
