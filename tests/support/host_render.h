@@ -12,34 +12,56 @@
 
 namespace pm::test {
 
-inline std::vector<float4> render_direct_on_host(const Scene& scene, int width, int height, int mirror_depth) {
-  SceneBvh bvh = build_scene_bvh(scene);
-  std::vector<Material> materials = to_device_materials(scene);
-  std::vector<PointLight> lights = to_device_lights(scene.lights);
-  const size_t pixels = size_t(width) * height;
-  const size_t records = pixels * (mirror_depth + 1);
-  std::vector<float4> position(records), normal(records), outgoing(records), weight(records), direct(pixels);
+// The camera pass's inputs and outputs on the host: the scene's device arrays, the shading
+// records and the direct film, with kg and p pointing at them. run() fills them pixel by pixel.
+struct HostCameraPass {
+  HostCameraPass(const Scene& scene, int width, int height, int mirror_depth)
+      : bvh(build_scene_bvh(scene)),
+        materials(to_device_materials(scene)),
+        lights(to_device_lights(scene.lights)),
+        pixels(size_t(width) * size_t(height)) {
+    const size_t records = pixels * size_t(mirror_depth + 1);
+    position.resize(records);
+    normal.resize(records);
+    outgoing.resize(records);
+    weight.resize(records);
+    direct.resize(pixels);
+    kg.scene_nodes = bvh.nodes.data();
+    kg.triangles = bvh.triangles.data();
+    kg.materials = materials.data();
+    kg.lights = lights.data();
+    kg.shade_position = position.data();
+    kg.shade_normal = normal.data();
+    kg.shade_outgoing = outgoing.data();
+    kg.shade_weight = weight.data();
+    kg.film_direct = direct.data();
+    p.camera = make_camera_params(scene.camera, width, height);
+    p.width = uint32_t(width);
+    p.height = uint32_t(height);
+    p.light_count = uint32_t(lights.size());
+    p.ray_epsilon = scene_ray_epsilon(scene);
+    p.mirror_depth = uint32_t(mirror_depth);
+  }
+  HostCameraPass(const HostCameraPass&) = delete;  // kg points into this object
+  HostCameraPass& operator=(const HostCameraPass&) = delete;
 
+  void run() {
+    for (uint32_t i = 0; i < pixel_work_items(p.width, p.height); ++i) kernel_camera_pass(&kg, &p, i);
+  }
+
+  SceneBvh bvh;
+  std::vector<Material> materials;
+  std::vector<PointLight> lights;
+  size_t pixels;
+  std::vector<float4> position, normal, outgoing, weight, direct;
   KernelGlobals kg{};
-  kg.scene_nodes = bvh.nodes.data();
-  kg.triangles = bvh.triangles.data();
-  kg.materials = materials.data();
-  kg.lights = lights.data();
-  kg.shade_position = position.data();
-  kg.shade_normal = normal.data();
-  kg.shade_outgoing = outgoing.data();
-  kg.shade_weight = weight.data();
-  kg.film_direct = direct.data();
-
   LaunchParams p{};
-  p.camera = make_camera_params(scene.camera, width, height);
-  p.width = uint32_t(width);
-  p.height = uint32_t(height);
-  p.light_count = uint32_t(lights.size());
-  p.ray_epsilon = scene_ray_epsilon(scene);
-  p.mirror_depth = uint32_t(mirror_depth);
-  for (uint32_t i = 0; i < pixel_work_items(p.width, p.height); ++i) kernel_camera_pass(&kg, &p, i);
-  return direct;
+};
+
+inline std::vector<float4> render_direct_on_host(const Scene& scene, int width, int height, int mirror_depth) {
+  HostCameraPass pass(scene, width, height, mirror_depth);
+  pass.run();
+  return pass.direct;
 }
 
 }  // namespace pm::test

@@ -9,13 +9,10 @@
 #include <vector>
 
 #include "kernels/common/compat_host.h"
-#include "kernels/common/camera_pass.h"
 #include "kernels/common/film_layers.h"
 #include "render/errors.h"
 #include "render/film_layers.h"
-#include "render/renderer.h"
-#include "render/scene_bvh.h"
-#include "render/scene_scale.h"
+#include "support/host_render.h"
 #include "support/layer_scene.h"
 
 namespace pm {
@@ -27,34 +24,13 @@ struct HostLayers {
 
 // The camera pass and the film_layers stage, run on the host pixel by pixel.
 HostLayers film_layers_on_host(const Scene& scene, int width, int height, int mirror_depth) {
-  SceneBvh bvh = build_scene_bvh(scene);
-  std::vector<Material> materials = to_device_materials(scene);
-  std::vector<PointLight> lights = to_device_lights(scene.lights);
-  const size_t pixels = size_t(width) * height, records = pixels * (mirror_depth + 1);
-  std::vector<float4> position(records), normal(records), outgoing(records), weight(records), direct(pixels);
-  HostLayers out{std::vector<float4>(pixels), std::vector<float4>(pixels), std::vector<float4>(pixels)};
-  KernelGlobals kg{};
-  kg.scene_nodes = bvh.nodes.data();
-  kg.triangles = bvh.triangles.data();
-  kg.materials = materials.data();
-  kg.lights = lights.data();
-  kg.shade_position = position.data();
-  kg.shade_normal = normal.data();
-  kg.shade_outgoing = outgoing.data();
-  kg.shade_weight = weight.data();
-  kg.film_direct = direct.data();
-  kg.film_albedo = out.albedo.data();
-  kg.film_normal = out.normal.data();
-  kg.film_position = out.position.data();
-  LaunchParams p{};
-  p.camera = make_camera_params(scene.camera, width, height);
-  p.width = uint32_t(width);
-  p.height = uint32_t(height);
-  p.light_count = uint32_t(lights.size());
-  p.ray_epsilon = scene_ray_epsilon(scene);
-  p.mirror_depth = uint32_t(mirror_depth);
-  for (uint32_t i = 0; i < pixel_work_items(p.width, p.height); ++i) kernel_camera_pass(&kg, &p, i);
-  for (uint32_t i = 0; i < uint32_t(pixels); ++i) kernel_film_layers(&kg, &p, i);
+  test::HostCameraPass pass(scene, width, height, mirror_depth);
+  HostLayers out{std::vector<float4>(pass.pixels), std::vector<float4>(pass.pixels), std::vector<float4>(pass.pixels)};
+  pass.kg.film_albedo = out.albedo.data();
+  pass.kg.film_normal = out.normal.data();
+  pass.kg.film_position = out.position.data();
+  pass.run();
+  for (uint32_t i = 0; i < uint32_t(pass.pixels); ++i) kernel_film_layers(&pass.kg, &pass.p, i);
   return out;
 }
 
