@@ -26,6 +26,7 @@ usage: multi_gpu_suite.sh [options]
   --time T           seconds of the single frame's budget (default: 10)
   --passes P         passes of the frame whose two images are compared (default: 8)
   --frames N         frames of the sequence (default: 48)
+  --parts LIST       frame, sequence or both (default: frame,sequence)
   --repeat R         processes per measurement, median (default: 3)
   --resolution WxH   image size (default: 1920x1080)
   --photons N        photons per pass (default: 1048576)
@@ -35,7 +36,7 @@ USAGE
 }
 
 suite_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
-backends=cuda devices=0,1 out="" scenes="sponza conference" seconds=10 passes=8 frames=48 repeat=3 pmrender="" resolution=1920x1080 photons=1048576
+backends=cuda devices=0,1 out="" scenes="sponza conference" seconds=10 passes=8 frames=48 parts=frame,sequence repeat=3 pmrender="" resolution=1920x1080 photons=1048576
 while [ $# -gt 0 ]; do
   case $1 in
     --backend) backends=$2; shift 2 ;;
@@ -45,6 +46,7 @@ while [ $# -gt 0 ]; do
     --time) seconds=$2; shift 2 ;;
     --passes) passes=$2; shift 2 ;;
     --frames) frames=$2; shift 2 ;;
+    --parts) parts=$2; shift 2 ;;
     --repeat) repeat=$2; shift 2 ;;
     --resolution) resolution=$2; shift 2 ;;
     --photons) photons=$2; shift 2 ;;
@@ -92,7 +94,7 @@ run_median() {
   done
   printf '%s\n' "${values[@]}" | sort -g | awk '{ v[NR] = $1 } END { print v[int((NR + 1) / 2)] }'
 }
-ratio() { awk -v a="$1" -v b="$2" 'BEGIN { if (b > 0) printf "%.2f", a / b; else print "nan" }'; }
+ratio() { [ "$1" = - ] || [ "$2" = - ] && { echo -; return; }; awk -v a="$1" -v b="$2" 'BEGIN { if (b > 0) printf "%.2f", a / b; else print "nan" }'; }
 
 rows=()
 for backend in ${backends//,/ }; do
@@ -100,23 +102,28 @@ for backend in ${backends//,/ }; do
     scene=$suite_dir/scenes/$s.json
     lit=$(suite_animated_scene "$s" light "$out/scenes" "$frames")
     common=(--backend "$backend" --resolution "$resolution" --photons "$photons")
-    one=$(run_median "$backend-$s-frame-1" rate "$scene" "${common[@]}" --time "$seconds" --devices 0 \
-      -o "$out/images/$backend-$s-time-1.exr")
-    two=$(run_median "$backend-$s-frame-2" rate "$scene" "${common[@]}" --time "$seconds" --devices "$devices" \
-      -o "$out/images/$backend-$s-time-2.exr")
-    # The same P passes on one device and on two: equal but for float summation order.
-    "$pmrender" render "$scene" "${common[@]}" --passes "$passes" --devices 0 --quiet \
-      -o "$out/images/$backend-$s-1.exr" >>"$out/$backend-$s-compare.log" 2>&1 || failed=$((failed + 1))
-    "$pmrender" render "$scene" "${common[@]}" --passes "$passes" --devices "$devices" --quiet \
-      -o "$out/images/$backend-$s-2.exr" >>"$out/$backend-$s-compare.log" 2>&1 || failed=$((failed + 1))
-    diff=$("$pmrender" compare --metric relmse --threshold 1 "$out/images/$backend-$s-1.exr" \
-      "$out/images/$backend-$s-2.exr" 2>/dev/null | awk '$1 == "relmse" { print $2; exit }')
-    last=$((frames - 1))
-    seq_one=$(run_median "$backend-$s-sequence-1" wall "$lit" "${common[@]}" --frames "0-$last" --devices 0 \
-      -o "$out/images/$backend-$s-seq1-####.exr")
-    seq_two=$(run_median "$backend-$s-sequence-2" wall "$lit" "${common[@]}" --frames "0-$last" --devices "$devices" \
-      -o "$out/images/$backend-$s-seq2-####.exr")
-    split=$(grep -ho 'frames per device: [0-9, ]*' "$out/$backend-$s-sequence-2.0.log" | sed 's/frames per device: //')
+    one=- two=- diff=- seq_one=- seq_two=- split=-
+    if [[ ,$parts, == *,frame,* ]]; then
+      one=$(run_median "$backend-$s-frame-1" rate "$scene" "${common[@]}" --time "$seconds" --devices 0 \
+        -o "$out/images/$backend-$s-time-1.exr")
+      two=$(run_median "$backend-$s-frame-2" rate "$scene" "${common[@]}" --time "$seconds" --devices "$devices" \
+        -o "$out/images/$backend-$s-time-2.exr")
+      # The same P passes on one device and on two: equal but for float summation order.
+      "$pmrender" render "$scene" "${common[@]}" --passes "$passes" --devices 0 --quiet \
+        -o "$out/images/$backend-$s-1.exr" >>"$out/$backend-$s-compare.log" 2>&1 || failed=$((failed + 1))
+      "$pmrender" render "$scene" "${common[@]}" --passes "$passes" --devices "$devices" --quiet \
+        -o "$out/images/$backend-$s-2.exr" >>"$out/$backend-$s-compare.log" 2>&1 || failed=$((failed + 1))
+      diff=$("$pmrender" compare --metric relmse --threshold 1 "$out/images/$backend-$s-1.exr" \
+        "$out/images/$backend-$s-2.exr" 2>/dev/null | awk '$1 == "relmse" { print $2; exit }')
+    fi
+    if [[ ,$parts, == *,sequence,* ]]; then
+      last=$((frames - 1))
+      seq_one=$(run_median "$backend-$s-sequence-1" wall "$lit" "${common[@]}" --frames "0-$last" --devices 0 \
+        -o "$out/images/$backend-$s-seq1-####.exr")
+      seq_two=$(run_median "$backend-$s-sequence-2" wall "$lit" "${common[@]}" --frames "0-$last" --devices "$devices" \
+        -o "$out/images/$backend-$s-seq2-####.exr")
+      split=$(grep -ho 'frames per device: [0-9, ]*' "$out/$backend-$s-sequence-2.0.log" | sed 's/frames per device: //')
+    fi
     rows+=("| $backend | $s | $one | $two | $(ratio "$two" "$one") | ${diff:-?} | $seq_one | $seq_two | $(ratio "$seq_one" "$seq_two") | ${split:-?} |")
     echo "${rows[-1]}"
   done

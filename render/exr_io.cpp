@@ -146,10 +146,11 @@ class AtomicFileOStream : public Imf::OStream {
 };
 
 // Threads that compress an image's line blocks in parallel (ZIP compression of a 1920 x 1080 frame's
-// four layers is most of a frame's time on a fast GPU otherwise). OpenEXR's global pool, sized once.
+// four layers is most of a frame's time on a fast GPU otherwise). OpenEXR's global pool, sized once,
+// shared by every frame being written: with several devices, several frames are written at once.
 int compression_threads() {
   static const int threads = [] {
-    const int n = int(std::min(16u, std::max(1u, std::thread::hardware_concurrency())));
+    const int n = int(std::min(64u, std::max(1u, std::thread::hardware_concurrency())));
     Imf::setGlobalThreadCount(n);
     return n;
   }();

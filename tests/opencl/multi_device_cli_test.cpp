@@ -1,11 +1,12 @@
 // `pmrender render --devices` end to end: a sequence's frames shared between two devices are the
 // frames one device renders, bit for bit, and both devices take part; a frame's passes shared
-// between two devices add up to the one-device frame up to float rounding. PoCL stands in for two
-// GPUs: POCL_DEVICES lists its CPU device twice (the GPU machine runs bench/multi_gpu_suite.sh).
+// between two devices add up to the one-device frame up to float rounding. On two GPUs of one model
+// where the machine has them; elsewhere PoCL stands in, its CPU device listed twice (POCL_DEVICES).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdlib>
+#include <map>
 #include <regex>
 #include <sstream>
 
@@ -25,20 +26,31 @@ class MultiDeviceCli : public test::PmrenderProcessTest {
  protected:
   void SetUp() override {
     PmrenderProcessTest::SetUp();
-    // PoCL 3 names its CPU driver "pthread", PoCL 5 "cpu"; the first that gives two devices serves.
+    // Two OpenCL devices of one model: two GPUs where the machine has them, else PoCL's CPU device
+    // listed twice (PoCL 3 names its CPU driver "pthread", PoCL 5 "cpu").
+    if (find_two_alike()) return;
     for (const char* twice : {"pthread pthread", "cpu cpu"}) {
       setenv("POCL_DEVICES", twice, 1);
-      const test::ProcessResult r = pmrender("devices");
-      std::istringstream lines(r.out);
-      pocl_.clear();
-      for (std::string line; std::getline(lines, line);) {
-        std::smatch m;
-        if (std::regex_search(line, m, std::regex("^opencl +--device ([0-9]+) .*Portable Computing Language")))
-          pocl_.push_back(m[1]);
-      }
-      if (pocl_.size() == 2) return;
+      if (find_two_alike()) return;
     }
     unsetenv("POCL_DEVICES");
+  }
+  // The indices of the first two devices `pmrender devices` lists under one name.
+  bool find_two_alike() {
+    const test::ProcessResult r = pmrender("devices");
+    std::istringstream lines(r.out);
+    std::map<std::string, std::vector<std::string>> by_name;
+    for (std::string line; std::getline(lines, line);) {
+      std::smatch m;
+      if (!std::regex_search(line, m, std::regex("^opencl +--device ([0-9]+) +(.*)$"))) continue;
+      std::vector<std::string>& indices = by_name[m[2]];
+      indices.push_back(m[1]);
+      if (indices.size() == 2) {
+        pair_ = indices;
+        return true;
+      }
+    }
+    return false;
   }
   void TearDown() override {
     unsetenv("POCL_DEVICES");
@@ -47,15 +59,15 @@ class MultiDeviceCli : public test::PmrenderProcessTest {
   std::string out(const std::string& name) { return (dir_ / name).string(); }
   std::string scene() const { return test::test_data_dir() + "/animation/moving_room.json"; }
 
-  std::vector<std::string> pocl_;  // the indices of PoCL's two devices
+  std::vector<std::string> pair_;  // the indices of two devices of one model
 };
 
 TEST_F(MultiDeviceCli, SequenceFramesOnTwoDevicesAreTheFramesOfOne) {
-  ASSERT_EQ(pocl_.size(), 2u) << "PoCL did not list two devices with POCL_DEVICES";
+  ASSERT_EQ(pair_.size(), 2u) << "no two OpenCL devices of one model, not even PoCL with POCL_DEVICES";
   const std::string render = "render " + scene() + kSmall + " --frames 0-7";
-  const test::ProcessResult one = pmrender(render + " --device " + pocl_[0] + " -o " + out("one_####.exr"));
+  const test::ProcessResult one = pmrender(render + " --device " + pair_[0] + " -o " + out("one_####.exr"));
   ASSERT_EQ(one.exit_code, 0) << one.err;
-  const test::ProcessResult two = pmrender(render + " --devices " + pocl_[0] + "," + pocl_[1] + " -o " + out("two_####.exr"));
+  const test::ProcessResult two = pmrender(render + " --devices " + pair_[0] + "," + pair_[1] + " -o " + out("two_####.exr"));
   ASSERT_EQ(two.exit_code, 0) << two.err;
   EXPECT_EQ(test::written_frames(two.out).size(), 8u) << two.out;
   std::smatch m;
@@ -73,10 +85,10 @@ TEST_F(MultiDeviceCli, SequenceFramesOnTwoDevicesAreTheFramesOfOne) {
 }
 
 TEST_F(MultiDeviceCli, AFrameWhosePassesTwoDevicesShareIsTheFrameOfOne) {
-  ASSERT_EQ(pocl_.size(), 2u) << "PoCL did not list two devices with POCL_DEVICES";
+  ASSERT_EQ(pair_.size(), 2u) << "no two OpenCL devices of one model, not even PoCL with POCL_DEVICES";
   const std::string render = "render " + scene() + kSmall + " --frame 3 --passes 8 --progressive shrink";
-  ASSERT_EQ(pmrender(render + " --device " + pocl_[0] + " -o " + out("one.exr")).exit_code, 0);
-  const test::ProcessResult two = pmrender(render + " --devices " + pocl_[0] + "," + pocl_[1] + " -o " + out("two.exr"));
+  ASSERT_EQ(pmrender(render + " --device " + pair_[0] + " -o " + out("one.exr")).exit_code, 0);
+  const test::ProcessResult two = pmrender(render + " --devices " + pair_[0] + "," + pair_[1] + " -o " + out("two.exr"));
   ASSERT_EQ(two.exit_code, 0) << two.err;
   test::expect_same_passes_in_another_order(read_exr(out("one.exr")), read_exr(out("two.exr")));
 }
