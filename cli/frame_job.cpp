@@ -141,7 +141,6 @@ RenderedFrame FrameJob::render(int frame, const std::string& path, const std::st
   image = renderer_.read_image(&stats);
   outcome.render_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   outcome.repaired_pixels = stats.repaired_pixels;
-  if (image_check_) image_check_(frame, image, stats.repaired_pixels);
   outcome.photons_reused = method && method->stats().get("photons_reused") != 0;
   image.attributes = attributes(frame, outcome.result, outcome.result.stopped_by);
   image.attributes.push_back({"pmrender/render_ms", number_text(outcome.render_ms)});
@@ -149,6 +148,7 @@ RenderedFrame FrameJob::render(int frame, const std::string& path, const std::st
 }
 
 void FrameJob::write(const RenderedFrame& rendered) const {
+  if (image_check_) image_check_(rendered.frame, rendered.image, rendered.outcome.repaired_pixels);
   write_exr(rendered.path, rendered.image, options_.full_float);
   std::error_code ignored;
   std::filesystem::remove(checkpoint_state_path(rendered.path), ignored);  // the frame is finished: its checkpoint is spent

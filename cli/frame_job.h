@@ -59,8 +59,8 @@ class FrameJob {
   // Draw the pass progress inside a frame (only where one frame renders at a time), holding output
   // (the lock of everything printed, which a frame being written meanwhile takes too).
   void set_pass_progress(std::mutex* output) { pass_progress_ = output; }
-  // Called with each finished frame's image before it is written (warnings about what the file
-  // cannot hold).
+  // Called by write() with each frame's image before its file is written (warnings about what the
+  // file cannot hold), on the thread that writes it.
   using ImageCheck = std::function<void(int frame, const FrameImage& image, int repaired_pixels)>;
   void set_image_check(ImageCheck check) { image_check_ = std::move(check); }
 

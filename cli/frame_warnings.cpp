@@ -7,7 +7,11 @@
 
 namespace pm::cli {
 
-void FrameWarnings::check(int frame, const FrameImage& image, int repaired_pixels) {
+HalfRangeLoss FrameWarnings::measure(const FrameImage& image) const {
+  return full_float_ ? HalfRangeLoss{} : half_range_loss(image);
+}
+
+void FrameWarnings::report(int frame, const HalfRangeLoss& loss, int repaired_pixels) {
   const char* later = " (later frames are not reported)";
   if (repaired_pixels > 0 && !repaired_reported_) {
     std::fprintf(stderr, "pmrender: warning: frame %d: %d pixel(s) were not finite and were written as black%s\n", frame,
@@ -15,7 +19,6 @@ void FrameWarnings::check(int frame, const FrameImage& image, int repaired_pixel
     repaired_reported_ = true;
   }
   if (full_float_) return;
-  const HalfRangeLoss loss = half_range_loss(image);
   if (loss.clamped > 0 && !clamped_reported_) {
     std::fprintf(stderr,
                  "pmrender: warning: frame %d: %zu of %zu values exceed the half-float range and were clamped to "

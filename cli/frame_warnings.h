@@ -4,6 +4,7 @@
 // gives one line, not one per frame.
 #pragma once
 
+#include "render/exr_io.h"
 #include "render/image.h"
 
 namespace pm::cli {
@@ -12,8 +13,11 @@ class FrameWarnings {
  public:
   explicit FrameWarnings(bool full_float) : full_float_(full_float) {}
 
+  // What a frame's file loses to half floats: a scan of every value, which needs no lock (nothing
+  // when the file is float).
+  HalfRangeLoss measure(const FrameImage& image) const;
   // Prints "pmrender: warning: frame F: ..." lines to stderr for what this frame loses.
-  void check(int frame, const FrameImage& image, int repaired_pixels);
+  void report(int frame, const HalfRangeLoss& loss, int repaired_pixels);
 
  private:
   bool full_float_;

@@ -236,9 +236,10 @@ int run_render(const RenderCommandOptions& o) {
   FrameWarnings warnings(o.full_float);
   for (auto& job : jobs)
     job->set_image_check([&](int f, const FrameImage& image, int repaired) {
+      const HalfRangeLoss loss = warnings.measure(image);  // before the lock: devices write frames at once
       std::lock_guard<std::mutex> lock(output);
       progress.clear();
-      warnings.check(f, image, repaired);
+      warnings.report(f, loss, repaired);
     });
   MemorySnapshot first_frame_memory;
   std::vector<int> failed, held_elsewhere;  // held: another live process has claimed the frame
