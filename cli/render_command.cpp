@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
-#include <future>
 #include <memory>
 #include <optional>
 #include <mutex>
@@ -29,6 +28,7 @@
 #include "cli/progress_line.h"
 #include "cli/signals.h"
 #include "cli/render_options.h"
+#include "render/background_writer.h"
 #include "render/device.h"
 #include "render/device_threads.h"
 #include "render/errors.h"
@@ -348,17 +348,17 @@ int run_render(const RenderCommandOptions& o) {
   // own while the job's devices render the next frame (at most one frame waits per job). A single
   // frame is written at once.
   auto render_frames = [&](FrameJob& job, const std::function<std::optional<int>()>& next_frame) {
-    std::future<void> writing;
+    BackgroundWriter writer;
     while (interruption_signal() == 0) {
       const std::optional<int> f = next_frame();
       if (!f) break;
       std::shared_ptr<PendingFrame> pending = render_frame(job, *f, false);
-      if (writing.valid()) writing.get();
+      writer.wait();
       if (!pending) continue;
       if (todo.size() == 1) write_frame(*pending);
-      else writing = std::async(std::launch::async, [&write_frame, pending] { write_frame(*pending); });
+      else writer.submit([&write_frame, pending] { write_frame(*pending); });
     }
-    if (writing.valid()) writing.get();
+    writer.wait();
   };
   if (jobs.size() <= 1) {
     if (!jobs.empty()) {
