@@ -15,11 +15,11 @@
 #include <memory>
 #include <optional>
 #include <mutex>
-#include <sstream>
 #include <thread>
 
 #include "cli/commands.h"
 #include "cli/concurrent_writers.h"
+#include "cli/frame_devices.h"
 #include "cli/frame_job.h"
 #include "cli/frame_warnings.h"
 #include "cli/memory.h"
@@ -30,7 +30,6 @@
 #include "cli/render_options.h"
 #include "render/background_writer.h"
 #include "render/device.h"
-#include "render/device_threads.h"
 #include "render/errors.h"
 #include "render/exr_io.h"
 #include "render/frame_claim.h"
@@ -78,30 +77,6 @@ struct RenderCommandOptions {
   CLI::Option* frame_option = nullptr;
   CLI::Option* frames_option = nullptr;
 };
-
-// "--devices 0,2" -> {0, 2}; "all" -> {} (every device of the backend).
-std::vector<int> parse_device_list(const std::string& text) {
-  std::vector<int> indices;
-  if (text.empty() || text == "all") return indices;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    size_t used = 0;
-    int index = -1;
-    try {
-      index = std::stoi(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (item.empty() || used != item.size() || index < 0 || item[0] == '+')
-      throw InputError("--devices: expected 'all' or device indices like 0,1 (see 'pmrender devices'), got '" + text + "'");
-    if (std::find(indices.begin(), indices.end(), index) != indices.end())
-      throw InputError("--devices: device " + item + " is listed twice");
-    indices.push_back(index);
-  }
-  if (text.back() == ',') throw InputError("--devices: empty item after the last comma in '" + text + "'");
-  return indices;
-}
 
 // --layers: each name known, before anything is loaded (parse_film_layers says what is wrong).
 CLI::Validator film_layer_list() {
@@ -198,33 +173,16 @@ int run_render(const RenderCommandOptions& o) {
   job_options.quiet = o.quiet;
   if (o.exposure_option->count() > 0) job_options.preview_exposure_ev = o.exposure_ev;
 
-  // Devices: with several, a single frame shares its passes between them; in a sequence each device
-  // starts on a contiguous run of frames (camera-only runs keep their reuse on one device) and
-  // takes over half of the longest run left when its own is done.
+  // Devices, their renderers and the frame jobs (frame_devices.h), once the input is known good.
   const std::vector<int> device_list = parse_device_list(o.devices);
-  const bool share_frames = todo.size() > 1;
-  std::vector<std::unique_ptr<Device>> devices;
-  std::vector<std::unique_ptr<RendererPool>> pools;
-  std::vector<std::unique_ptr<FrameJob>> jobs;
+  FrameDevices opened;
   if (!todo.empty()) {
-    if (o.devices.empty()) devices.push_back(create_device(o.render.backend, o.render.device));
-    else devices = create_devices(o.render.backend, device_list);
-    if (devices.size() > 1 && !share_frames && o.checkpoint_every > 0)
-      throw InputError("--checkpoint-every: a single frame on several --devices cannot be checkpointed");
-    std::vector<Device*> all;
-    for (auto& d : devices) all.push_back(d.get());
-    if (share_frames) {
-      pools.resize(all.size());  // each device's scene upload on its own thread
-      for_each_device(all.size(), [&](size_t d) {
-        pools[d] = std::make_unique<RendererPool>(std::vector<Device*>{all[d]}, scene, settings);
-      });
-    } else
-      pools.push_back(std::make_unique<RendererPool>(all, scene, settings));
-    for (auto& d : devices)  // before PoCL commits the buffers: a refusal instead of an abort
-      check_device_memory(d->allocated_bytes(), d->info(), width, height, !settings.layers.empty());
-    for (auto& pool : pools) jobs.push_back(std::make_unique<FrameJob>(*pool, scene, job_options));
+    DeviceChoice choice{o.render.backend, o.render.device, !o.devices.empty(), device_list};
+    opened = open_frame_devices(choice, todo.size() > 1, o.checkpoint_every, scene, settings, job_options, width, height);
     remove_stale_temporaries(targets, o.verbose);
   }
+  std::vector<std::unique_ptr<Device>>& devices = opened.devices;
+  std::vector<std::unique_ptr<FrameJob>>& jobs = opened.jobs;
   remove_stale_claims_of_complete_frames(pattern, skipped, o.claims, o.verbose);
   // Input is valid from here on: say what loading tolerated, then render.
   if (!o.quiet)
@@ -435,26 +393,6 @@ int run_render(const RenderCommandOptions& o) {
 }
 
 }  // namespace
-
-std::vector<int> parse_frames_option(const std::string& spec, int first, int last) {
-  try {
-    return parse_frame_spec(spec, first, last);
-  } catch (const InputError& e) {
-    throw InputError(std::string("--frames: ") + e.what());
-  }
-}
-
-void parse_resolution(const std::string& text, int* width, int* height) {
-  const size_t x = text.find_first_of("xX");
-  try {
-    if (x == std::string::npos) throw InputError("");
-    *width = int(parse_unsigned("--resolution", text.substr(0, x), 1, 16384));
-    *height = int(parse_unsigned("--resolution", text.substr(x + 1), 1, 16384));
-  } catch (const InputError&) {
-    throw InputError("--resolution: expected WIDTHxHEIGHT with each a whole number from 1 to 16384, got '" + text +
-                     "'");
-  }
-}
 
 Run add_render_command(CLI::App& app) {
   auto options = std::make_shared<RenderCommandOptions>();

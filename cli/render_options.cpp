@@ -1,4 +1,5 @@
-// Registration and interpretation of the shared rendering options.
+// Registration and interpretation of the shared rendering options, and the parsers of --resolution
+// and --frames that several commands share.
 #include "cli/render_options.h"
 
 #include <cmath>
@@ -8,6 +9,7 @@
 #include "render/errors.h"
 
 #include "scene_io/cornell_box.h"
+#include "scene_io/frame_spec.h"
 #include "scene_io/scene_file.h"
 
 namespace pm::cli {
@@ -53,6 +55,26 @@ RenderSettings render_settings(const RenderOptions& o) {
   settings.method = o.method_options.at(o.method)->settings();
   settings.validate();
   return settings;
+}
+
+std::vector<int> parse_frames_option(const std::string& spec, int first, int last) {
+  try {
+    return parse_frame_spec(spec, first, last);
+  } catch (const InputError& e) {
+    throw InputError(std::string("--frames: ") + e.what());
+  }
+}
+
+void parse_resolution(const std::string& text, int* width, int* height) {
+  const size_t x = text.find_first_of("xX");
+  try {
+    if (x == std::string::npos) throw InputError("");
+    *width = int(parse_unsigned("--resolution", text.substr(0, x), 1, 16384));
+    *height = int(parse_unsigned("--resolution", text.substr(x + 1), 1, 16384));
+  } catch (const InputError&) {
+    throw InputError("--resolution: expected WIDTHxHEIGHT with each a whole number from 1 to 16384, got '" + text +
+                     "'");
+  }
 }
 
 }  // namespace pm::cli

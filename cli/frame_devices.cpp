@@ -1,0 +1,60 @@
+// Devices, renderer pools and frame jobs of a render (frame_devices.h).
+#include "cli/frame_devices.h"
+
+#include <algorithm>
+#include <sstream>
+
+#include "cli/memory.h"
+#include "render/device_threads.h"
+#include "render/errors.h"
+
+namespace pm::cli {
+
+std::vector<int> parse_device_list(const std::string& text) {
+  std::vector<int> indices;
+  if (text.empty() || text == "all") return indices;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    size_t used = 0;
+    int index = -1;
+    try {
+      index = std::stoi(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (item.empty() || used != item.size() || index < 0 || item[0] == '+')
+      throw InputError("--devices: expected 'all' or device indices like 0,1 (see 'pmrender devices'), got '" + text + "'");
+    if (std::find(indices.begin(), indices.end(), index) != indices.end())
+      throw InputError("--devices: device " + item + " is listed twice");
+    indices.push_back(index);
+  }
+  if (text.back() == ',') throw InputError("--devices: empty item after the last comma in '" + text + "'");
+  return indices;
+}
+
+FrameDevices open_frame_devices(const DeviceChoice& choice, bool sequence, uint32_t checkpoint_every, const Scene& scene,
+                                const RenderSettings& settings, const FrameJobOptions& job_options, int width, int height) {
+  FrameDevices opened;
+  std::vector<std::unique_ptr<Device>>& devices = opened.devices;
+  if (!choice.several) devices.push_back(create_device(choice.backend, choice.device));
+  else devices = create_devices(choice.backend, choice.indices);
+  if (devices.size() > 1 && !sequence && checkpoint_every > 0)
+    throw InputError("--checkpoint-every: a single frame on several --devices cannot be checkpointed");
+  std::vector<Device*> all;
+  for (auto& d : devices) all.push_back(d.get());
+  if (sequence) {
+    opened.pools.resize(all.size());  // each device's scene upload on its own thread
+    for_each_device(all.size(), [&](size_t d) {
+      opened.pools[d] = std::make_unique<RendererPool>(std::vector<Device*>{all[d]}, scene, settings);
+    });
+  } else {
+    opened.pools.push_back(std::make_unique<RendererPool>(all, scene, settings));
+  }
+  for (auto& d : devices)  // before PoCL commits the buffers: a refusal instead of an abort
+    check_device_memory(d->allocated_bytes(), d->info(), width, height, !settings.layers.empty());
+  for (auto& pool : opened.pools) opened.jobs.push_back(std::make_unique<FrameJob>(*pool, scene, job_options));
+  return opened;
+}
+
+}  // namespace pm::cli

@@ -1,0 +1,39 @@
+// The devices of `pmrender render` and what runs on them. With several devices (--devices), a
+// single frame shares its passes between them (one RendererPool over all); in a sequence each
+// device renders frames of its own (one pool per device, frames handed out by
+// render/frame_runs.h), starting on a contiguous run so that camera-only runs keep their photon
+// reuse on one device.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "cli/frame_job.h"
+#include "render/device.h"
+#include "render/renderer_pool.h"
+
+namespace pm::cli {
+
+// "--devices 0,2" -> {0, 2}; "all" -> {} (every device of the backend). InputError otherwise.
+std::vector<int> parse_device_list(const std::string& text);
+
+struct DeviceChoice {
+  std::string backend;      // --backend
+  int device = 0;           // --device, without --devices
+  bool several = false;     // --devices given
+  std::vector<int> indices; // its list (empty: all)
+};
+
+struct FrameDevices {
+  std::vector<std::unique_ptr<Device>> devices;
+  std::vector<std::unique_ptr<RendererPool>> pools;
+  std::vector<std::unique_ptr<FrameJob>> jobs;  // one per pool
+};
+
+// Opens the devices (each on its own thread, render/device_threads.h), uploads the scene to each,
+// checks each device's memory for a frame of width x height, and makes the frame jobs.
+FrameDevices open_frame_devices(const DeviceChoice& choice, bool sequence, uint32_t checkpoint_every, const Scene& scene,
+                                const RenderSettings& settings, const FrameJobOptions& job_options, int width, int height);
+
+}  // namespace pm::cli
