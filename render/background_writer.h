@@ -1,7 +1,6 @@
 // One thread that writes a sequence's frames behind its device: the device renders frame f + 1
-// while frame f's file is written. One task at a time, on the same thread for the whole run (a
-// thread per frame would also cost a malloc arena per thread on large machines, which a thousand
-// frames showed as growing host memory).
+// while frame f's file is written. One task at a time, on the same thread for the whole run, so a
+// long sequence starts no thread per frame.
 #pragma once
 
 #include <condition_variable>
