@@ -1,7 +1,8 @@
 // `pmrender render [SCENE]`: loads the scene (or the built-in Cornell box), selects frames
-// (--frames, --frame, or the scene's whole sequence), opens the device once and renders the frames
-// with one Renderer (scene BVH built once, photons reused over camera-only motion), writing each
-// as OpenEXR (temporary name, then rename). --resume skips frames whose file is complete. Each
+// (--frames, --frame, or the scene's whole sequence), opens the devices once (frame_devices.h) and
+// renders the frames with one Renderer per device (scene BVH built once, photons reused over
+// camera-only motion), writing each as OpenEXR (temporary name, then rename) on a writing thread
+// while the device renders the next frame. --resume skips frames whose file is complete. Each
 // frame is claimed first (render/frame_claim.h): a frame another live process is rendering is
 // skipped, or waited for with --wait-for-claimed-frames. A frame that fails is reported and the
 // others still render; the exit code is then 1 (docs/animation.md, "Batch rendering"). Output
@@ -302,9 +303,9 @@ int run_render(const RenderCommandOptions& o) {
     }
     count_done(f);
   };
-  // The frames next_frame() hands out, on one job: each frame's file is written on a thread of its
-  // own while the job's devices render the next frame (at most one frame waits per job). A single
-  // frame is written at once.
+  // The frames next_frame() hands out, on one job: each frame's file is written on the job's writing
+  // thread while the job's devices render the next frame (at most one frame waits per job). A
+  // single frame is written at once.
   auto render_frames = [&](FrameJob& job, const std::function<std::optional<int>()>& next_frame) {
     BackgroundWriter writer;
     while (interruption_signal() == 0) {
