@@ -53,11 +53,18 @@ struct DeviceEntry {
   cl_device_id device;
 };
 
+// OpenCL calls that some drivers do not make safe to run on two threads at once (devices open,
+// render and close on threads of their own: render/device_threads.h). Enumeration: PoCL counted
+// only one of its devices when two threads made the process's first call at once. Releasing
+// programs and kernels: PoCL 5 aborted (an assertion in its compiled-kernel cache) when two of its
+// CPU devices that had shared a frame closed at once.
+std::mutex& driver_call_lock() {
+  static std::mutex lock;
+  return lock;
+}
+
 std::vector<DeviceEntry> enumerate() {
-  // One enumeration at a time: devices open on threads of their own (render/device_threads.h), and
-  // PoCL counted only one of its devices when two threads made the process's first call at once.
-  static std::mutex enumerating;
-  std::lock_guard<std::mutex> lock(enumerating);
+  std::lock_guard<std::mutex> lock(driver_call_lock());
   std::vector<DeviceEntry> entries;
   cl_uint platform_count = 0;
   // No ICD or no platform is "no OpenCL devices", not an error.
@@ -134,6 +141,7 @@ class OpenclDevice final : public Device {
 
   ~OpenclDevice() override {
     sort_scratch_ = PortableSortScratch();
+    std::lock_guard<std::mutex> lock(driver_call_lock());
     for (cl_kernel kernel : kernels_)
       if (kernel) clReleaseKernel(kernel);
     if (program_) clReleaseProgram(program_);
