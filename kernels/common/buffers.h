@@ -76,6 +76,7 @@
   X(radiosity, uint4, rad_element_ranges, uploaded, 1) /* elements + 1: first ring entry, neighbour, link word */\
   X(radiosity, uint, rad_adjacency, uploaded, 1)    /* one-ring entries (triangle << 2 | corner), then */  \
                                                     /* smoothing neighbours (element indices) */           \
+  X(radiosity, float, rad_smooth_weights, uploaded, 1) /* per smoothing neighbour: its weight (eq. 5) */   \
   X(radiosity, float4, rad_tree, uploaded, 1)       /* refinement tree, 2 per node (radiosity_mesh.h) */   \
   X(radiosity, uint4, rad_triangles, uploaded, 1)   /* 2 per refined triangle: front, back elements */     \
   X(radiosity, uint, rad_links, uploaded, 1)        /* merged links, one word each (radiosity_links.h) */ \

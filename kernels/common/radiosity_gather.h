@@ -9,9 +9,12 @@
    and writes the other. After nB launches I_total holds bounces 1..nB: the indirect light of
    the photon mapper's --bounces, without the direct light (the camera pass's).
 
-   Smoothing (eq. 5, 6): I_smooth(v) = (I(v) + sum_{v_i in N^(v)} I(v_i)) / (|N^(v)| + 1) with
-   N^(v) the one-ring neighbours whose normals are within the feature angle alpha_f
-   (n_v . n_vi > cos alpha_f), so that radiance is never averaged over a feature edge. */
+   Smoothing (eq. 5, 6): I_smooth(v) = I(v) + sum_{v_i in N^(v)} w_i (I(v_i) - I(v)) with N^(v)
+   the one-ring neighbours whose normals are within the feature angle alpha_f
+   (n_v . n_vi > cos alpha_f), so that radiance is never averaged over a feature edge. Eq. 5 takes
+   the plain mean, w_i = 1 / (|N^(v)| + 1); here w_i weighs the area v and v_i share
+   (radiosity_elements.h), which equals eq. 5 on a regular mesh and, unlike it, keeps the power
+   of the interpolated irradiance on any mesh, at a feature edge too. */
 #ifndef PM_RADIOSITY_GATHER_H
 #define PM_RADIOSITY_GATHER_H
 
@@ -43,15 +46,16 @@ PM_DEVICE void kernel_radiosity_smooth(const KernelGlobals* kg, const LaunchPara
   PM_GLOBAL float4* target = kg->rad_irradiance + (1u - p->radiosity_source) * p->element_count;
   Vec3 n = radiosity_element_normal(kg, e);
   uint first = PM_LOAD(&kg->rad_element_ranges[e]).y, end = PM_LOAD(&kg->rad_element_ranges[e + 1u]).y;
-  Vec3 sum = vec3_from_float4(source[e]);
-  float count = 1.0f;
+  uint weights_first = PM_LOAD(&kg->rad_element_ranges[p->element_count]).x;
+  Vec3 own = vec3_from_float4(source[e]);
+  Vec3 moved = vec3_splat(0.0f);
   for (uint j = first; j < end; ++j) {
     uint v = PM_LOAD(&kg->rad_adjacency[j]);
     if (vec3_dot(n, radiosity_element_normal(kg, v)) <= p->feature_cos) continue; /* eq. 6 */
-    sum = vec3_add(sum, vec3_from_float4(source[v]));
-    count += 1.0f;
+    float w = PM_LOAD(&kg->rad_smooth_weights[j - weights_first]);
+    moved = vec3_madd(moved, vec3_sub(vec3_from_float4(source[v]), own), w);
   }
-  target[e] = vec3_to_float4(vec3_scale(sum, 1.0f / count), 0.0f);
+  target[e] = vec3_to_float4(vec3_add(own, moved), 0.0f);
 }
 
 #endif

@@ -22,6 +22,10 @@ struct RadiosityElements {
   // e + 1 ends element e's ranges. Links are filled in by the link build.
   std::vector<uint4> ranges;
   std::vector<uint32_t> adjacency;  // one-ring entries (refined triangle << 2 | corner), then neighbours
+  // One per smoothing neighbour, in the neighbours' order (entry j of adjacency has weight
+  // j - ranges[count()].x): the share of the neighbour's value that one smoothing pass moves to
+  // the element (radiosity_gather.h, kernel_radiosity_smooth).
+  std::vector<float> smooth_weights;
   std::vector<uint4> triangles;     // 2 per refined triangle: front corner elements (w: source
                                     // triangle), back corner elements (w: 0); PM_RADIOSITY_NONE: none
   std::vector<uint32_t> vertex;     // refined-mesh vertex of each element

@@ -67,6 +67,7 @@ void VertexLinkRadiosity::prepare(StageTimer* timer) {
   buffers_.upload(BufferSlot::rad_tree, mesh.tree);
   buffers_.upload(BufferSlot::rad_triangles, elements.triangles);
   buffers_.upload(BufferSlot::rad_adjacency, elements.adjacency);
+  buffers_.upload(BufferSlot::rad_smooth_weights, elements.smooth_weights);
   buffers_.upload(BufferSlot::rad_element_ranges, ranges_);
   BufferExtents extents;
   extents.elements = element_count_;

@@ -47,6 +47,7 @@ struct HostMesh {
     kg.rad_elements = el.data.data();
     kg.rad_element_ranges = el.ranges.data();
     kg.rad_adjacency = el.adjacency.data();
+    kg.rad_smooth_weights = el.smooth_weights.data();
     kg.rad_tree = mesh.tree.data();
     kg.rad_triangles = el.triangles.data();
     kg.rad_radiance = radiance.data();
@@ -278,11 +279,13 @@ TEST(RadiositySmooth, NeverCrossesAFeatureEdge) {
   std::vector<float4> elements = {{0, 0, 0, 0}, {0, 1, 0, 0}, {1, 0, 0, 0}, {1, 0, 0, 0}};
   std::vector<uint4> ranges = {{0, 0, 0, 0}, {0, 1, 0, 0}, {0, 2, 0, 0}};
   std::vector<uint32_t> adjacency = {1, 0};
+  std::vector<float> weights = {0.5f, 0.5f};
   std::vector<float4> irradiance = {{1, 1, 1, 0}, {5, 5, 5, 0}, {0, 0, 0, 0}, {0, 0, 0, 0}};
   KernelGlobals kg{};
   kg.rad_elements = elements.data();
   kg.rad_element_ranges = ranges.data();
   kg.rad_adjacency = adjacency.data();
+  kg.rad_smooth_weights = weights.data();
   kg.rad_irradiance = irradiance.data();
   LaunchParams p{};
   p.element_count = 2;
@@ -292,6 +295,47 @@ TEST(RadiositySmooth, NeverCrossesAFeatureEdge) {
   p.feature_cos = std::cos(100.0f * float(M_PI) / 180.0f);  // alpha_f 100 degrees: 90 is within
   kernel_radiosity_smooth(&kg, &p, 0);
   EXPECT_EQ(irradiance[2].x, 3.0f);
+}
+
+// The film's power of the smoothed irradiance, sum_e a_e I_e with a_e a third of e's one-ring
+// area, is what it was before the pass, on either side of a feature edge and on refined
+// triangles of every size; a uniform irradiance stays uniform.
+TEST(RadiositySmooth, KeepsThePowerOfTheInterpolatedIrradiance) {
+  for (float fold : {90.0f, 10.0f}) {
+    HostMesh h(test::folded_sheet(1.0f, 0.37f, fold), 0.11, 40.0f, true);
+    const size_t n = h.el.count();
+    std::vector<double> hat_area(n, 0.0);
+    for (size_t e = 0; e < n; ++e)
+      for (uint32_t i = h.el.ranges[e].x; i < h.el.ranges[e + 1].x; ++i) {
+        const uint32_t r = h.el.adjacency[i] >> 2;
+        Vec3 c[3];
+        for (int j = 0; j < 3; ++j) {
+          const Float3& q = h.mesh.positions[h.mesh.indices[3 * r + j]];
+          c[j] = vec3(q.x, q.y, q.z);
+        }
+        hat_area[e] += vec3_length(vec3_cross(vec3_sub(c[1], c[0]), vec3_sub(c[2], c[0]))) / 6.0;
+      }
+    auto power = [&](size_t half) {
+      double sum = 0;
+      for (size_t e = 0; e < n; ++e) sum += hat_area[e] * h.irradiance[half * n + e].x;
+      return sum;
+    };
+    // A field that varies over the mesh: a peak near one corner of the floor.
+    for (size_t e = 0; e < n; ++e) {
+      const Float3 q = h.el.position(e);
+      const float v = 1.0f / (0.05f + q.x * q.x + q.z * q.z);
+      h.irradiance[e] = float4{v, v, v, 0};
+    }
+    h.p.radiosity_source = 0;
+    for (uint32_t e = 0; e < n; ++e) kernel_radiosity_smooth(&h.kg, &h.p, e);
+    EXPECT_NEAR(power(1), power(0), 1e-5 * power(0)) << "fold " << fold;
+    size_t changed = 0;
+    for (size_t e = 0; e < n; ++e) changed += h.irradiance[n + e].x != h.irradiance[e].x;
+    EXPECT_GT(changed, n / 2) << "the pass smoothed";
+    for (size_t e = 0; e < n; ++e) h.irradiance[e] = float4{2, 2, 2, 0};
+    for (uint32_t e = 0; e < n; ++e) kernel_radiosity_smooth(&h.kg, &h.p, e);
+    for (size_t e = 0; e < n; ++e) EXPECT_NEAR(h.irradiance[n + e].x, 2.0f, 1e-5f) << "element " << e;
+  }
 }
 
 // Phi / (4 pi r^2) cos theta of an unoccluded point light at x with normal n.
