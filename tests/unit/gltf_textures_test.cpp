@@ -124,6 +124,18 @@ TEST_F(GltfTextures, TexCoordSetThePrimitiveLacksIsAnError) {
   expect_error(b, "meshes[0].primitives[0].attributes: no TEXCOORD_2, which materials[0]'s texture reads");
 }
 
+TEST_F(GltfTextures, UnknownWrapModeIsAnError) {
+  write("red.png", test::uniform_png(1, 1, 255, 0, 0));
+  GltfBuilder b;
+  b.doc()["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
+  b.doc()["samplers"] = {{{"wrapS", 10}}};
+  b.doc()["textures"] = {{{"source", 0}, {"sampler", 0}}};
+  b.doc()["images"] = {{{"uri", "red.png"}}};
+  b.node({{"mesh", textured_square(b, 0)}});
+  b.add_camera_and_light();
+  expect_error(b, "samplers[0].wrapS: unknown wrap mode 10");
+}
+
 TEST_F(GltfTextures, ImageBufferViewPastItsBufferIsAnError) {
   GltfBuilder b;
   b.doc()["materials"] = {{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}};
