@@ -141,7 +141,7 @@ int run_bench(const BenchOptions& o) {
   for (const TextureImage& image : scene.images) texels += uint64_t(image.width) * uint64_t(image.height);
   const uint64_t texture_bytes = renderer->texture_bytes();
   if (scene.has_textures())
-    std::printf("textures: %zu images, %.0f texels, %.1f MiB on the device (texels, descriptors, texture coordinates)\n",
+    std::printf("textures: %zu images, %.0f texels, %.1f MiB on the device (texels, descriptors, texture coordinates, sRGB table)\n",
                 scene.images.size(), double(texels), double(texture_bytes) / (1024.0 * 1024.0));
   std::printf("frames: %zu warmup, %zu measured (%d-%d%s)\n\n", plan.warmup.size(), plan.measured.size(),
               plan.measured.front(), plan.measured.back(), o.frames.empty() ? "" : ", from --frames");

@@ -123,12 +123,13 @@ void Renderer::upload_scene() {
   if (!textures.info.empty()) buffers_.upload(BufferSlot::texture_info, textures.info);
   if (!textures.texels.empty()) buffers_.upload(BufferSlot::texels, textures.texels);
   if (!textures.uvs.empty()) buffers_.upload(BufferSlot::triangle_uvs, textures.uvs);
+  if (!textures.srgb_table.empty()) buffers_.upload(BufferSlot::texture_srgb_table, textures.srgb_table);
   set_lights(scene_.lights);
 }
 
 uint64_t Renderer::texture_bytes() const {
   return buffers_[BufferSlot::texture_info].bytes() + buffers_[BufferSlot::texels].bytes() +
-         buffers_[BufferSlot::triangle_uvs].bytes();
+         buffers_[BufferSlot::triangle_uvs].bytes() + buffers_[BufferSlot::texture_srgb_table].bytes();
 }
 
 void Renderer::set_lights(const std::vector<LightDesc>& lights) {

@@ -1,6 +1,7 @@
 // Packing of a scene's textures for the device (render/scene_textures.h).
 #include "render/scene_textures.h"
 
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -21,7 +22,14 @@ uint32_t wrap_bits(TextureWrap wrap) {
 
 }  // namespace
 
+float srgb_code_to_linear(int code) {
+  const double c = code / 255.0;
+  return float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+}
+
 void pack_texture_images(const Scene& scene, DeviceTextures* out) {
+  out->srgb_table.resize(256);
+  for (int code = 0; code < 256; ++code) out->srgb_table[size_t(code)] = srgb_code_to_linear(code);
   std::vector<uint64_t> first_texel;
   uint64_t total = 0;
   for (const TextureImage& image : scene.images) {

@@ -23,19 +23,24 @@ struct DeviceTextures {
   std::vector<uint4> info;      // texture_info: one per Scene::textures entry
   std::vector<uint32_t> texels;  // texels: every Scene::images entry once, in order
   std::vector<float4> uvs;       // triangle_uvs: 2 per triangle, leaf order
+  std::vector<float> srgb_table;  // texture_srgb_table: 256 entries
 
-  // Device bytes of the three buffers (what the memory report counts for textures).
+  // Device bytes of the four buffers (what the memory report counts for textures).
   uint64_t bytes() const {
-    return info.size() * sizeof(uint4) + texels.size() * sizeof(uint32_t) + uvs.size() * sizeof(float4);
+    return info.size() * sizeof(uint4) + texels.size() * sizeof(uint32_t) + uvs.size() * sizeof(float4) +
+           srgb_table.size() * sizeof(float);
   }
 };
 
-// Texel words and descriptors of the scene's images and textures. Throws InputError when an
+// The linear value of an 8-bit sRGB code (IEC 61966-2-1), computed in double and rounded once.
+float srgb_code_to_linear(int code);
+
+// Texel words, descriptors and the sRGB table of the scene's images and textures. Throws InputError when an
 // image's texels do not match its size or a texture names no image, or the texels of all images
 // together exceed 2^32 (32-bit offsets).
 void pack_texture_images(const Scene& scene, DeviceTextures* out);
 
-// All three arrays for a scene and its BVH (empty when Scene::has_textures() is false).
+// All four arrays for a scene and its BVH (empty when Scene::has_textures() is false).
 DeviceTextures pack_scene_textures(const Scene& scene, const SceneBvh& bvh);
 
 // The texture fields of a device material (Material::texture, the flags in diffuse.w).

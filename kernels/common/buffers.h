@@ -23,6 +23,7 @@
   X(scene, float4, triangle_uvs, uploaded, 1) /* 2 per triangle in leaf order: (u0, v0, u1, v1), (u2, v2) */\
   X(scene, uint4, texture_info, uploaded, 1)  /* per texture: first texel, width, height, wrap bits */      \
   X(scene, uint, texels, uploaded, 1)         /* RGBA8 of every image, top row first; rgb sRGB-encoded */   \
+  X(scene, float, texture_srgb_table, uploaded, 1) /* 256: the linear value of each 8-bit sRGB code */      \
   /* S5 camera: one shading point per pixel and mirror depth, [depth * pixels + pixel] */                  \
   X(frame, float4, shade_position, shading_points, 1) /* xyz, w = material index as int bits, -1: none */  \
   X(frame, float4, shade_normal, shading_points, 1)   /* xyz geometric normal facing the viewer, w = the */ \

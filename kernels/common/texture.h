@@ -9,7 +9,10 @@
    top first, so v = 0 is an image's top row (glTF's convention; the OBJ loader flips vt's v);
    triangle_uvs holds 2 float4 per leaf-order triangle, (u0, v0, u1, v1), (u2, v2, 0, 0).
    Colour channels are sRGB-encoded and linearised texel by texel before the bilinear blend, so
-   the filter averages reflectances, not encoded values; alpha is linear. There are no mipmaps:
+   the filter averages reflectances, not encoded values; alpha is linear. The linear value of each
+   8-bit code comes from a 256-entry table (texture_srgb_table, computed in double on the host):
+   a load instead of a pow per channel and texel, which made Sponza's camera pass 2.6 times as
+   slow on PoCL (docs/scene-format.md has the measurement). There are no mipmaps:
    a distant textured surface is sampled at one point per shading point, which the film's passes
    (and the camera pass's one ray per pixel) do not average away: aliasing, not bias. */
 #ifndef PM_TEXTURE_H
@@ -18,12 +21,6 @@
 #include "brdf.h"
 #include "kernel_globals.h"
 #include "triangles.h"
-
-/* The sRGB transfer function's inverse (IEC 61966-2-1) for an encoded value c in [0, 1]. */
-PM_DEVICE float texture_srgb_to_linear(float c)
-{
-  return c <= 0.04045f ? c * (1.0f / 12.92f) : pm_powf((c + 0.055f) * (1.0f / 1.055f), 2.4f);
-}
 
 /* Texel column (or row) i of an image `size` texels wide under a wrap mode, in [0, size). i is
    a whole number in float, already limited to +-2^24, so the arithmetic stays exact. */
@@ -42,25 +39,22 @@ PM_DEVICE int texture_wrap(float i, uint size, uint mode)
   return pm_min_i(pm_max_i((int)m, 0), (int)size - 1);
 }
 
-/* Texel (x, y) of the image `info` describes: rgb linearised when srgb is set, else as stored
-   (over 255); alpha as stored. */
-PM_DEVICE float4 texture_texel(PM_GLOBAL const uint* texels, uint4 info, int x, int y, int srgb)
+/* Texel (x, y) of the image `info` describes: rgb linearised through srgb_table when srgb is
+   set, else as stored (over 255); alpha as stored. */
+PM_DEVICE float4 texture_texel(PM_GLOBAL const uint* texels, PM_GLOBAL const float* srgb_table, uint4 info, int x, int y,
+                               int srgb)
 {
   uint t = PM_LOAD(&texels[info.x + (uint)y * info.y + (uint)x]);
-  float r = (float)(t & 255u) * (1.0f / 255.0f), g = (float)((t >> 8) & 255u) * (1.0f / 255.0f);
-  float b = (float)((t >> 16) & 255u) * (1.0f / 255.0f), a = (float)(t >> 24) * (1.0f / 255.0f);
-  if (srgb) {
-    r = texture_srgb_to_linear(r);
-    g = texture_srgb_to_linear(g);
-    b = texture_srgb_to_linear(b);
-  }
-  return PM_MAKE_FLOAT4(r, g, b, a);
+  uint r = t & 255u, g = (t >> 8) & 255u, b = (t >> 16) & 255u;
+  float a = (float)(t >> 24) * (1.0f / 255.0f);
+  if (srgb) return PM_MAKE_FLOAT4(PM_LOAD(&srgb_table[r]), PM_LOAD(&srgb_table[g]), PM_LOAD(&srgb_table[b]), a);
+  return PM_MAKE_FLOAT4((float)r * (1.0f / 255.0f), (float)g * (1.0f / 255.0f), (float)b * (1.0f / 255.0f), a);
 }
 
 /* Bilinear lookup of texture `texture` at (u, v): the four texels around u * width - 0.5,
    v * height - 0.5 (texel centres at half-integers), wrapped by the texture's modes. */
-PM_DEVICE float4 texture_sample(PM_GLOBAL const uint4* texture_info, PM_GLOBAL const uint* texels, uint texture,
-                                float u, float v, int srgb)
+PM_DEVICE float4 texture_sample(PM_GLOBAL const uint4* texture_info, PM_GLOBAL const uint* texels,
+                                PM_GLOBAL const float* srgb_table, uint texture, float u, float v, int srgb)
 {
   uint4 info = PM_LOAD(&texture_info[texture]);
   if (!pm_isfinite(u)) u = 0.0f;
@@ -74,8 +68,8 @@ PM_DEVICE float4 texture_sample(PM_GLOBAL const uint4* texture_info, PM_GLOBAL c
   uint wrap_u = info.w & 255u, wrap_v = (info.w >> 8) & 255u;
   int xa = texture_wrap(x0, info.y, wrap_u), xb = texture_wrap(x0 + 1.0f, info.y, wrap_u);
   int ya = texture_wrap(y0, info.z, wrap_v), yb = texture_wrap(y0 + 1.0f, info.z, wrap_v);
-  float4 t00 = texture_texel(texels, info, xa, ya, srgb), t10 = texture_texel(texels, info, xb, ya, srgb);
-  float4 t01 = texture_texel(texels, info, xa, yb, srgb), t11 = texture_texel(texels, info, xb, yb, srgb);
+  float4 t00 = texture_texel(texels, srgb_table, info, xa, ya, srgb), t10 = texture_texel(texels, srgb_table, info, xb, ya, srgb);
+  float4 t01 = texture_texel(texels, srgb_table, info, xa, yb, srgb), t11 = texture_texel(texels, srgb_table, info, xb, yb, srgb);
   float w00 = (1.0f - fx) * (1.0f - fy), w10 = fx * (1.0f - fy), w01 = (1.0f - fx) * fy, w11 = fx * fy;
   return PM_MAKE_FLOAT4(w00 * t00.x + w10 * t10.x + w01 * t01.x + w11 * t11.x,
                         w00 * t00.y + w10 * t10.y + w01 * t01.y + w11 * t11.y,
@@ -122,7 +116,7 @@ PM_DEVICE Material surface_material(const KernelGlobals* kg, int material_index,
   float b1, b2, u, v;
   scene_triangle_barycentrics(kg->triangles, tri, pos, &b1, &b2);
   triangle_uv_at(kg->triangle_uvs, tri, b1, b2, &u, &v);
-  float4 t = texture_sample(kg->texture_info, kg->texels, texture - 1u, u, v, 1);
+  float4 t = texture_sample(kg->texture_info, kg->texels, kg->texture_srgb_table, texture - 1u, u, v, 1);
   material_apply_tint(&m, vec3(t.x, t.y, t.z));
   return m;
 }
@@ -137,7 +131,7 @@ PM_DEVICE int material_alpha_visible(const KernelGlobals* kg, const Material* m,
   if (mask != 0u) {
     float u, v;
     triangle_uv_at(kg->triangle_uvs, tri, b1, b2, &u, &v);
-    float4 t = texture_sample(kg->texture_info, kg->texels, mask - 1u, u, v, 0);
+    float4 t = texture_sample(kg->texture_info, kg->texels, kg->texture_srgb_table, mask - 1u, u, v, 0);
     uint channel = (material_flags(m) >> PM_MATERIAL_ALPHA_CHANNEL_SHIFT) & 3u;
     alpha *= channel == 0u ? t.x : channel == 1u ? t.y : channel == 2u ? t.z : t.w;
   }

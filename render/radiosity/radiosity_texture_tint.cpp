@@ -80,8 +80,8 @@ std::vector<float4> radiosity_texture_tints(const Scene& scene, const RefinedMes
       const double b[3] = {1.0 - s[0] - s[1], s[0], s[1]};
       const float u = float(b[0] * uv[0][0] + b[1] * uv[1][0] + b[2] * uv[2][0]);
       const float v = float(b[0] * uv[0][1] + b[1] * uv[1][1] + b[2] * uv[2][1]);
-      const float4 t = texture_sample(textures.info.data(), textures.texels.data(), uint32_t(material.base_color_texture),
-                                      u, v, 1);
+      const float4 t = texture_sample(textures.info.data(), textures.texels.data(), textures.srgb_table.data(),
+                                      uint32_t(material.base_color_texture), u, v, 1);
       for (int k = 0; k < 3; ++k) {
         corner_sum[k].r += a * b[k] * t.x;
         corner_sum[k].g += a * b[k] * t.y;

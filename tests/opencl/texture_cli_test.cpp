@@ -61,10 +61,11 @@ TEST_F(TextureCli, BenchReportsTheTexturesDeviceMemory) {
   const test::ProcessResult r = pmrender("bench --backend opencl --photons 1000 --warmup 0 --repeat 1 --json " +
                                          json.string() + " " + (dir_ / "tiled.json").string());
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-  // 16 texels of 4 bytes, one 16-byte descriptor, two triangles' texture coordinates (64 bytes).
+  // 16 texels of 4 bytes, one 16-byte descriptor, two triangles' texture coordinates (64 bytes),
+  // the 256-entry sRGB table.
   EXPECT_NE(r.out.find("textures: 1 images, 16 texels, 0.0 MiB on the device"), std::string::npos) << r.out;
   const nlohmann::json j = nlohmann::json::parse(test::read_text(json));
-  EXPECT_EQ(j["memory"]["texture_bytes"].get<uint64_t>(), 16u * 4u + 16u + 2u * 32u);
+  EXPECT_EQ(j["memory"]["texture_bytes"].get<uint64_t>(), 16u * 4u + 16u + 2u * 32u + 256u * 4u);
   EXPECT_EQ(j["scene"]["texels"].get<uint64_t>(), 16u);
 }
 

@@ -88,7 +88,7 @@ TEST(TextureRender, CameraPassDirectLightAndAlbedoLayerShowTheTexelsAlbedos) {
   const FrameImage image = textured_renderer.render_frame(0);
   Renderer white_renderer(device, white, settings);
   const FrameImage reference = white_renderer.render_frame(0);
-  EXPECT_EQ(textured_renderer.texture_bytes(), 64u * 64u * 4u + 16u + 2u * 32u);
+  EXPECT_EQ(textured_renderer.texture_bytes(), 64u * 64u * 4u + 16u + 2u * 32u + 256u * 4u);
   EXPECT_EQ(white_renderer.texture_bytes(), 0u);
 
   DeviceTextures host;
@@ -103,7 +103,7 @@ TEST(TextureRender, CameraPassDirectLightAndAlbedoLayerShowTheTexelsAlbedos) {
     const float u = (position->values[3 * i] + 1) / 2, v = (position->values[3 * i + 2] + 1) / 2;
     ASSERT_GT(lit[3 * i + 1], 0.0f) << "pixel " << i << " sees no lit floor";
     // Every pixel, blends across tile edges included: the host's lookup at the pixel's point.
-    const float4 t = texture_sample(host.info.data(), host.texels.data(), 0, u, v, 1);
+    const float4 t = texture_sample(host.info.data(), host.texels.data(), host.srgb_table.data(), 0, u, v, 1);
     const float expected[3] = {t.x, t.y, t.z};
     for (int c = 0; c < 3; ++c) {
       EXPECT_NEAR(direct[3 * i + c] / lit[3 * i + c], expected[c], 2e-3) << "pixel " << i << " channel " << c;
@@ -135,8 +135,8 @@ Scene uniformly_textured_room(bool textured) {
       s.materials[m].base_color_texture = int(add_image(s, 1, 1, [&](int, int) { return codes[m]; }));
     } else {
       // The very floats the device's lookup gives.
-      s.materials[m].diffuse = {texture_srgb_to_linear(codes[m][0] / 255.0f), texture_srgb_to_linear(codes[m][1] / 255.0f),
-                                texture_srgb_to_linear(codes[m][2] / 255.0f)};
+      s.materials[m].diffuse = {srgb_code_to_linear(codes[m][0]), srgb_code_to_linear(codes[m][1]),
+                                srgb_code_to_linear(codes[m][2])};
     }
   }
   return s;

@@ -25,20 +25,31 @@ uint32_t rgba(int r, int g, int b, int a) { return uint32_t(r) | uint32_t(g) << 
 struct HostTexture {
   std::vector<uint4> info;
   std::vector<uint32_t> texels;
+  std::vector<float> srgb_table;
   HostTexture(int width, int height, std::vector<uint32_t> words, uint32_t wrap_u, uint32_t wrap_v)
       : texels(std::move(words)) {
     info.push_back(uint4{0, uint32_t(width), uint32_t(height), wrap_u | wrap_v << 8});
+    for (int code = 0; code < 256; ++code) srgb_table.push_back(srgb_code_to_linear(code));
   }
-  float4 sample(float u, float v, int srgb = 1) const { return texture_sample(info.data(), texels.data(), 0, u, v, srgb); }
+  float4 sample(float u, float v, int srgb = 1) const {
+    return texture_sample(info.data(), texels.data(), srgb_table.data(), 0, u, v, srgb);
+  }
 };
 
-TEST(TextureSampling, SrgbDecodingMatchesTheStandard) {
-  EXPECT_EQ(texture_srgb_to_linear(0.0f), 0.0f);
-  EXPECT_NEAR(texture_srgb_to_linear(1.0f), 1.0f, 1e-6);
-  for (int code : {1, 10, 11, 64, 128, 200, 254})
-    EXPECT_NEAR(texture_srgb_to_linear(code / 255.0f), test::srgb_to_linear(code), 2e-6) << code;
-  // The two pieces meet at the threshold (no jump of more than float rounding).
-  EXPECT_NEAR(texture_srgb_to_linear(0.04045f), texture_srgb_to_linear(0.040451f), 1e-6);
+TEST(TextureSampling, SrgbTableMatchesTheStandard) {
+  Scene scene;
+  DeviceTextures packed;
+  pack_texture_images(scene, &packed);  // the table the device gets, even without images
+  ASSERT_EQ(packed.srgb_table.size(), 256u);
+  EXPECT_EQ(packed.srgb_table[0], 0.0f);
+  EXPECT_EQ(packed.srgb_table[255], 1.0f);
+  for (int code = 0; code < 256; ++code) {
+    EXPECT_FLOAT_EQ(packed.srgb_table[size_t(code)], float(test::srgb_to_linear(code))) << code;
+    if (code > 0) EXPECT_GT(packed.srgb_table[size_t(code)], packed.srgb_table[size_t(code - 1)]) << code;
+  }
+  // Code 10 lies on the linear piece (10 / 255 < 0.04045), 11 on the power piece.
+  EXPECT_NEAR(packed.srgb_table[10], 10.0 / 255.0 / 12.92, 1e-9);
+  EXPECT_NEAR(packed.srgb_table[11], std::pow((11.0 / 255.0 + 0.055) / 1.055, 2.4), 1e-9);
 }
 
 TEST(TextureSampling, TexelCentresAreExactAndTheFilterBlendsLinearValues) {
@@ -118,6 +129,7 @@ struct TexturedSquare {
     kg.triangle_uvs = textures.uvs.data();
     kg.texture_info = textures.info.data();
     kg.texels = textures.texels.data();
+    kg.texture_srgb_table = textures.srgb_table.data();
   }
   int leaf_of(uint32_t original) const {
     for (size_t i = 0; i < bvh.triangle_count(); ++i)
