@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 
+#include "kernels/common/compat_host.h"
 #include "kernels/common/texture.h"
 
 namespace pm {
