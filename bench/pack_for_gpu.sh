@@ -18,8 +18,9 @@
 #                                 the speed/accuracy suite and its Mitsuba peer (docs/tradeoff.md)
 #   OUT_DIR/bench/accuracy_suite.sh, OUT_DIR/golden/scenes/: references and biases (docs/accuracy.md)
 #   OUT_DIR/bench/scenes/*.json   the bench scene files, paths rewritten to ../../shared/scenes/
-#   OUT_DIR/shared.tar.xz         the OBJ and MTL files they name (no textures: nothing reads them),
-#                                 as shared/scenes/...; env.sh unpacks it on first use
+#   OUT_DIR/shared.tar.xz         the OBJ and MTL files they name and the images of the MTL files'
+#                                 map_Kd and map_d statements, as shared/scenes/...; env.sh unpacks
+#                                 it on first use
 #   OUT_DIR/COMMIT                the commit the binaries were built from
 #
 # On the GPU machine, from the folder that holds OUT_DIR:
@@ -70,7 +71,18 @@ for json in "$repo"/bench/scenes/*.json; do
     objdir=$(dirname "$src")
     mapfile -t mtls < <(tr -d '\r' <"$src" | awk '$1 == "mtllib" { for (i = 2; i <= NF; ++i) print $i }')
     for mtl in ${mtls[@]+"${mtls[@]}"}; do
-      if [ -f "$objdir/$mtl" ]; then cp "$objdir/$mtl" "$out/shared/scenes/$(dirname "$rel")/"; fi
+      [ -f "$objdir/$mtl" ] || continue
+      cp "$objdir/$mtl" "$out/shared/scenes/$(dirname "$rel")/"
+      # The images of its map_Kd and map_d statements (the last word: options come first),
+      # relative to the MTL file's folder, to the same place beside the MTL in the bundle.
+      mtldir=$(dirname "$objdir/$mtl")
+      mapfile -t images < <(tr -d '\r' <"$objdir/$mtl" | awk '$1 == "map_Kd" || $1 == "map_d" { print $NF }' | sort -u)
+      for image in ${images[@]+"${images[@]}"}; do
+        [ -f "$mtldir/$image" ] || { echo "pack_for_gpu.sh: $objdir/$mtl: image '$image' does not exist" >&2; exit 2; }
+        dest=$out/shared/scenes/$(dirname "$rel")/$image
+        mkdir -p "$(dirname "$dest")"
+        cp "$mtldir/$image" "$dest"
+      done
     done
   done
 done

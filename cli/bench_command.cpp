@@ -137,6 +137,12 @@ int run_bench(const BenchOptions& o) {
   std::printf("device: %s --device %d: %s [%s; driver %s]\n", info.backend.c_str(), info.index, info.name.c_str(),
               info.platform.c_str(), info.driver.c_str());
   std::printf("settings: %s\n", describe.c_str());
+  uint64_t texels = 0;
+  for (const TextureImage& image : scene.images) texels += uint64_t(image.width) * uint64_t(image.height);
+  const uint64_t texture_bytes = renderer->texture_bytes();
+  if (scene.has_textures())
+    std::printf("textures: %zu images, %.0f texels, %.1f MiB on the device (texels, descriptors, texture coordinates, sRGB table)\n",
+                scene.images.size(), double(texels), double(texture_bytes) / (1024.0 * 1024.0));
   std::printf("frames: %zu warmup, %zu measured (%d-%d%s)\n\n", plan.warmup.size(), plan.measured.size(),
               plan.measured.front(), plan.measured.back(), o.frames.empty() ? "" : ", from --frames");
   std::fflush(stdout);
@@ -224,7 +230,9 @@ int run_bench(const BenchOptions& o) {
     j["scene"] = {{"name", scene.name},
                   {"source", scene.source},
                   {"triangles", scene.triangle_count()},
-                  {"lights", scene.lights.size()}};
+                  {"lights", scene.lights.size()},
+                  {"texture_images", scene.images.size()},
+                  {"texels", texels}};
     Json s = {{"describe", describe},
               {"width", settings.width > 0 ? settings.width : scene.camera.width},
               {"height", settings.height > 0 ? settings.height : scene.camera.height},
@@ -261,6 +269,7 @@ int run_bench(const BenchOptions& o) {
     for (const MethodStats::Entry& e : counted.method.entries) counted_stats[e.name] = e.value;
     j["counted"] = {{"frame", base.frames.back()}, {"stats", counted_stats}};
     j["memory"] = {{"peak_bytes", peak},
+                   {"texture_bytes", texture_bytes},
                    {"unit", work.first},
                    {"bytes_per_unit", work.second > 0 ? Json(double(peak) / work.second) : Json(nullptr)}};
     Json per_frame = Json::array();

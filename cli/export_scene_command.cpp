@@ -26,6 +26,10 @@ int run_export(const ExportOptions& o) {
   if (o.output.size() < 6 || o.output.substr(o.output.size() - 5) != ".json")
     throw InputError("-o: expected a file name ending in .json, got '" + o.output + "'");
   const Scene scene = o.scene_path.empty() ? builtin_cornell_box() : load_scene_file(o.scene_path);
+  // The export's JSON materials are plain colours: a textured scene would come out different.
+  if (scene.has_textures())
+    throw InputError(scene.source + ": textures and alpha masks cannot be exported (export-scene writes plain " +
+                     "JSON materials, and the other renderer would see a different scene)");
   const std::string problem = camera_problem(camera_at_frame(scene, o.frame));
   if (!problem.empty()) throw InputError(scene.source + ": camera at frame " + std::to_string(o.frame) + ": " + problem);
   export_scene(scene, o.frame, o.output);

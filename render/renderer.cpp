@@ -15,6 +15,7 @@
 #include "render/scene_bvh.h"
 #include "render/scene_frame.h"
 #include "render/scene_scale.h"
+#include "render/scene_textures.h"
 
 namespace pm {
 
@@ -75,6 +76,7 @@ std::vector<Material> to_device_materials(const Scene& scene) {
     gpu.diffuse = to_float4(m.diffuse);
     gpu.glossy = float4{m.glossy.x, m.glossy.y, m.glossy.z, m.glossy_exponent};
     gpu.mirror = to_float4(m.mirror);
+    set_material_textures(m, &gpu);
     materials.push_back(gpu);
   }
   return materials;
@@ -116,7 +118,18 @@ void Renderer::upload_scene() {
   buffers_.upload(BufferSlot::scene_nodes, bvh.nodes);
   buffers_.upload(BufferSlot::triangles, bvh.triangles);
   buffers_.upload(BufferSlot::materials, to_device_materials(scene_));
+  // Textures once per scene; an untextured scene leaves the three buffers unallocated (null).
+  const DeviceTextures textures = pack_scene_textures(scene_, bvh);
+  if (!textures.info.empty()) buffers_.upload(BufferSlot::texture_info, textures.info);
+  if (!textures.texels.empty()) buffers_.upload(BufferSlot::texels, textures.texels);
+  if (!textures.uvs.empty()) buffers_.upload(BufferSlot::triangle_uvs, textures.uvs);
+  if (!textures.srgb_table.empty()) buffers_.upload(BufferSlot::texture_srgb_table, textures.srgb_table);
   set_lights(scene_.lights);
+}
+
+uint64_t Renderer::texture_bytes() const {
+  return buffers_[BufferSlot::texture_info].bytes() + buffers_[BufferSlot::texels].bytes() +
+         buffers_[BufferSlot::triangle_uvs].bytes() + buffers_[BufferSlot::texture_srgb_table].bytes();
 }
 
 void Renderer::set_lights(const std::vector<LightDesc>& lights) {

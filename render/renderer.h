@@ -121,6 +121,9 @@ class Renderer {
   Device& device() const { return device_; }
   // Every device buffer of the pipeline, for tests and tools that inspect intermediate results.
   const BufferTable& buffers() const { return buffers_; }
+  // Device bytes of the scene's textures: texels, descriptors, texture coordinates and the sRGB
+  // table (0 for an untextured scene, which uploads none).
+  uint64_t texture_bytes() const;
   // The method of this renderer, or null (direct light only).
   IndirectMethod* method() const { return method_.get(); }
   // The settings as resolved for this scene, one line for EXR headers and logs.

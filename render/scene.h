@@ -1,6 +1,6 @@
 // The in-memory scene every loader produces and the renderer consumes: triangles in metres,
-// modified-Phong materials, isotropic point lights and a pinhole camera. Format-independent:
-// scene_io/ fills it from JSON+OBJ or glTF; nothing here knows about files. Cameras and lights
+// modified-Phong materials with their textures, isotropic point lights and a pinhole camera.
+// Format-independent: scene_io/ fills it from JSON+OBJ or glTF; nothing here knows about files. Cameras and lights
 // may carry keyframe tracks (SceneAnimation); a scene without them is one still frame.
 #pragma once
 
@@ -16,6 +16,30 @@ struct Float3 {
   float x = 0, y = 0, z = 0;
 };
 
+// Texture coordinates, glTF's convention: (0, 0) is the top-left corner of an image, v grows
+// downwards (the OBJ loader flips vt's v).
+struct Float2 {
+  float u = 0, v = 0;
+};
+
+// A decoded image: width x height texels, 4 bytes each (RGBA), rows top first. Colour is
+// sRGB-encoded as stored in the file; alpha (255 where the file has none) is linear.
+struct TextureImage {
+  std::string source;  // the file (or "file.gltf: images[2]") it was decoded from, for messages
+  int width = 0, height = 0;
+  int file_channels = 0;  // channels the file holds (1 grey, 2 grey + alpha, 3 RGB, 4 RGBA)
+  std::vector<uint8_t> rgba;
+};
+
+enum class TextureWrap : uint8_t { repeat, clamp_to_edge, mirrored_repeat };
+
+// An image with the wrap modes it is sampled with (glTF: a texture and its sampler). Lookups are
+// always bilinear (kernels/common/texture.h).
+struct TextureRef {
+  uint32_t image = 0;  // index into Scene::images
+  TextureWrap wrap_u = TextureWrap::repeat, wrap_v = TextureWrap::repeat;
+};
+
 // Modified Phong (Lafortune & Willems 1994) plus a perfect mirror; reflectances in [0,1] per
 // channel with diffuse + glossy + mirror <= 1.
 struct MaterialDesc {
@@ -24,6 +48,18 @@ struct MaterialDesc {
   Float3 glossy{0, 0, 0};
   float glossy_exponent = 1.0f;
   Float3 mirror{0, 0, 0};
+  // Base-colour texture (index into Scene::textures, -1: none): its linear colour multiplies
+  // diffuse, and with texture_tints_specular (glTF's base colour) glossy and mirror as well.
+  int base_color_texture = -1;
+  bool texture_tints_specular = false;
+  // Alpha mask (glTF alphaMode MASK, MTL map_d): a point is there where alpha_factor * the
+  // alpha_channel (0 red .. 3 alpha) of alpha_texture (1 without one, -1) >= alpha_cutoff;
+  // elsewhere every ray passes through it.
+  bool alpha_mask = false;
+  int alpha_texture = -1;
+  int alpha_channel = 3;
+  float alpha_factor = 1.0f;
+  float alpha_cutoff = 0.5f;
 };
 
 // Isotropic point light. position in metres, power in watts per RGB channel.
@@ -84,11 +120,24 @@ struct Scene {
   std::vector<uint32_t> triangle_object;
   std::vector<std::string> object_names;  // by object index, as loaded (may be empty)
   std::vector<MaterialDesc> materials;
+  // Textures: the decoded images, the (image, wrap) pairs materials refer to, and three texture
+  // coordinates per triangle (in triangle order). Triangles past triangle_uvs' end (all of them
+  // when it is empty) have (0, 0) at every corner.
+  std::vector<TextureImage> images;
+  std::vector<TextureRef> textures;
+  std::vector<Float2> triangle_uvs;
   std::vector<LightDesc> lights;
   CameraDesc camera;            // the camera where no camera track says otherwise
   SceneAnimation animation;     // disabled by default: one still frame
 
   size_t triangle_count() const { return indices.size() / 3; }
+  // True when some material has a base-colour texture or an alpha mask: the renderer then
+  // uploads texture coordinates and texels.
+  bool has_textures() const {
+    for (const MaterialDesc& m : materials)
+      if (m.base_color_texture >= 0 || m.alpha_mask) return true;
+    return false;
+  }
 };
 
 // The object of triangle t: triangle_object[t], or past its end the object after the named ones

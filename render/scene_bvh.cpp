@@ -320,7 +320,10 @@ class Builder {
       const Float3& v0 = scene_.positions[scene_.indices[3 * tri + 0]];
       const Float3& v1 = scene_.positions[scene_.indices[3 * tri + 1]];
       const Float3& v2 = scene_.positions[scene_.indices[3 * tri + 2]];
-      out_.triangles[3 * i + 0] = float4{v0.x, v0.y, v0.z, PM_AS_FLOAT(scene_.triangle_material[tri])};
+      // Masked materials flag their triangles, so traversal tests the mask on those alone.
+      uint32_t material = scene_.triangle_material[tri];
+      if (material < scene_.materials.size() && scene_.materials[material].alpha_mask) material |= PM_TRIANGLE_MASKED;
+      out_.triangles[3 * i + 0] = float4{v0.x, v0.y, v0.z, PM_UINT_AS_FLOAT(material)};
       out_.triangles[3 * i + 1] = float4{v1.x, v1.y, v1.z, PM_AS_FLOAT(tri)};
       const uint32_t object = scene_object_of(scene_, tri);
       out_.triangles[3 * i + 2] = float4{v2.x, v2.y, v2.z, PM_AS_FLOAT(object)};
@@ -349,6 +352,10 @@ void validate(const Scene& scene) {
   if (scene.triangle_material.size() != n)
     throw InputError("scene '" + scene.name + "': " + std::to_string(scene.triangle_material.size()) +
                      " triangle materials for " + std::to_string(n) + " triangles");
+  for (uint32_t material : scene.triangle_material)
+    if (material > PM_TRIANGLE_MATERIAL_BITS)
+      throw InputError("scene '" + scene.name + "': material index " + std::to_string(material) +
+                       " is above the triangle records' limit " + std::to_string(PM_TRIANGLE_MATERIAL_BITS));
   if (scene.triangle_object.size() > n)
     throw InputError("scene '" + scene.name + "': " + std::to_string(scene.triangle_object.size()) +
                      " triangle objects for " + std::to_string(n) + " triangles");

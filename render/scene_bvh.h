@@ -42,7 +42,8 @@ constexpr int kSceneBvhMaxLeafSize = 8;
 // The traversal should nevertheless use a robust min/max slab test (Ize 2013).
 //
 // triangles holds 3 float4 per triangle in leaf order:
-//   (v0.xyz, material index as int bits), (v1.xyz, original triangle index as int bits),
+//   (v0.xyz, material index as int bits, | PM_TRIANGLE_MASKED when the material has an alpha
+//   mask), (v1.xyz, original triangle index as int bits),
 //   (v2.xyz, object index as int bits; 0 when the scene has no triangle_object).
 struct SceneBvh {
   std::vector<float4> nodes;

@@ -1,6 +1,7 @@
 // The glTF loader's geometry (scene_io/gltf_loader.h): metallic-roughness materials mapped onto
 // modified Phong (docs/scene-format.md, "glTF scenes"), and the triangle primitives of every mesh
-// node, transformed to world space, appended to the Scene with their materials.
+// node, transformed to world space, appended to the Scene with their materials and, where the
+// material is textured, their texture coordinates.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -54,14 +55,13 @@ MaterialDesc GltfLoader::convert_material(int index) {
     }
   }
   std::vector<std::string> ignored;
-  if (pbr.baseColorTexture.index >= 0) ignored.push_back("baseColorTexture");
+  add_material_textures(index, &desc, &ignored);
   if (pbr.metallicRoughnessTexture.index >= 0) ignored.push_back("metallicRoughnessTexture");
   if (m.normalTexture.index >= 0) ignored.push_back("normalTexture");
   if (m.occlusionTexture.index >= 0) ignored.push_back("occlusionTexture");
   if (m.emissiveTexture.index >= 0) ignored.push_back("emissiveTexture");
   if (m.emissiveFactor.size() == 3 && (m.emissiveFactor[0] > 0 || m.emissiveFactor[1] > 0 || m.emissiveFactor[2] > 0))
     ignored.push_back("emissiveFactor (emissive surfaces do not become lights)");
-  if (m.alphaMode != "OPAQUE") ignored.push_back("alphaMode " + m.alphaMode);
   for (const auto& extension : m.extensions) ignored.push_back(extension.first);
   if (!ignored.empty()) {
     std::string list;
@@ -125,6 +125,12 @@ void GltfLoader::append_primitive(const tinygltf::Primitive& primitive, const st
     material_index[m] = material;
   }
 
+  // A textured material's primitive brings the texture coordinates its texture reads.
+  std::vector<Float2> uvs;
+  auto texcoord_set = material_texcoord_.find(m);
+  if (texcoord_set != material_texcoord_.end() && texcoord_set->second >= 0)
+    uvs = read_texcoords(primitive, texcoord_set->second, where, vertex_count, m);
+
   const size_t base = scene.positions.size();
   if (base + vertex_count > UINT32_MAX) fail(where, "too many vertices in the scene for 32-bit indices");
   for (size_t v = 0; v < vertex_count; ++v) {
@@ -140,6 +146,10 @@ void GltfLoader::append_primitive(const tinygltf::Primitive& primitive, const st
     if (is_degenerate_triangle(scene.positions[a], scene.positions[b], scene.positions[c])) {
       ++dropped;
       continue;
+    }
+    if (!uvs.empty()) {
+      scene.triangle_uvs.resize(3 * scene.triangle_count());  // earlier untextured triangles: (0, 0)
+      for (size_t k = 0; k < 3; ++k) scene.triangle_uvs.push_back(uvs[triangles[t + k]]);
     }
     scene.indices.insert(scene.indices.end(), {a, b, c});
     scene.triangle_material.push_back(material);

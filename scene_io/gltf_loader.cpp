@@ -1,5 +1,5 @@
-// The glTF loader's first steps (scene_io/gltf_loader.h): tinygltf parses the file (image
-// decoding disabled: pmrender has no textures), then extras.pmrender, the node hierarchy of the
+// The glTF loader's first steps (scene_io/gltf_loader.h): tinygltf parses the file (images kept
+// encoded: gltf_textures.cpp decodes the used ones), then extras.pmrender, the node hierarchy of the
 // chosen scene, typed accessor reads with every index and range checked, and the animation
 // channels with the node transforms they drive.
 #include <algorithm>
@@ -32,8 +32,13 @@ std::string str(double v) {
 
 namespace {
 
-// tinygltf decodes images unless told otherwise; pmrender has no textures, so it takes none.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+// tinygltf would decode every image with its own limits; pmrender keeps a URI image's encoded
+// bytes (file or data URI) and decodes those its materials use (gltf_textures.cpp), with its own
+// limits and messages. A bufferView image is read from its buffer there, bounds checked first.
+bool keep_encoded_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                        const unsigned char* bytes, int size, void*) {
+  if (image->bufferView < 0 && bytes && size > 0) image->image.assign(bytes, bytes + size);
+  image->as_is = true;
   return true;
 }
 
@@ -44,7 +49,7 @@ void GltfLoader::parse_file() {
 
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks(regular_file_callbacks(&path_));
-  loader.SetImageLoader(&skip_image, nullptr);
+  loader.SetImageLoader(&keep_encoded_image, nullptr);
   loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
   std::string err, warn;
   std::string ext = fs::path(path_).extension().string();

@@ -1,6 +1,7 @@
-// Internal to scene_io: the glTF 2.0 loader's state and steps, shared by the three files that
+// Internal to scene_io: the glTF 2.0 loader's state and steps, shared by the four files that
 // implement them: gltf_loader.cpp (the file, extras.pmrender, the node hierarchy, accessors and
-// animation channels), gltf_geometry.cpp (materials and mesh primitives) and gltf_scene.cpp (the
+// animation channels), gltf_geometry.cpp (materials and mesh primitives), gltf_textures.cpp
+// (base-colour textures, images, alpha masks, texture coordinates) and gltf_scene.cpp (the
 // camera, the lights, their animation and the Scene). The public entry is gltf_scene.h.
 #pragma once
 
@@ -17,6 +18,7 @@
 #include "scene_io/gltf_scene.h"
 #include "scene_io/load_error.h"
 #include "scene_io/scene_file.h"
+#include "scene_io/texture_files.h"
 
 namespace pm {
 namespace gltf {
@@ -57,6 +59,14 @@ class GltfLoader {
   void append_primitive(const tinygltf::Primitive& primitive, const std::string& where, const Mat4& world,
                         Scene& scene, std::map<int, uint32_t>& material_index);
   MaterialDesc convert_material(int index);
+  // Textures: the material's base-colour texture and alpha mask (into desc; features left out
+  // into ignored), the scene image of a glTF image, the scene texture of a textureInfo (-1 when
+  // it has no image pmrender can read), a primitive's texture coordinates.
+  void add_material_textures(int index, MaterialDesc* desc, std::vector<std::string>* ignored);
+  uint32_t decoded_image(int index, const std::string& where);
+  int texture_of(const tinygltf::TextureInfo& info, const std::string& where);
+  std::vector<Float2> read_texcoords(const tinygltf::Primitive& primitive, int set, const std::string& where,
+                                     size_t vertex_count, int material) const;
   int choose_camera_node();
   CameraDesc camera_at(int node, double t, bool animated) const;
   void read_lights(Scene& scene);
@@ -82,6 +92,10 @@ class GltfLoader {
 
   int camera_node_ = -1;
   std::vector<int> light_nodes_;
+
+  SceneTextures* textures_ = nullptr;   // the scene's, while load() runs
+  std::map<int, uint32_t> image_index_;  // glTF image -> Scene::images entry
+  std::map<int, int> material_texcoord_;  // glTF material -> its TEXCOORD set, -1: untextured
 };
 
 }  // namespace gltf

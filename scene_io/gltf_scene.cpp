@@ -181,6 +181,8 @@ Scene GltfLoader::load() {
   read_animations();
 
   Scene scene;
+  SceneTextures textures(&scene);
+  textures_ = &textures;
   scene.source = path_;
   scene.name = !scene_name_.empty() ? scene_name_ : fs::path(path_).stem().string();
   read_meshes(scene);
@@ -203,6 +205,7 @@ Scene GltfLoader::load() {
   const std::string problem = camera_problem(scene.camera);
   if (!problem.empty()) fail(indexed("nodes", size_t(camera_node_)), "camera: " + problem);
 
+  textures_ = nullptr;
   read_lights(scene);
   read_animation(scene);
   // A still scene shows its nodes at rest; a sequence's static values are those of its first frame.

@@ -3,9 +3,11 @@
 #include "scene_io/mtl_material.h"
 
 #include <cmath>
+#include <filesystem>
 #include <sstream>
 
 #include "scene_io/load_error.h"
+#include "scene_io/texture_files.h"
 
 namespace pm {
 namespace {
@@ -30,11 +32,21 @@ void check_non_negative(const MtlMaterial& mtl, const char* field, const float* 
 
 float& channel(Float3& c, int i) { return i == 0 ? c.x : (i == 1 ? c.y : c.z); }
 
+// The texture of a map_Kd or map_d statement, its file relative to the MTL file's folder.
+int mtl_texture(const MtlMaterial& mtl, const MtlTexture& texture, const char* statement, SceneTextures* textures) {
+  namespace fs = std::filesystem;
+  const fs::path file = fs::path(texture.file).is_absolute() ? fs::path(texture.file)
+                                                             : fs::path(mtl.mtl_file).parent_path() / texture.file;
+  const TextureWrap wrap = texture.clamp ? TextureWrap::clamp_to_edge : TextureWrap::repeat;
+  return textures->file_texture(file.string(), texture.file,
+                                mtl.mtl_file + ": material '" + mtl.name + "': " + statement, wrap, wrap);
+}
+
 }  // namespace
 
 bool mtl_illum_is_mirror(int illum) { return illum == 3 || illum == 5 || illum == 7; }
 
-MaterialDesc material_from_mtl(const MtlMaterial& mtl, std::vector<std::string>* warnings) {
+MaterialDesc material_from_mtl(const MtlMaterial& mtl, std::vector<std::string>* warnings, SceneTextures* textures) {
   check_non_negative(mtl, "Kd", mtl.kd, 3);
   check_non_negative(mtl, "Ks", mtl.ks, 3);
   check_non_negative(mtl, "Ns", &mtl.ns, 1);
@@ -51,6 +63,19 @@ MaterialDesc material_from_mtl(const MtlMaterial& mtl, std::vector<std::string>*
     desc.mirror = Float3{0, 0, 0};
   }
   desc.glossy_exponent = mtl.ns;
+  if (textures && !mtl.map_kd.file.empty()) desc.base_color_texture = mtl_texture(mtl, mtl.map_kd, "map_Kd", textures);
+  if (textures && !mtl.map_d.file.empty()) {
+    desc.alpha_mask = true;
+    desc.alpha_texture = mtl_texture(mtl, mtl.map_d, "map_d", textures);
+    desc.alpha_cutoff = kMtlAlphaCutoff;
+    const char c = mtl.map_d.channel;
+    if (c == 'r' || c == 'g' || c == 'b') {
+      desc.alpha_channel = c == 'r' ? 0 : c == 'g' ? 1 : 2;
+    } else {
+      const int channels = textures->image_of(desc.alpha_texture).file_channels;
+      desc.alpha_channel = channels == 2 || channels == 4 ? 3 : 0;
+    }
+  }
 
   // Per channel, so a saturated red wall keeps its green and blue untouched.
   std::string scaled_channels;

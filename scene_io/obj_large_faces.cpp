@@ -46,8 +46,10 @@ bool is_convex_polygon(const std::vector<std::array<double, 3>>& positions, cons
   return std::fabs(turning - 2 * M_PI) < 1e-3;
 }
 
-void append_fan(const std::vector<uint32_t>& corners, int32_t usemtl, std::vector<ObjFanTriangle>* out) {
-  for (size_t i = 1; i + 1 < corners.size(); ++i) out->push_back({{corners[0], corners[i], corners[i + 1]}, usemtl});
+void append_fan(const std::vector<uint32_t>& corners, const std::vector<int32_t>& texcoords, int32_t usemtl,
+                std::vector<ObjFanTriangle>* out) {
+  for (size_t i = 1; i + 1 < corners.size(); ++i)
+    out->push_back({{corners[0], corners[i], corners[i + 1]}, usemtl, {texcoords[0], texcoords[i], texcoords[i + 1]}});
 }
 
 }  // namespace pm

@@ -16,7 +16,9 @@ namespace pm {
 // without area counts as convex: its fan has only degenerate triangles, which the loader drops.
 bool is_convex_polygon(const std::vector<std::array<double, 3>>& positions, const std::vector<uint32_t>& corners);
 
-// Appends the fan (c0, ci, ci+1) of the polygon to out, each triangle with the given usemtl slot.
-void append_fan(const std::vector<uint32_t>& corners, int32_t usemtl, std::vector<ObjFanTriangle>* out);
+// Appends the fan (c0, ci, ci+1) of the polygon to out, each triangle with the given usemtl slot
+// and its corners' texture coordinate indices (texcoords: one per corner, -1 for none).
+void append_fan(const std::vector<uint32_t>& corners, const std::vector<int32_t>& texcoords, int32_t usemtl,
+                std::vector<ObjFanTriangle>* out);
 
 }  // namespace pm

@@ -26,6 +26,33 @@ namespace {
 // its index in ObjTextFacts::usemtl_names.
 const char kUsemtlNamesSentinel[] = "<pmrender:usemtl-names>";
 
+MtlTexture mtl_texture(const std::string& file, const tinyobj::texture_option_t& options) {
+  MtlTexture texture;
+  texture.file = file;
+  texture.clamp = options.clamp;
+  texture.channel = options.imfchan;
+  return texture;
+}
+
+// The texture statements of a material that pmrender does not render, for the loader's warning.
+std::vector<std::string> ignored_mtl_statements(const tinyobj::material_t& m) {
+  std::vector<std::string> ignored;
+  const std::pair<const std::string*, const char*> maps[] = {
+      {&m.ambient_texname, "map_Ka"},   {&m.specular_texname, "map_Ks"},  {&m.specular_highlight_texname, "map_Ns"},
+      {&m.bump_texname, "map_bump"},    {&m.displacement_texname, "disp"}, {&m.reflection_texname, "refl"},
+      {&m.roughness_texname, "map_Pr"}, {&m.metallic_texname, "map_Pm"},  {&m.sheen_texname, "map_Ps"},
+      {&m.emissive_texname, "map_Ke"},  {&m.normal_texname, "norm"}};
+  for (const auto& map : maps)
+    if (!map.first->empty()) ignored.push_back(map.second);
+  // Offsets and scales of the texture coordinates are not applied: the image is used as it is.
+  auto transformed = [](const tinyobj::texture_option_t& o) {
+    return o.origin_offset[0] != 0 || o.origin_offset[1] != 0 || o.scale[0] != 1 || o.scale[1] != 1;
+  };
+  if (!m.diffuse_texname.empty() && transformed(m.diffuse_texopt)) ignored.push_back("map_Kd -o/-s");
+  if (!m.alpha_texname.empty() && transformed(m.alpha_texopt)) ignored.push_back("map_d -o/-s");
+  return ignored;
+}
+
 class SceneMtlReader : public tinyobj::MaterialReader {
  public:
   SceneMtlReader(std::string obj_dir, const std::vector<ObjUsemtl>* usemtl_names, bool read_files,
@@ -65,6 +92,9 @@ class SceneMtlReader : public tinyobj::MaterialReader {
       }
       mtl.ns = m.shininess;
       mtl.illum = m.illum;
+      if (!m.diffuse_texname.empty()) mtl.map_kd = mtl_texture(m.diffuse_texname, m.diffuse_texopt);
+      if (!m.alpha_texname.empty()) mtl.map_d = mtl_texture(m.alpha_texname, m.alpha_texopt);
+      mtl.ignored = ignored_mtl_statements(m);
       (*found_)[m.name] = mtl;
     }
     return true;
@@ -135,6 +165,12 @@ ObjMesh load_obj_mesh(const std::string& path, bool read_mtl_files) {
   if (!ok || !err.empty()) throw_input_error("", tinyobj_error_in_file_terms(path, err));
 
   const size_t vertex_count = attrib.vertices.size() / 3;
+  const size_t texcoord_count = attrib.texcoords.size() / 2;
+  // vt's v grows upwards from the image's bottom row; the scene's (glTF's) from its top row.
+  auto texcoord = [&](int index) {
+    if (index < 0 || size_t(index) >= texcoord_count) return Float2{0, 0};  // none, or the tolerated out-of-range index
+    return Float2{attrib.texcoords[2 * size_t(index)], 1.0f - attrib.texcoords[2 * size_t(index) + 1]};
+  };
   mesh.positions.resize(vertex_count);
   for (size_t i = 0; i < vertex_count; ++i) {
     mesh.positions[i] =
@@ -166,6 +202,7 @@ ObjMesh load_obj_mesh(const std::string& path, bool read_mtl_files) {
         continue;
       }
       mesh.indices.insert(mesh.indices.end(), v, v + 3);
+      for (int k = 0; k < 3; ++k) mesh.triangle_uvs.push_back(texcoord(m.indices[corner - 3 + k].texcoord_index));
       const int material = face < m.material_ids.size() ? m.material_ids[face] : -1;
       mesh.triangle_usemtl.push_back(
           material >= 0 && static_cast<size_t>(material) < facts.usemtl_names.size() ? material : -1);
@@ -179,6 +216,7 @@ ObjMesh load_obj_mesh(const std::string& path, bool read_mtl_files) {
       continue;
     }
     mesh.indices.insert(mesh.indices.end(), v, v + 3);
+    for (int k = 0; k < 3; ++k) mesh.triangle_uvs.push_back(texcoord(t.texcoords[k]));
     mesh.triangle_usemtl.push_back(t.usemtl);
   }
   return mesh;

@@ -17,6 +17,7 @@ namespace pm {
 struct ObjMesh {
   std::vector<Float3> positions;                     // as written in the file (scene units)
   std::vector<uint32_t> indices;                     // three per triangle, into positions
+  std::vector<Float2> triangle_uvs;                  // three per triangle (vt, v flipped: 0 = top); (0, 0) without
   std::vector<int32_t> triangle_usemtl;              // index into usemtl_names; -1 before any usemtl
   std::vector<ObjUsemtl> usemtl_names;               // distinct usemtl names with their first line
   std::map<std::string, MtlMaterial> mtl_materials;  // by name; first definition wins

@@ -112,8 +112,8 @@ IndexProblem check_index(const std::string& element, const std::string& kind, co
   return IndexProblem::kNone;
 }
 
-// Out-of-range texture coordinate and normal indices, tolerated because the renderer reads
-// neither (tinyobjloader only stores them): some converted scenes have one vt too few.
+// Out-of-range texture coordinate and normal indices, tolerated because some converted scenes
+// have one vt too few: such a corner's texture coordinates read as (0, 0); normals are unused.
 struct UnusedAttributeIssues {
   size_t count = 0;
   std::string first;  // "<file>: line N: <problem>"
@@ -181,12 +181,35 @@ uint32_t corner_vertex(const std::string& corner, size_t so_far) {
   return uint32_t(index > 0 ? index - 1 : long(so_far) + index);
 }
 
+// The 0-based texture coordinate of a corner that check_corner accepted, -1 when it has none or
+// its index is out of range (the tolerated problem).
+int32_t corner_texcoord(const std::string& corner, size_t total, size_t so_far) {
+  const size_t slash = corner.find('/');
+  if (slash == std::string::npos || slash + 1 >= corner.size() || corner[slash + 1] == '/') return -1;
+  const long index = std::strtol(corner.c_str() + slash + 1, nullptr, 10);
+  if (index > 0 && size_t(index) <= total) return int32_t(index - 1);
+  if (index < 0 && size_t(-index) <= so_far) return int32_t(long(so_far) + index);
+  return -1;
+}
+
+// vt u [v [w]]: one to three finite decimals (tinyobjloader reads "nan" as a number).
+void check_texcoord(const std::string& where, const std::vector<std::string>& values) {
+  if (values.empty() || values.size() > 3)
+    throw_input_error(where, "texture coordinate has " + std::to_string(values.size()) + " values (need u, v and an optional w)");
+  for (const std::string& token : values) {
+    double value = 0;
+    if (!parse_decimal(token, &value) || !std::isfinite(value) || std::fabs(value) > FLT_MAX)
+      throw_input_error(where, "texture coordinate '" + token + "' is not a finite decimal number");
+  }
+}
+
 // A face of more than kLargeFaceCorners corners, decided on once every vertex is known.
 struct LargeFace {
   size_t line = 0;
   size_t text_offset = 0, text_length = 0;  // its line in text_for_tinyobj, without the '\n'
   int32_t usemtl = -1;
   std::vector<uint32_t> corners;
+  std::vector<int32_t> texcoords;
 };
 
 }  // namespace
@@ -287,6 +310,7 @@ ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_
         ++so_far.vertices;
         break;
       case ObjStatement::kTexcoord:
+        check_texcoord(where, split_blanks(line, rest));
         ++so_far.texcoords;
         break;
       case ObjStatement::kNormal:
@@ -306,8 +330,11 @@ ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_
         for (const std::string& corner : corners)
           check_corner(where, element, corner, total, so_far, &unused);
         if (statement == ObjStatement::kFace && corners.size() > kLargeFaceCorners) {
-          LargeFace face{number, facts.text_for_tinyobj.size() - line.size() - 1, line.size(), current_usemtl, {}};
-          for (const std::string& corner : corners) face.corners.push_back(corner_vertex(corner, so_far.vertices));
+          LargeFace face{number, facts.text_for_tinyobj.size() - line.size() - 1, line.size(), current_usemtl, {}, {}};
+          for (const std::string& corner : corners) {
+            face.corners.push_back(corner_vertex(corner, so_far.vertices));
+            face.texcoords.push_back(corner_texcoord(corner, total.texcoords, so_far.texcoords));
+          }
           large_faces.push_back(std::move(face));
         }
         break;
@@ -347,7 +374,7 @@ ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_
   }
   for (const LargeFace& face : large_faces) {
     if (is_convex_polygon(positions, face.corners)) {
-      append_fan(face.corners, face.usemtl, &facts.fan_triangles);
+      append_fan(face.corners, face.texcoords, face.usemtl, &facts.fan_triangles);
       facts.text_for_tinyobj.replace(face.text_offset, face.text_length, face.text_length, ' ');
     } else if (face.corners.size() > kMaxEarClippedCorners) {
       throw_input_error(file_line(obj_path, face.line),
@@ -358,7 +385,7 @@ ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_
   if (unused.count > 0) {
     facts.warnings.push_back(single_line(
         unused.first + (unused.count > 1 ? " (and " + std::to_string(unused.count - 1) + " more)" : "") +
-        "; ignored, since texture coordinates and normals are not used"));
+        "; ignored: such corners get texture coordinates (0, 0), and normals are not used"));
   }
   return facts;
 }

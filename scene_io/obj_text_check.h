@@ -18,8 +18,9 @@ struct ObjUsemtl {
 
 // A triangle of a large convex face, fanned out by check_obj_text itself (see below).
 struct ObjFanTriangle {
-  uint32_t vertices[3];  // 0-based vertex indices
-  int32_t usemtl;        // index into usemtl_names; -1 before any usemtl
+  uint32_t vertices[3];   // 0-based vertex indices
+  int32_t usemtl;         // index into usemtl_names; -1 before any usemtl
+  int32_t texcoords[3];   // 0-based texture coordinate indices; -1: none or out of range
 };
 
 // Faces of more corners than this are not left to tinyobjloader, whose ear clipping takes time
@@ -41,7 +42,8 @@ struct ObjTextFacts {
   std::string text_for_tinyobj;
   // The triangles of large convex faces; their lines are blanked in text_for_tinyobj.
   std::vector<ObjFanTriangle> fan_triangles;
-  // Tolerated problems, one line each: out-of-range texture coordinate or normal indices.
+  // Tolerated problems, one line each: out-of-range texture coordinate or normal indices (such a
+  // corner's texture coordinates read as (0, 0)).
   std::vector<std::string> warnings;
 };
 
@@ -55,11 +57,13 @@ std::vector<std::string> split_obj_lines(const std::string& text);
 // A UTF-8 byte order mark at the start of text is skipped (it would hide the first statement).
 // Throws InputError "<obj_path>: line N: <problem>" for:
 //   vertices without 3 decimal, finite coordinates of magnitude at most kMaxObjCoordinate;
+//   texture coordinates (vt) without 1 to 3 decimal, finite values;
 //   non-convex faces of more than kMaxEarClippedCorners corners;
 //   face/line/point elements with a malformed or zero index, an out-of-range vertex index, or
 //   (faces) fewer than 3 corners; usemtl without a name; and, when check_mtllib is set, an mtllib line
 //   none of whose files can be opened (relative to obj_dir).
-// Out-of-range texture coordinate and normal indices only add a warning: nothing reads them.
+// Out-of-range texture coordinate and normal indices only add a warning (converted scenes in the
+// wild have one vt too few): such corners get texture coordinates (0, 0); normals are unused.
 ObjTextFacts check_obj_text(const std::string& obj_path, const std::string& obj_dir, const std::string& text,
                             bool check_mtllib);
 

@@ -23,6 +23,7 @@
 #include "scene_io/json_reader.h"
 #include "scene_io/load_error.h"
 #include "scene_io/obj_mesh.h"
+#include "scene_io/texture_files.h"
 
 namespace pm {
 namespace {
@@ -128,7 +129,22 @@ struct LoadContext {
   double meters_per_unit = 1.0;
   std::map<std::string, MaterialDesc> json_materials;
   SceneLoadReport* report;
+  SceneTextures* textures = nullptr;
+  // MTL statements the used materials have but pmrender does not render: per MTL file, per
+  // statement, the materials (one warning each, at the end).
+  std::map<std::string, std::map<std::string, std::vector<std::string>>> mtl_ignored;
 };
+
+void warn_ignored_mtl_statements(const LoadContext& ctx) {
+  for (const auto& file : ctx.mtl_ignored) {
+    for (const auto& statement : file.second) {
+      const std::vector<std::string>& names = statement.second;
+      ctx.report->warnings.push_back(single_line(
+          file.first + ": " + statement.first + " is not rendered; ignored in " + std::to_string(names.size()) +
+          (names.size() == 1 ? " material ('" : " materials (first '") + names.front() + "')"));
+    }
+  }
+}
 
 std::string check_mesh_file(const JsonField& file_field, const LoadContext& ctx) {
   const std::string name = file_field.non_empty_string();
@@ -211,8 +227,10 @@ void append_mesh(const JsonField& field, LoadContext& ctx, MaterialTable& table,
       cached = table.index_of("json:" + json->name, [&] { return *json; });
     } else {
       const MtlMaterial* mtl = targets[static_cast<size_t>(usemtl)].mtl;
-      cached = table.index_of("mtl:" + mtl->mtl_file + ":" + mtl->name,
-                              [&] { return material_from_mtl(*mtl, &ctx.report->warnings); });
+      cached = table.index_of("mtl:" + mtl->mtl_file + ":" + mtl->name, [&] {
+        for (const std::string& statement : mtl->ignored) ctx.mtl_ignored[mtl->mtl_file][statement].push_back(mtl->name);
+        return material_from_mtl(*mtl, &ctx.report->warnings, ctx.textures);
+      });
     }
     return static_cast<uint32_t>(cached);
   };
@@ -223,6 +241,9 @@ void append_mesh(const JsonField& field, LoadContext& ctx, MaterialTable& table,
   const JsonField file_field = field.member("file");
   for (const Float3& p : mesh.positions)
     scene.positions.push_back(to_metres(p, ctx.meters_per_unit, file_field));
+  // Texture coordinates line up with the triangles: earlier meshes' come first.
+  scene.triangle_uvs.resize(3 * scene.triangle_count());
+  scene.triangle_uvs.insert(scene.triangle_uvs.end(), mesh.triangle_uvs.begin(), mesh.triangle_uvs.end());
   for (uint32_t index : mesh.indices) scene.indices.push_back(static_cast<uint32_t>(base + index));
   for (int32_t usemtl : mesh.triangle_usemtl) scene.triangle_material.push_back(material_for(usemtl));
   // Each meshes[] entry is one object of the object_id layer, named by its OBJ file.
@@ -352,6 +373,8 @@ Scene load_scene_file(const std::string& path, SceneLoadReport* report) {
       {"format", "version", "name", "meters_per_unit", "meshes", "materials", "lights", "camera", "animation"});
 
   Scene scene;
+  SceneTextures textures(&scene);
+  ctx.textures = &textures;
   scene.source = path;
   scene.name = root.has("name") ? root.member("name").non_empty_string() : fs::path(path).stem().string();
   if (root.has("meters_per_unit")) {
@@ -368,6 +391,8 @@ Scene load_scene_file(const std::string& path, SceneLoadReport* report) {
   const size_t mesh_count = meshes.expect_array();
   MaterialTable table(&scene.materials);
   for (size_t i = 0; i < mesh_count; ++i) append_mesh(meshes.element(i), ctx, table, scene);
+  warn_ignored_mtl_statements(ctx);
+  if (!scene.has_textures()) scene.triangle_uvs = {};  // nothing samples them
   if (scene.triangle_count() == 0) {
     meshes.fail("the scene has no triangles (" + std::to_string(mesh_count) + " meshes, " +
                 std::to_string(ctx.report->degenerate_triangles_dropped) + " degenerate triangles dropped)");

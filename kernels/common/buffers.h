@@ -19,6 +19,11 @@
   X(scene, float4, triangles, uploaded, 1)    /* 3 float4 per triangle in BVH leaf order; v0.w = material */\
   X(scene, Material, materials, uploaded, 1)                                                               \
   X(scene, PointLight, lights, uploaded, 1)   /* re-uploaded when an animated light moves */               \
+  /* textures (texture.h), uploaded only when a material has one: null otherwise */                       \
+  X(scene, float4, triangle_uvs, uploaded, 1) /* 2 per triangle in leaf order: (u0, v0, u1, v1), (u2, v2) */\
+  X(scene, uint4, texture_info, uploaded, 1)  /* per texture: first texel, width, height, wrap bits */      \
+  X(scene, uint, texels, uploaded, 1)         /* RGBA8 of every image, top row first; rgb sRGB-encoded */   \
+  X(scene, float, texture_srgb_table, uploaded, 1) /* 256: the linear value of each 8-bit sRGB code */      \
   /* S5 camera: one shading point per pixel and mirror depth, [depth * pixels + pixel] */                  \
   X(frame, float4, shade_position, shading_points, 1) /* xyz, w = material index as int bits, -1: none */  \
   X(frame, float4, shade_normal, shading_points, 1)   /* xyz geometric normal facing the viewer, w = the */ \
@@ -80,6 +85,7 @@
   X(radiosity, float4, rad_tree, uploaded, 1)       /* refinement tree, 2 per node (radiosity_mesh.h) */   \
   X(radiosity, uint4, rad_triangles, uploaded, 1)   /* 2 per refined triangle: front, back elements */     \
   X(radiosity, uint, rad_links, uploaded, 1)        /* merged links, one word each (radiosity_links.h) */ \
+  X(radiosity, float4, rad_texture_tint, uploaded, 1) /* textured scenes: mean texel rgb per element */  \
   /* vertex link radiosity, the solution: per element, two halves [0, E) and [E, 2E) to ping-pong */      \
   X(radiosity, float4, rad_radiance, elements, 2)   /* outgoing radiance of the last bounce, rgb */        \
   X(radiosity, float4, rad_irradiance, elements, 2) /* gathered indirect irradiance I_total (eq. 3) */     \

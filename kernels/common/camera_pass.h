@@ -43,7 +43,7 @@ PM_DEVICE Vec3 direct_light(const KernelGlobals* kg, const LaunchParams* p, cons
     float shadow_length = vec3_length(shadow_path);
     if (!(shadow_length > 0.0f)) continue;
     Ray shadow = ray_make(origin, vec3_scale(shadow_path, 1.0f / shadow_length));
-    SceneHit blocker = scene_trace(kg->scene_nodes, kg->triangles, &shadow, 0.0f, shadow_length * (1.0f - 1e-5f), 1);
+    SceneHit blocker = scene_trace(kg, &shadow, 0.0f, shadow_length * (1.0f - 1e-5f), 1);
     if (blocker.triangle >= 0) continue;
     float irradiance_scale = cos_i / (4.0f * PM_PI * dist2);
     sum = vec3_add(sum, vec3_scale(vec3_mul(f, vec3_from_float4(light.power)), irradiance_scale));
@@ -65,9 +65,10 @@ PM_DEVICE int shading_point_load(const KernelGlobals* kg, uint record, ShadingPo
   float4 pos = kg->shade_position[record];
   int material_index = PM_AS_INT(pos.w);
   if (material_index < 0) return 0;
-  sp->material = material_load(kg->materials, material_index);
+  float4 normal = kg->shade_normal[record];
   sp->position = vec3_from_float4(pos);
-  sp->normal = vec3_from_float4(kg->shade_normal[record]);
+  sp->material = surface_material(kg, material_index, PM_AS_INT(normal.w), sp->position);
+  sp->normal = vec3_from_float4(normal);
   sp->outgoing = vec3_from_float4(kg->shade_outgoing[record]);
   sp->weight = vec3_from_float4(kg->shade_weight[record]);
   return 1;
@@ -90,14 +91,14 @@ PM_DEVICE void kernel_camera_pass(const KernelGlobals* kg, const LaunchParams* p
   uint depth = 0;
   for (; depth <= p->mirror_depth; ++depth) {
     uint record = depth * pixels + pixel;
-    SceneHit hit = scene_trace(kg->scene_nodes, kg->triangles, &ray, 0.0f, 1e30f, 0);
+    SceneHit hit = scene_trace(kg, &ray, 0.0f, 1e30f, 0);
     if (hit.triangle < 0) break;
     Vec3 pos = vec3_madd(ray.origin, ray.direction, hit.t);
     Vec3 n = scene_triangle_normal(kg->triangles, hit.triangle);
     if (vec3_dot(n, ray.direction) > 0.0f) n = vec3_neg(n); /* shade the side the ray came from */
     Vec3 wo = vec3_neg(ray.direction);
     int material_index = scene_triangle_material(kg->triangles, hit.triangle);
-    Material m = material_load(kg->materials, material_index);
+    Material m = surface_material(kg, material_index, hit.triangle, pos); /* texture.h */
 
     float offset = ray_offset_distance(ray.origin, hit.t, p->ray_epsilon);
     radiance = vec3_add(radiance, vec3_mul(throughput, direct_light(kg, p, &m, pos, n, wo, offset)));

@@ -63,7 +63,7 @@ PM_DEVICE void kernel_film_layers(const KernelGlobals* kg, const LaunchParams* p
     float4 position = kg->shade_position[record];
     int material_index = PM_AS_INT(position.w);
     if (material_index < 0) break;
-    Material m = material_load(kg->materials, material_index);
+    Material m = surface_material(kg, material_index, PM_AS_INT(kg->shade_normal[record].w), vec3_from_float4(position));
     if (material_is_pure_mirror(&m)) continue;
     albedo = vec3_mul(vec3_from_float4(kg->shade_weight[record]), material_layer_albedo(&m));
     normal = vec3_from_float4(kg->shade_normal[record]);

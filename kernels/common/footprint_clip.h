@@ -23,7 +23,8 @@
      estimate at a wall's foot (constant kernel), against 50 % for footprints that spill behind
      the wall; compressing each ellipse against the wall instead leaves the foot dark (0 %).
    Cost: one small box query per hit, O(photons), not O(gathers).
-   Not seen: blockers lower than the lifted plane, and convex edges, where the surface simply
+   Not seen: blockers lower than the lifted plane, triangles of alpha-masked materials (texture.h:
+   light passes their holes, so they are not walls), and convex edges, where the surface simply
    ends; there the gather's normal test stops photons reaching the other side (gather_reach.h).
    Concave curved surfaces rise into the lifted plane too, at sqrt(2 R height) from the hit for a
    curvature radius R: with the pd footprints' height |a| / 8 only surfaces curved tighter than
@@ -308,6 +309,9 @@ PM_DEVICE void footprint_clip_scan(const KernelGlobals* kg, FootprintClip* c)
       int first = side ? child1 : child0, count = side ? count1 : count0;
       if (!(side ? visit1 : visit0) || count == 0) continue;
       for (int t = first; t < first + count; ++t) {
+        /* Masked triangles (foliage, fences) are no walls: light passes their holes, and a cut
+           would darken what lies behind them everywhere, holes included. */
+        if (PM_AS_UINT(PM_LOAD(&kg->triangles[3 * t]).w) & PM_TRIANGLE_MASKED) continue;
         Vec3 v0 = scene_triangle_vertex(kg->triangles, t, 0);
         Vec3 v1 = scene_triangle_vertex(kg->triangles, t, 1);
         Vec3 v2 = scene_triangle_vertex(kg->triangles, t, 2);

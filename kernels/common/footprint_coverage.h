@@ -82,7 +82,7 @@ PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, const Footprint
   float t_min = 0.0f;
   float gap = pm_fmaxf(1.0e-3f * reach, offset);
   for (int k = 0; k < PM_FOOTPRINT_PROBE_HITS; ++k) {
-    SceneHit hit = scene_trace(kg->scene_nodes, kg->triangles, &ray, t_min, 2.0f * reach, 0);
+    SceneHit hit = scene_trace(kg, &ray, t_min, 2.0f * reach, 0);
     if (hit.triangle < 0) return 0.0f;
     /* Triangles are two-sided: either side may face the gather's shading point. */
     float facing = vec3_dot(scene_triangle_normal(kg->triangles, hit.triangle), n);

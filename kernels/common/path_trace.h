@@ -69,13 +69,13 @@ PM_DEVICE Vec3 path_radiance(const KernelGlobals* kg, const LaunchParams* p, con
   uint diffuse_events = 0, mirror_events = 0;
   for (uint vertex = 1; vertex <= p->max_bounces + PM_PHOTON_MAX_SPECULAR; ++vertex) {
     Ray ray = ray_make(origin, dir);
-    SceneHit hit = scene_trace(kg->scene_nodes, kg->triangles, &ray, 0.0f, 1e30f, 0);
+    SceneHit hit = scene_trace(kg, &ray, 0.0f, 1e30f, 0);
     if (hit.triangle < 0) break;
     Vec3 pos = vec3_madd(origin, dir, hit.t);
     Vec3 nv = scene_triangle_normal(kg->triangles, hit.triangle);
     if (vec3_dot(nv, dir) > 0.0f) nv = vec3_neg(nv); /* the side the path arrived on */
     Vec3 wv = vec3_neg(dir);
-    Material mv = material_load(kg->materials, scene_triangle_material(kg->triangles, hit.triangle));
+    Material mv = surface_material(kg, scene_triangle_material(kg->triangles, hit.triangle), hit.triangle, pos);
     float offset = ray_offset_distance(origin, hit.t, p->ray_epsilon);
 
     /* Next-event estimation: the paths whose last D event is this vertex. */

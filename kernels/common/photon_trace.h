@@ -97,14 +97,15 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
     Vec3 start = ray.origin;
     for (uint event = 1; event <= p->max_bounces + PM_PHOTON_MAX_SPECULAR + 1; ++event) {
       Ray r = ray_make(start, ray.direction);
-      SceneHit hit = scene_trace(kg->scene_nodes, kg->triangles, &r, 0.0f, 1e30f, 0);
+      SceneHit hit = scene_trace(kg, &r, 0.0f, 1e30f, 0);
       if (hit.triangle < 0) break;
       Vec3 n = scene_triangle_normal(kg->triangles, hit.triangle);
       /* Differentials travel from the ray origin (the offset start, off the last hit by ray.h's
          offset, a negligible fraction of the path). */
       ray.origin = start;
       photon_transfer(&ray, hit.t, n);
-      Material m = material_load(kg->materials, scene_triangle_material(kg->triangles, hit.triangle));
+      /* The reflectances at the hit, textured: they choose the photon's event and scale its flux. */
+      Material m = surface_material(kg, scene_triangle_material(kg->triangles, hit.triangle), hit.triangle, ray.origin);
       float p_diffuse = channel_mean(material_diffuse(&m));
       float p_glossy = channel_mean(material_glossy(&m));
       float p_mirror = channel_mean(material_mirror(&m));

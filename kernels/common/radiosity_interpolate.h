@@ -39,14 +39,15 @@ PM_DEVICE void kernel_radiosity_interpolate(const KernelGlobals* kg, const Launc
     float4 pos = kg->shade_position[record];
     int material_index = PM_AS_INT(pos.w);
     if (material_index < 0) break;
-    Material m = material_load(kg->materials, material_index);
+    float4 normal = kg->shade_normal[record];
+    int leaf = PM_AS_INT(normal.w);
+    /* The texture at the pixel's own point: the elements carry irradiance, the image its detail. */
+    Material m = surface_material(kg, material_index, leaf, vec3_from_float4(pos));
     float cos_o = pm_fabsf(vec3_dot(vec3_from_float4(kg->shade_outgoing[record]), vec3_from_float4(kg->shade_normal[record])));
     Vec3 rho = material_diffuse(&m), rho_s = material_glossy(&m);
     if (rho_s.x > 0.0f || rho_s.y > 0.0f || rho_s.z > 0.0f)
       rho = vec3_madd(rho, rho_s, brdf_glossy_albedo(m.glossy.w, cos_o));
     if (rho.x <= 0.0f && rho.y <= 0.0f && rho.z <= 0.0f) continue;
-    float4 normal = kg->shade_normal[record];
-    int leaf = PM_AS_INT(normal.w);
     if (leaf < 0) continue;
     Vec3 e = radiosity_irradiance_at(kg, p, leaf, vec3_from_float4(pos), vec3_from_float4(normal));
     Vec3 weight = vec3_from_float4(kg->shade_weight[record]);

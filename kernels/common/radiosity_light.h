@@ -37,7 +37,7 @@ PM_DEVICE float radiosity_light_visible(const KernelGlobals* kg, const LaunchPar
   if (!(dist2 > 0.0f) || vec3_dot(n, to_light) <= 0.0f) return 0.0f;
   float dist = pm_sqrtf(dist2);
   Ray shadow = ray_make(origin, vec3_scale(to_light, 1.0f / dist));
-  SceneHit blocker = scene_trace(kg->scene_nodes, kg->triangles, &shadow, 0.0f, dist * (1.0f - 1e-5f), 1);
+  SceneHit blocker = scene_trace(kg, &shadow, 0.0f, dist * (1.0f - 1e-5f), 1);
   return blocker.triangle >= 0 ? 0.0f : 1.0f;
 }
 

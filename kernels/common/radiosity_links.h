@@ -82,7 +82,7 @@ PM_DEVICE void kernel_radiosity_link_trace(const KernelGlobals* kg, const Launch
   Vec3 pos = radiosity_link_origin(kg, p, e, k, &n);
   Vec3 d = radiosity_world_direction(n, e, k, nc);
   Ray ray = ray_make(offset_ray_origin(pos, n, ray_offset_distance(pos, 0.0f, p->ray_epsilon)), d);
-  SceneHit hit = scene_trace(kg->scene_nodes, kg->triangles, &ray, 0.0f, 1e30f, 0);
+  SceneHit hit = scene_trace(kg, &ray, 0.0f, 1e30f, 0);
   if (hit.triangle < 0) return;
   Vec3 x = vec3_madd(ray.origin, d, hit.t);
   uint targets[3];

@@ -34,25 +34,16 @@ PM_DEVICE Vec3 radiosity_element_normal(const KernelGlobals* kg, uint e)
    plus the glossy lobe's rho_s times its albedo for light arriving uniformly from the hemisphere
    (the cosine-weighted mean of brdf_glossy_albedo over theta_o, computed per material on the host
    and kept in the normal's w). The method carries no directions, so the glossy lobe's light
-   leaves diffusely; dropping it would lose all the light the scene's glossy surfaces reflect. */
+   leaves diffusely; dropping it would lose all the light the scene's glossy surfaces reflect.
+   A textured material's element takes its texture's mean over the element's one-ring, weighted
+   by the element's hat function (rad_texture_tint, render/radiosity/radiosity_texture_tint.h):
+   the element stands for that whole area, so it reflects what the area reflects on average. */
 PM_DEVICE Vec3 radiosity_element_reflectance(const KernelGlobals* kg, uint e)
 {
   Material m = material_load(kg->materials, radiosity_element_material(kg, e));
+  if (material_base_texture(&m) != 0u) material_apply_tint(&m, vec3_from_float4(PM_LOAD(&kg->rad_texture_tint[e])));
   float glossy_albedo = PM_LOAD(&kg->rad_elements[2u * e + 1u]).w;
   return vec3_madd(material_diffuse(&m), material_glossy(&m), glossy_albedo);
-}
-
-/* Barycentric coordinates (u, v) of p in triangle (a, b, c): p = (1 - u - v) a + u b + v c,
-   for p in the triangle's plane; (1/3, 1/3) for a degenerate triangle. */
-PM_DEVICE void radiosity_barycentrics(Vec3 p, Vec3 a, Vec3 b, Vec3 c, float* u, float* v)
-{
-  Vec3 e1 = vec3_sub(b, a), e2 = vec3_sub(c, a), d = vec3_sub(p, a);
-  float d00 = vec3_dot(e1, e1), d01 = vec3_dot(e1, e2), d11 = vec3_dot(e2, e2);
-  float d20 = vec3_dot(d, e1), d21 = vec3_dot(d, e2);
-  float denom = d00 * d11 - d01 * d01;
-  if (!(denom > 1e-30f * (d00 * d11))) { *u = 1.0f / 3.0f; *v = 1.0f / 3.0f; return; }
-  *u = (d11 * d20 - d01 * d21) / denom;
-  *v = (d00 * d21 - d01 * d20) / denom;
 }
 
 /* Barycentric weights of the point (u, v) of the original triangle's parameter plane in the
@@ -115,7 +106,7 @@ PM_DEVICE RadiosityLocation radiosity_surface_point(const KernelGlobals* kg, int
   Vec3 c = scene_triangle_vertex(kg->triangles, leaf, 2);
   uint original = PM_AS_UINT(PM_LOAD(&kg->triangles[3 * leaf + 1]).w);
   float u, v;
-  radiosity_barycentrics(p, a, b, c, &u, &v);
+  triangle_barycentrics(p, a, b, c, &u, &v); /* triangles.h */
   RadiosityLocation loc = radiosity_locate(kg->rad_tree, original, u, v);
   /* The winding normal tells which side: refined triangles keep the original winding. */
   int front = vec3_dot(vec3_cross(vec3_sub(b, a), vec3_sub(c, a)), n) >= 0.0f;

@@ -1,10 +1,16 @@
 /* Per-ray traversal of the scene BVH built on the host (render/scene_bvh.h documents the node
    layout: 4 float4 per node with both child boxes stored in the parent). One private stack of
-   PM_TRAVERSAL_STACK entries per ray; the builder guarantees the depth fits. */
+   PM_TRAVERSAL_STACK entries per ray; the builder guarantees the depth fits. Triangles whose
+   material has an alpha mask (PM_TRIANGLE_MASKED in their record) are hit only where the mask
+   lets them be (texture.h), so every kind of ray passes through the same holes; other
+   triangles cost no more than before. */
 #ifndef PM_SCENE_TRAVERSE_H
 #define PM_SCENE_TRAVERSE_H
 
+#include "kernel_globals.h"
 #include "ray.h"
+#include "texture.h"
+#include "triangles.h"
 #include "types.h"
 
 typedef struct SceneHit {
@@ -12,35 +18,21 @@ typedef struct SceneHit {
   int triangle; /* leaf-order index, -1 for a miss */
 } SceneHit;
 
-PM_DEVICE Vec3 scene_triangle_vertex(PM_GLOBAL const float4* triangles, int tri, int corner)
-{
-  float4 v = PM_LOAD(&triangles[3 * tri + corner]);
-  return vec3(v.x, v.y, v.z);
-}
-
-PM_DEVICE int scene_triangle_material(PM_GLOBAL const float4* triangles, int tri)
-{
-  return PM_AS_INT(PM_LOAD(&triangles[3 * tri]).w);
-}
-
-/* Geometric normal (unnormalised orientation follows the stored winding). */
-PM_DEVICE Vec3 scene_triangle_normal(PM_GLOBAL const float4* triangles, int tri)
-{
-  Vec3 v0 = scene_triangle_vertex(triangles, tri, 0);
-  Vec3 e1 = vec3_sub(scene_triangle_vertex(triangles, tri, 1), v0);
-  Vec3 e2 = vec3_sub(scene_triangle_vertex(triangles, tri, 2), v0);
-  return vec3_normalize(vec3_cross(e1, e2));
-}
-
 /* Intersects triangles [first, first + count) and narrows hit->t. Returns 1 on any hit. */
-PM_DEVICE int scene_intersect_leaf(PM_GLOBAL const float4* triangles, const Ray* ray, int first, int count,
-                                   float t_min, SceneHit* hit)
+PM_DEVICE int scene_intersect_leaf(const KernelGlobals* kg, const Ray* ray, int first, int count, float t_min,
+                                   SceneHit* hit)
 {
+  PM_GLOBAL const float4* triangles = kg->triangles;
   int found = 0;
   for (int i = first; i < first + count; ++i) {
+    float4 v0 = PM_LOAD(&triangles[3 * i]);
     float t;
-    if (ray_triangle(ray, scene_triangle_vertex(triangles, i, 0), scene_triangle_vertex(triangles, i, 1),
+    if (ray_triangle(ray, vec3(v0.x, v0.y, v0.z), scene_triangle_vertex(triangles, i, 1),
                      scene_triangle_vertex(triangles, i, 2), t_min, hit->t, &t)) {
+      uint record = PM_AS_UINT(v0.w);
+      if ((record & PM_TRIANGLE_MASKED) &&
+          !surface_alpha_visible(kg, (int)(record & PM_TRIANGLE_MATERIAL_BITS), i, vec3_madd(ray->origin, ray->direction, t)))
+        continue;
       hit->t = t;
       hit->triangle = i;
       found = 1;
@@ -50,9 +42,9 @@ PM_DEVICE int scene_intersect_leaf(PM_GLOBAL const float4* triangles, const Ray*
 }
 
 /* Closest hit in (t_min, t_max), or with any_hit set the first one found (shadow rays). */
-PM_DEVICE SceneHit scene_trace(PM_GLOBAL const float4* nodes, PM_GLOBAL const float4* triangles, const Ray* ray,
-                               float t_min, float t_max, int any_hit)
+PM_DEVICE SceneHit scene_trace(const KernelGlobals* kg, const Ray* ray, float t_min, float t_max, int any_hit)
 {
+  PM_GLOBAL const float4* nodes = kg->scene_nodes;
   SceneHit hit;
   hit.t = t_max;
   hit.triangle = -1;
@@ -77,11 +69,11 @@ PM_DEVICE SceneHit scene_trace(PM_GLOBAL const float4* nodes, PM_GLOBAL const fl
 
     /* Leaves are intersected at once; only inner nodes go on the stack. */
     if (visit_left && count[0] > 0) {
-      if (scene_intersect_leaf(triangles, ray, child[0], count[0], t_min, &hit) && any_hit) return hit;
+      if (scene_intersect_leaf(kg, ray, child[0], count[0], t_min, &hit) && any_hit) return hit;
       visit_left = 0;
     }
     if (visit_right && count[1] > 0) {
-      if (scene_intersect_leaf(triangles, ray, child[1], count[1], t_min, &hit) && any_hit) return hit;
+      if (scene_intersect_leaf(kg, ray, child[1], count[1], t_min, &hit) && any_hit) return hit;
       visit_right = 0;
     }
     /* A leaf hit may have shortened the ray past an inner child's entry. */

@@ -11,13 +11,34 @@
 #define PM_INV_PI 0.31830988618379067154f
 
 /* Modified Phong material (Lafortune & Willems 1994) with a perfect-mirror term.
-   diffuse.rgb = rho_d, glossy.rgb = rho_s and glossy.w = Phong exponent, mirror.rgb = mirror
-   reflectance. Energy conservation (rho_d + rho_s + mirror <= 1 per channel) is checked on load. */
+   diffuse.rgb = rho_d and diffuse.w = PM_MATERIAL_* flags as uint bits, glossy.rgb = rho_s and
+   glossy.w = Phong exponent, mirror.rgb = mirror reflectance. Energy conservation (rho_d + rho_s +
+   mirror <= 1 per channel) is checked on load; texels are at most 1, so textures keep it.
+   texture (texture.h): x = base-colour texture + 1 as uint bits (0: none), whose linear rgb
+   multiplies rho_d (and rho_s and the mirror with PM_MATERIAL_TINT_SPECULAR); y = alpha-mask
+   texture + 1 as uint bits (0: none); z = alpha factor; w = alpha cutoff. With PM_MATERIAL_MASKED
+   a point is there when factor * (mask texel channel, or 1 without a mask texture) >= cutoff. */
 typedef struct Material {
   float4 diffuse;
   float4 glossy;
   float4 mirror;
+  float4 texture;
 } Material;
+
+#define PM_MATERIAL_TINT_SPECULAR 1u /* the base-colour texture tints glossy and mirror too (glTF) */
+#define PM_MATERIAL_MASKED 2u        /* alpha mask: rays pass where alpha < cutoff */
+#define PM_MATERIAL_ALPHA_CHANNEL_SHIFT 4u /* bits 4-5: the mask texture's channel (0 red .. 3 alpha) */
+
+/* Triangle records (render/scene_bvh.h): v0.w holds the material index, with this bit set when
+   the material has an alpha mask, so traversal tests a mask only on such triangles. */
+#define PM_TRIANGLE_MASKED 0x40000000u
+#define PM_TRIANGLE_MATERIAL_BITS 0x3fffffffu
+
+/* Texture wrap modes (glTF sampler wrapS / wrapT), packed into a texture_info entry's w as
+   wrap_u | wrap_v << 8. */
+#define PM_WRAP_REPEAT 0u
+#define PM_WRAP_CLAMP 1u
+#define PM_WRAP_MIRROR 2u
 
 /* Isotropic point light: position.xyz in metres, power.rgb in watts (radiant flux); w unused.
    (Photon emission keeps each light's share of a pass's photons in its own buffer,

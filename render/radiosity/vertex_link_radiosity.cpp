@@ -9,6 +9,7 @@
 #include "render/errors.h"
 #include "render/radiosity/mesh_refinement.h"
 #include "render/radiosity/radiosity_elements.h"
+#include "render/radiosity/radiosity_texture_tint.h"
 
 namespace pm {
 
@@ -69,6 +70,12 @@ void VertexLinkRadiosity::prepare(StageTimer* timer) {
   buffers_.upload(BufferSlot::rad_adjacency, elements.adjacency);
   buffers_.upload(BufferSlot::rad_smooth_weights, elements.smooth_weights);
   buffers_.upload(BufferSlot::rad_element_ranges, ranges_);
+  if (scene_.has_textures()) {
+    // Each element's texture colour, sampled on the host from the packed images the device has.
+    DeviceTextures textures;
+    pack_texture_images(scene_, &textures);
+    buffers_.upload(BufferSlot::rad_texture_tint, radiosity_texture_tints(scene_, mesh, elements, textures));
+  }
   BufferExtents extents;
   extents.elements = element_count_;
   buffers_.allocate(BufferGroup::radiosity, extents);

@@ -63,6 +63,15 @@ inline void check_scene(const Scene& s) {
     for (float v : sum) require(v >= 0 && v <= 1.0f + 1e-5f, "reflectance sums in [0, 1]");
     require(std::isfinite(m.glossy_exponent) && m.glossy_exponent >= 0, "finite exponent");
   }
+  for (const MaterialDesc& m : s.materials) {
+    for (int t : {m.base_color_texture, m.alpha_texture}) require(t < int(s.textures.size()), "texture indices in range");
+    require(m.alpha_channel >= 0 && m.alpha_channel <= 3 && std::isfinite(m.alpha_cutoff), "alpha test defined");
+  }
+  for (const TextureRef& t : s.textures) require(t.image < s.images.size(), "image indices in range");
+  for (const TextureImage& i : s.images)
+    require(i.width >= 1 && i.height >= 1 && i.rgba.size() == 4 * size_t(i.width) * size_t(i.height), "texels match sizes");
+  require(s.triangle_uvs.size() <= 3 * s.triangle_count(), "at most three texture coordinates per triangle");
+  for (const Float2& uv : s.triangle_uvs) require(std::isfinite(uv.u) && std::isfinite(uv.v), "finite texture coordinates");
   require(!s.lights.empty(), "a light");
   for (const LightDesc& l : s.lights) require(finite(l.position) && finite(l.power), "finite lights");
   require(s.camera.width >= 1 && s.camera.width <= 16384 && s.camera.height >= 1 && s.camera.height <= 16384,

@@ -99,7 +99,8 @@ TEST_F(Gltf, MetallicRoughnessMapsOntoModifiedPhong) {
       {{"name", "brushed"},
        {"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.6, 0.4, 1}}, {"metallicFactor", 0.25}, {"roughnessFactor", 0.5}}}},
       {{"name", "textured"},
-       {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}, {"metallicFactor", 0.0}}},
+       {"pbrMetallicRoughness", {{"metallicFactor", 0.0}}},
+       {"normalTexture", {{"index", 0}}},
        {"emissiveFactor", {1, 1, 1}}}};
   b.doc()["textures"] = {{{"source", 0}}};
   b.doc()["images"] = {{{"uri", "missing.png"}}};
@@ -123,7 +124,8 @@ TEST_F(Gltf, MetallicRoughnessMapsOntoModifiedPhong) {
   EXPECT_FLOAT_EQ(brushed.glossy.z, 0.1f);
   EXPECT_FLOAT_EQ(brushed.glossy_exponent, 30.0f);
   EXPECT_EQ(scene.materials[3].diffuse.x, 1.0f);  // baseColorFactor defaults to white
-  EXPECT_TRUE(has_warning(report, "materials[3] ('textured'): ignored: baseColorTexture, emissiveFactor"));
+  // An image only an ignored feature names is never read: missing.png is no error.
+  EXPECT_TRUE(has_warning(report, "materials[3] ('textured'): ignored: normalTexture, emissiveFactor"));
   EXPECT_EQ(scene.materials[4].name, "default");
   EXPECT_EQ(scene.materials[4].diffuse.x, 0.8f);
 }

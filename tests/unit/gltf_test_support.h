@@ -64,7 +64,7 @@ class GltfBuilder {
     while (bytes_.size() % 4) bytes_ += '\0';
     const size_t offset = bytes_.size();
     bytes_.append(reinterpret_cast<const char*>(data.data()), data.size() * sizeof(T));
-    const int per_element = type == "SCALAR" ? 1 : type == "VEC3" ? 3 : 4;
+    const int per_element = type == "SCALAR" ? 1 : type == "VEC2" ? 2 : type == "VEC3" ? 3 : 4;
     doc_["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", data.size() * sizeof(T)}});
     json a = {{"bufferView", doc_["bufferViews"].size() - 1},
               {"componentType", component_type},

@@ -116,7 +116,7 @@ TEST(RadiosityRefinement, LocateFindsTheRefinedTriangleHoldingThePoint) {
         if (i == 0) { u = 0.5f; v = 0.0f; }  // exactly on an edge
         const Vec3 x = vec3_add(vec3_add(vec3_scale(a, 1 - u - v), vec3_scale(b, u)), vec3_scale(c, v));
         float bu, bv;
-        radiosity_barycentrics(x, a, b, c, &bu, &bv);
+        triangle_barycentrics(x, a, b, c, &bu, &bv);
         EXPECT_NEAR(bu, u, 1e-5f);
         EXPECT_NEAR(bv, v, 1e-5f);
         RadiosityLocation loc = radiosity_locate(mesh.tree.data(), uint32_t(t), bu, bv);

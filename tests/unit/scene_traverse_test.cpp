@@ -147,22 +147,25 @@ Scene random_soup(int triangles, uint32_t seed) {
 TEST(SceneTraverse, ClosestHitEqualsBruteForce) {
   Scene scene = random_soup(3000, 4);
   SceneBvh bvh = build_scene_bvh(scene);
+  KernelGlobals kg{};  // geometry only: no material has a mask, so traversal reads nothing else
+  kg.scene_nodes = bvh.nodes.data();
+  kg.triangles = bvh.triangles.data();
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> pos(-12.0f, 12.0f);
   int hits = 0;
   for (int i = 0; i < 3000; ++i) {
     Ray ray = ray_make(vec3(pos(rng), pos(rng), pos(rng)), random_unit(rng));
-    SceneHit traversed = scene_trace(bvh.nodes.data(), bvh.triangles.data(), &ray, 0.0f, 1e30f, 0);
+    SceneHit traversed = scene_trace(&kg, &ray, 0.0f, 1e30f, 0);
     SceneHit brute;
     brute.t = 1e30f;
     brute.triangle = -1;
-    scene_intersect_leaf(bvh.triangles.data(), &ray, 0, int(bvh.triangle_count()), 0.0f, &brute);
+    scene_intersect_leaf(&kg, &ray, 0, int(bvh.triangle_count()), 0.0f, &brute);
     ASSERT_EQ(traversed.triangle, brute.triangle) << "ray " << i;
     if (brute.triangle >= 0) {
       EXPECT_EQ(traversed.t, brute.t);
       ++hits;
     }
-    SceneHit any = scene_trace(bvh.nodes.data(), bvh.triangles.data(), &ray, 0.0f, 1e30f, 1);
+    SceneHit any = scene_trace(&kg, &ray, 0.0f, 1e30f, 1);
     EXPECT_EQ(any.triangle >= 0, brute.triangle >= 0);
   }
   EXPECT_GT(hits, 500);
@@ -175,9 +178,12 @@ TEST(SceneTraverse, AxisAlignedRaysHitFlatWalls) {
   scene.indices = {0, 1, 2, 0, 2, 3};
   scene.triangle_material = {0, 0};
   SceneBvh bvh = build_scene_bvh(scene);
+  KernelGlobals kg{};  // geometry only: no material has a mask, so traversal reads nothing else
+  kg.scene_nodes = bvh.nodes.data();
+  kg.triangles = bvh.triangles.data();
   for (float x = -0.9f; x < 0.9f; x += 0.1f) {
     Ray ray = ray_make(vec3(x, 0.3f, 0.0f), vec3(0.0f, 0.0f, 1.0f));
-    SceneHit hit = scene_trace(bvh.nodes.data(), bvh.triangles.data(), &ray, 0.0f, 1e30f, 0);
+    SceneHit hit = scene_trace(&kg, &ray, 0.0f, 1e30f, 0);
     ASSERT_GE(hit.triangle, 0) << "x=" << x;
     EXPECT_FLOAT_EQ(hit.t, 5.0f);
   }
