@@ -53,18 +53,11 @@ struct DeviceEntry {
   cl_device_id device;
 };
 
-// OpenCL calls that some drivers do not make safe to run on two threads at once (devices open,
-// render and close on threads of their own: render/device_threads.h). Enumeration: PoCL counted
-// only one of its devices when two threads made the process's first call at once. Releasing
-// programs and kernels: PoCL 5 aborted (an assertion in its compiled-kernel cache) when two of its
-// CPU devices that had shared a frame closed at once.
-std::mutex& driver_call_lock() {
-  static std::mutex lock;
-  return lock;
-}
-
 std::vector<DeviceEntry> enumerate() {
-  std::lock_guard<std::mutex> lock(driver_call_lock());
+  // One enumeration at a time: devices open on threads of their own (render/device_threads.h), and
+  // PoCL counted only one of its devices when two threads made the process's first call at once.
+  static std::mutex enumerating;
+  std::lock_guard<std::mutex> lock(enumerating);
   std::vector<DeviceEntry> entries;
   cl_uint platform_count = 0;
   // No ICD or no platform is "no OpenCL devices", not an error.
@@ -141,7 +134,6 @@ class OpenclDevice final : public Device {
 
   ~OpenclDevice() override {
     sort_scratch_ = PortableSortScratch();
-    std::lock_guard<std::mutex> lock(driver_call_lock());
     for (cl_kernel kernel : kernels_)
       if (kernel) clReleaseKernel(kernel);
     if (program_) clReleaseProgram(program_);
@@ -246,8 +238,11 @@ class OpenclDevice final : public Device {
     program_ = clCreateProgramWithSource(context_, 1, &source, &length, &err);
     PM_CL_CHECK(err);
     // No -cl-fast-relaxed-math: it implies finite-math-only, and the slab tests rely on IEEE
-    // infinities for axis-parallel rays.
-    err = clBuildProgram(program_, 1, &device_, "-cl-std=CL1.2 -cl-mad-enable", nullptr, nullptr);
+    // infinities for axis-parallel rays. The device's index makes each device's program its own:
+    // PoCL 5 shares one compiled library between identical programs of two of its CPU devices and
+    // then releases it twice (an assertion in pocl_release_dlhandle_cache aborted the process).
+    const std::string options = "-cl-std=CL1.2 -cl-mad-enable -D PM_OPENCL_DEVICE_INDEX=" + std::to_string(info_.index);
+    err = clBuildProgram(program_, 1, &device_, options.c_str(), nullptr, nullptr);
     if (err != CL_SUCCESS) {
       size_t size = 0;
       clGetProgramBuildInfo(program_, device_, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size);
