@@ -5,7 +5,7 @@
 #    parsers (pm_core) built with AddressSanitizer and coverage.
 #    tests/fuzz/run.sh configures such a build in build-fuzz/ and runs them for a bounded time.
 set(PM_FUZZ_DIR ${CMAKE_CURRENT_LIST_DIR})
-set(PM_FUZZ_TARGETS scene frame_spec gltf exr checkpoint)
+set(PM_FUZZ_TARGETS scene frame_spec gltf exr checkpoint texture)
 
 foreach(target ${PM_FUZZ_TARGETS})
   add_executable(pm_fuzz_replay_${target} ${PM_FUZZ_DIR}/${target}_fuzzer.cpp ${PM_FUZZ_DIR}/replay_main.cpp)

@@ -4,13 +4,13 @@
 # a crash leaves its input as <build>/fuzz-<target>-crash-* and fails this script.
 #   tests/fuzz/run.sh [SECONDS_PER_TARGET=30] [extra libFuzzer options...]
 # Environment: PM_FUZZ_BUILD (default build-fuzz/ in the repository; configure.sh sets it up),
-# PM_FUZZ_TARGETS (default: all five).
+# PM_FUZZ_TARGETS (default: all six).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 seconds=${1:-30}
 shift || true
 build=$("$root/tests/fuzz/configure.sh")
-targets=${PM_FUZZ_TARGETS:-scene frame_spec gltf exr checkpoint}
+targets=${PM_FUZZ_TARGETS:-scene frame_spec gltf exr checkpoint texture}
 cmake --build "$build" --target $(printf 'pm_fuzz_%s ' $targets)
 # The scene fuzzer writes its inputs to files: on tmpfs it runs about 10x faster.
 if [ -z "${TMPDIR:-}" ] && [ -d /dev/shm ] && [ -w /dev/shm ]; then export TMPDIR=/dev/shm; fi

@@ -297,6 +297,14 @@ TEST(RadiositySmooth, NeverCrossesAFeatureEdge) {
   EXPECT_EQ(irradiance[2].x, 3.0f);
 }
 
+// The corners of refined triangle r.
+void refined_corners(const HostMesh& h, uint32_t r, Vec3 c[3]) {
+  for (int j = 0; j < 3; ++j) {
+    const Float3& q = h.mesh.positions[h.mesh.indices[3 * r + j]];
+    c[j] = vec3(q.x, q.y, q.z);
+  }
+}
+
 // The film's power of the smoothed irradiance, sum_e a_e I_e with a_e a third of e's one-ring
 // area, is what it was before the pass, on either side of a feature edge and on refined
 // triangles of every size; a uniform irradiance stays uniform.
@@ -307,12 +315,8 @@ TEST(RadiositySmooth, KeepsThePowerOfTheInterpolatedIrradiance) {
     std::vector<double> hat_area(n, 0.0);
     for (size_t e = 0; e < n; ++e)
       for (uint32_t i = h.el.ranges[e].x; i < h.el.ranges[e + 1].x; ++i) {
-        const uint32_t r = h.el.adjacency[i] >> 2;
         Vec3 c[3];
-        for (int j = 0; j < 3; ++j) {
-          const Float3& q = h.mesh.positions[h.mesh.indices[3 * r + j]];
-          c[j] = vec3(q.x, q.y, q.z);
-        }
+        refined_corners(h, h.el.adjacency[i] >> 2, c);
         hat_area[e] += vec3_length(vec3_cross(vec3_sub(c[1], c[0]), vec3_sub(c[2], c[0]))) / 6.0;
       }
     auto power = [&](size_t half) {
@@ -352,12 +356,8 @@ double ring_mean_irradiance(const HostMesh& h, size_t e, const Float3& light, do
   const Vec3 normal = vec3_from_float4(h.el.data[2 * e + 1]);
   double integral = 0, area_sum = 0;
   for (uint32_t i = h.el.ranges[e].x; i < h.el.ranges[e + 1].x; ++i) {
-    const uint32_t r = h.el.adjacency[i] >> 2;
     Vec3 c[3];
-    for (int j = 0; j < 3; ++j) {
-      const Float3& q = h.mesh.positions[h.mesh.indices[3 * r + j]];
-      c[j] = vec3(q.x, q.y, q.z);
-    }
+    refined_corners(h, h.el.adjacency[i] >> 2, c);
     const double area = 0.5 * vec3_length(vec3_cross(vec3_sub(c[1], c[0]), vec3_sub(c[2], c[0])));
     const int steps = 64;
     double sum = 0;
