@@ -58,9 +58,12 @@ TEST(RayTriangle, MatchesDoublePrecisionReferenceAwayFromEdges) {
     float t = 0;
     bool got = ray_triangle(&ray, a, b, c, 0.0f, 1e30f, &t);
     ASSERT_EQ(got, ref) << "ray " << i;
-    if (inside && std::fabs(vec3_dot(vec3_normalize(vec3_cross(vec3_sub(b, a), vec3_sub(c, a))), ray.direction)) > 0.05f)
+    if (inside && std::fabs(vec3_dot(vec3_normalize(vec3_cross(vec3_sub(b, a), vec3_sub(c, a))), ray.direction)) > 0.05f) {
       ASSERT_TRUE(got) << "ray " << i;
-    if (got) EXPECT_NEAR(t, t_ref, 1e-4 * (1.0 + t_ref));
+    }
+    if (got) {
+      EXPECT_NEAR(t, t_ref, 1e-4 * (1.0 + t_ref));
+    }
   }
 }
 
