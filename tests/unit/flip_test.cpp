@@ -249,10 +249,15 @@ TEST(HdrFlip, ToneMapperIsTheAcesFit) {
   float last = 0;
   for (float x = 0.01f; x < 100; x *= 1.3f) {
     const float t = tone_map(x);
-    if (last < 1.0f) EXPECT_GT(t, last) << x;
-    else EXPECT_EQ(t, 1.0f) << x;
+    if (last < 1.0f) {
+      EXPECT_GT(t, last) << x;
+    } else {
+      EXPECT_EQ(t, 1.0f) << x;
+    }
     last = t;
-    if (t < 0.99f) EXPECT_NEAR(inverse_tone_map(t), x, 1e-3f * x);
+    if (t < 0.99f) {
+      EXPECT_NEAR(inverse_tone_map(t), x, 1e-3f * x);
+    }
   }
 }
 

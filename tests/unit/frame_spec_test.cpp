@@ -29,7 +29,9 @@ TEST(FrameSpec, RejectsMalformedSpecsNamingThePart) {
     } catch (const InputError& e) {
       const std::string message = e.what();
       EXPECT_EQ(message.find("--frames"), std::string::npos) << "the library names no option: " << message;
-      if (*spec) EXPECT_NE(message.find(std::string("'") + spec), std::string::npos) << message;
+      if (*spec) {
+        EXPECT_NE(message.find(std::string("'") + spec), std::string::npos) << message;
+      }
     }
   }
 }
