@@ -197,7 +197,7 @@ RadiosityElements build_radiosity_elements(const Scene& scene, const RefinedMesh
   // (3 / 7) (area of the triangles e and j share) / (e's one-ring area). On a regular mesh
   // (six equal triangles around each vertex) that is eq. 5's 1 / 7 per neighbour; on any mesh the
   // weights of an element's neighbours add up to 6 / 7. Eq. 5's plain mean over the corners
-  // keeps neither the power nor, at a feature edge, a uniform value's mean (docs/accuracy.md).
+  // does not keep the power where elements differ in size or valence (docs/accuracy.md).
   std::vector<std::pair<uint32_t, double>> shared;  // (neighbour, triangle area it shares)
   std::vector<uint32_t> neighbours;
   for (size_t e = 0; e < count; ++e) {
