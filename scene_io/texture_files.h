@@ -19,10 +19,10 @@ namespace pm {
 constexpr int kMaxTextureSide = 16384;
 constexpr uint64_t kMaxTextureTexels = uint64_t(1) << 28;
 
-// Decodes an encoded image (PNG, JPEG, BMP, TGA, GIF's first frame, PSD, HDR and PNM as
-// stb_image reads them) into RGBA8, colour as stored (sRGB), alpha 255 where the file has none.
+// Decodes an encoded image (PNG, JPEG, BMP, or TGA when `source` ends in .tga; other formats are
+// refused) into RGBA8, colour as stored (sRGB), alpha 255 where the file has none.
 // `source` names the image in messages and in TextureImage::source. Throws InputError
-// "<where>: <source> is not an image stb_image can decode (<its reason>)" or names a size limit.
+// "<where>: <source> is not an image stb_image can decode (<why>)" or names a size limit.
 TextureImage decode_texture_image(const unsigned char* bytes, size_t size, const std::string& source,
                                   const std::string& where);
 
