@@ -78,7 +78,8 @@ bool is_set(const char* value) { return value && *value; }
 // The file's bytes; "" when read, "missing" when there is none, else why it could not be read.
 std::string read_whole_file(const std::string& path, std::vector<unsigned char>* bytes) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) return errno == ENOENT ? "missing" : errno_text("cannot open");
+  // ENOTDIR: a path component is a file, so no entry can be there either.
+  if (fd < 0) return errno == ENOENT || errno == ENOTDIR ? "missing" : errno_text("cannot open");
   std::string problem;
   struct stat info {};
   if (::fstat(fd, &info) != 0) problem = errno_text("cannot stat");
