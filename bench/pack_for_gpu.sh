@@ -17,6 +17,7 @@
 #   OUT_DIR/bench/tradeoff_suite.sh, mitsuba_peer.py, OUT_DIR/tests/mitsuba/pm_mitsuba.py:
 #                                 the speed/accuracy suite and its Mitsuba peer (docs/tradeoff.md)
 #   OUT_DIR/bench/accuracy_suite.sh, OUT_DIR/golden/scenes/: references and biases (docs/accuracy.md)
+#   OUT_DIR/bench/startup_suite.sh: start-up to the first frame, program cache cold and warm
 #   OUT_DIR/bench/scenes/*.json   the bench scene files, paths rewritten to ../../shared/scenes/
 #   OUT_DIR/shared.tar.xz         the OBJ and MTL files they name and the images of the MTL files'
 #                                 map_Kd and map_d statements, as shared/scenes/...; env.sh unpacks
@@ -47,7 +48,7 @@ cp -r "$repo/tests/data" "$out/data"
 mkdir -p "$out/bench/scenes" "$out/shared/scenes"
 cp "$repo/bench/run_suite.sh" "$repo/bench/radiosity_suite.sh" "$repo/bench/multi_gpu_suite.sh" "$repo/bench/suite_common.sh" \
    "$repo/bench/tradeoff_suite.sh" "$repo/bench/progressive_suite.sh" "$repo/bench/mitsuba_peer.py" "$repo/bench/gpu_check.sh" \
-   "$repo/bench/accuracy_suite.sh" "$out/bench/"
+   "$repo/bench/accuracy_suite.sh" "$repo/bench/startup_suite.sh" "$out/bench/"
 # The golden scenes (small, with their meshes) for the accuracy suite's references.
 mkdir -p "$out/golden"
 cp -r "$repo/golden/scenes" "$out/golden/"

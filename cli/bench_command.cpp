@@ -17,6 +17,7 @@
 #include "cli/bench_photon.h"
 #include "cli/commands.h"
 #include "cli/render_options.h"
+#include "cli/startup_report.h"
 #include "render/atomic_file.h"
 #include "render/device.h"
 #include "render/errors.h"
@@ -116,6 +117,7 @@ struct StageRow {
 };
 
 int run_bench(const BenchOptions& o) {
+  StartupSteps startup;
   // Everything the user can get wrong is checked before the device is opened.
   const FramePlan plan = plan_frames(o);
   if (!o.json.empty()) check_json_path(o.json);
@@ -123,9 +125,12 @@ int run_bench(const BenchOptions& o) {
   if (!o.leaf_sweep.empty()) sweep = parse_leaf_sweep(o.leaf_sweep);
   const RenderSettings settings = render_settings(o.render);
   check_photon_extras(settings, !sweep.empty(), o.radius_histogram);
+  startup.mark("options");
   const Scene scene = load_scene(o.render);
+  startup.mark("scene load", scene.source);
 
   std::unique_ptr<Device> device = create_device(o.render.backend, o.render.device);
+  print_device_startup_messages({device.get()}, false, false);
   const DeviceInfo info = device->info();
   device->reset_peak();
   auto renderer = std::make_unique<Renderer>(*device, scene, settings);
@@ -148,6 +153,8 @@ int run_bench(const BenchOptions& o) {
   std::fflush(stdout);
 
   const Measurement base = measure(*renderer, timer, plan, "bench " + scene.name);
+  StartupReport startup_report = make_startup_report(startup, {device.get()}, {renderer.get()});
+  startup_report.first_frame_wall_ms = base.first_frame_wall_ms;
 
   // The method's work counters (e.g. photons per gather) on one extra frame, the last measured
   // one again, untimed: counting costs atomics.
@@ -180,6 +187,7 @@ int run_bench(const BenchOptions& o) {
   std::printf("%-22s %10.3f %10.3f %10.3f\n", "frame (sum of stages)", total.median, total.min, total.max);
   std::printf("%-22s %10.3f %10.3f %10.3f\n", "frame (host wall)", wall.median, wall.min, wall.max);
   std::printf("frames per second: %.2f (host wall), %.2f (sum of stages)\n", base.fps(), base.fps_stages());
+  print_startup_report(stdout, startup_report, wall.median, "a measured frame's median host wall");
   // What each throughput counts, stages with the same meaning on one line.
   for (size_t i = 0; i < rows.size(); ++i) {
     if (rows[i].info.counts.empty()) continue;
@@ -261,6 +269,7 @@ int run_bench(const BenchOptions& o) {
     j["stages"] = stage_list;
     j["frame_ms"] = {{"sum_of_stages", spread_json(total)}, {"host_wall", spread_json(wall)}};
     j["fps"] = {{"host_wall", base.fps()}, {"sum_of_stages", base.fps_stages()}};
+    j["startup"] = startup_json(startup_report);
     j["work"] = {{"unit", work.first}, {"per_pass", work.second}, {"passes", passes}, {"per_frame", work_per_frame}};
     Json method_stats = Json::object();
     for (const MethodStats::Entry& e : base.stats.back().method.entries) method_stats[e.name] = spread_json(base.stat(e.name));

@@ -26,6 +26,7 @@ struct Measurement {
   std::vector<std::vector<StageTime>> stages;   // per measured frame, in stage order
   std::vector<double> stages_total_ms, wall_ms;  // per measured frame
   std::vector<FrameStats> stats;                // per measured frame
+  double first_frame_wall_ms = -1;              // the plan's first frame, warmup or measured
 
   // Over the measured frames: a stage's device time, the sum of all stages, host wall time.
   Spread stage(const std::string& name) const;

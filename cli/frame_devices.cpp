@@ -33,6 +33,19 @@ std::vector<int> parse_device_list(const std::string& text) {
   return indices;
 }
 
+std::vector<Device*> device_pointers(const FrameDevices& opened) {
+  std::vector<Device*> all;
+  for (const auto& d : opened.devices) all.push_back(d.get());
+  return all;
+}
+
+std::vector<const Renderer*> renderer_pointers(const FrameDevices& opened) {
+  std::vector<const Renderer*> all;
+  for (const auto& pool : opened.pools)
+    for (size_t i = 0; i < pool->size(); ++i) all.push_back(&pool->renderer(i));
+  return all;
+}
+
 FrameDevices open_frame_devices(const DeviceChoice& choice, bool sequence, uint32_t checkpoint_every, const Scene& scene,
                                 const RenderSettings& settings, const FrameJobOptions& job_options, int width, int height) {
   FrameDevices opened;

@@ -31,6 +31,10 @@ struct FrameDevices {
   std::vector<std::unique_ptr<FrameJob>> jobs;  // one per pool
 };
 
+// The opened devices and every renderer of every pool, for start-up reports.
+std::vector<Device*> device_pointers(const FrameDevices& opened);
+std::vector<const Renderer*> renderer_pointers(const FrameDevices& opened);
+
 // Opens the devices (each on its own thread, render/device_threads.h), uploads the scene to each,
 // checks each device's memory for a frame of width x height, and makes the frame jobs.
 FrameDevices open_frame_devices(const DeviceChoice& choice, bool sequence, uint32_t checkpoint_every, const Scene& scene,

@@ -29,6 +29,7 @@
 #include "cli/progress_line.h"
 #include "cli/signals.h"
 #include "cli/render_options.h"
+#include "cli/startup_report.h"
 #include "render/background_writer.h"
 #include "render/device.h"
 #include "render/errors.h"
@@ -121,10 +122,13 @@ std::vector<int> select_frames(const RenderCommandOptions& o, const Scene& scene
 }
 
 int run_render(const RenderCommandOptions& o) {
+  StartupSteps startup;
   if (o.exposure_option->count() > 0 && o.preview.empty())
     throw InputError("--exposure: sets the exposure of the --preview PNG; give --preview NAME.png too");
+  startup.mark("options");
   SceneLoadReport report;
   Scene scene = o.render.scene_path.empty() ? builtin_cornell_box() : load_scene_file(o.render.scene_path, &report);
+  startup.mark("scene load", scene.source);
   RenderSettings settings = render_settings(o.render);
   settings.layers = parse_film_layers(o.layers);
   const std::string pattern = o.output.empty() ? default_output_pattern(scene.name) : o.output;
@@ -176,13 +180,16 @@ int run_render(const RenderCommandOptions& o) {
 
   // Devices, their renderers and the frame jobs (frame_devices.h), once the input is known good.
   const std::vector<int> device_list = parse_device_list(o.devices);
+  startup.mark("frames and output checks");
   FrameDevices opened;
   if (!todo.empty()) {
     DeviceChoice choice{o.render.backend, o.render.device, !o.devices.empty(), device_list};
     opened = open_frame_devices(choice, todo.size() > 1, o.checkpoint_every, scene, settings, job_options, width, height);
+    print_device_startup_messages(device_pointers(opened), o.verbose, o.quiet);
     remove_stale_temporaries(targets, o.verbose);
   }
   std::vector<std::unique_ptr<Device>>& devices = opened.devices;
+  double first_frame_ms = -1;
   std::vector<std::unique_ptr<FrameJob>>& jobs = opened.jobs;
   remove_stale_claims_of_complete_frames(pattern, skipped, o.claims, o.verbose);
   // Input is valid from here on: say what loading tolerated, then render.
@@ -209,7 +216,10 @@ int run_render(const RenderCommandOptions& o) {
   // The "wrote" line of a frame this process rendered; called with output locked.
   std::vector<size_t> frames_per_job(jobs.size(), 0);
   auto report_written = [&](const FrameJob& job, int f, const std::string& path, const FrameOutcome& outcome) {
-    if (++rendered == 1) first_frame_memory = {host_rss_bytes(), devices.front()->allocated_bytes()};
+    if (++rendered == 1) {
+      first_frame_memory = {host_rss_bytes(), devices.front()->allocated_bytes()};
+      first_frame_ms = outcome.render_ms;
+    }
     for (size_t j = 0; j < jobs.size(); ++j) frames_per_job[j] += jobs[j].get() == &job ? 1 : 0;
     reused += outcome.photons_reused ? 1 : 0;
     if (!o.quiet) {
@@ -384,7 +394,12 @@ int run_render(const RenderCommandOptions& o) {
     }
     std::printf("\n");
   }
-  if (o.verbose && !devices.empty()) print_memory_summary(first_frame_memory, *devices.front());
+  if (o.verbose && !devices.empty()) {
+    StartupReport startup_report = make_startup_report(startup, device_pointers(opened), renderer_pointers(opened));
+    startup_report.first_frame_wall_ms = first_frame_ms;
+    print_startup_report(stdout, startup_report, -1, "");
+    print_memory_summary(first_frame_memory, *devices.front());
+  }
   if (!failed.empty()) {
     std::fprintf(stderr, "pmrender: %zu of %zu frames failed: %s\n", failed.size(), frames.size(),
                  frame_list(failed).c_str());

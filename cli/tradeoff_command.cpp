@@ -17,6 +17,7 @@
 #include "cli/commands.h"
 #include "cli/number_parsing.h"
 #include "cli/progress_line.h"
+#include "cli/startup_report.h"
 #include "cli/tradeoff_grid.h"
 #include "cli/tradeoff_report.h"
 #include "render/atomic_file.h"
@@ -163,6 +164,7 @@ int run_tradeoff(const TradeoffOptions& o) {
     throw InputError("-o: '" + folder.string() + "' exists and is not a folder");
 
   std::unique_ptr<Device> device = create_device(o.backend, o.device);
+  print_device_startup_messages({device.get()}, false, o.quiet);
   const DeviceInfo info = device->info();
   if (!o.quiet)
     std::printf("pmrender tradeoff: %s, %dx%d, %zu settings, on %s (%s)\n", scene.name.c_str(), width, height,

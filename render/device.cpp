@@ -76,7 +76,7 @@ std::vector<DeviceInfo> list_devices() {
 std::string resolve_backend(const std::string& backend) {
   if (backend != "auto") return backend;
 #if PMRENDER_HAVE_CUDA
-  if (!list_cuda_devices().empty()) return "cuda";
+  if (count_cuda_devices() > 0) return "cuda";
 #endif
   return "opencl";
 }
@@ -98,7 +98,8 @@ std::vector<std::unique_ptr<Device>> create_devices(const std::string& backend, 
 std::unique_ptr<Device> create_device(const std::string& backend, int index) {
   if (backend == "auto") {
 #if PMRENDER_HAVE_CUDA
-    if (!list_cuda_devices().empty()) return create_cuda_device(index);
+    // Counted, not listed: describing every GPU of the machine costs a properties query each.
+    if (count_cuda_devices() > 0) return create_cuda_device(index);
 #endif
     return create_opencl_device(index);
   }

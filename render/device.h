@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "render/kernel_abi.h"
+#include "render/startup_timing.h"
 
 namespace pm {
 
@@ -56,6 +57,8 @@ class Device {
  public:
   virtual ~Device() = default;
   virtual const DeviceInfo& info() const = 0;
+  // What opening this device took, step by step (context, program build or cache load, ...).
+  const DeviceStartup& startup() const { return startup_; }
 
   virtual DeviceBuffer allocate(size_t bytes, const char* what) = 0;
   virtual void upload(DeviceBuffer& dst, const void* src, size_t bytes, size_t offset = 0) = 0;
@@ -102,6 +105,7 @@ class Device {
 
  protected:
   const std::array<void*, kBufferSlotCount>& slots() const { return slots_; }
+  DeviceStartup startup_;  // filled by the backend's constructor
   // Increases whenever a slot changes.
   uint64_t slots_version() const { return slots_version_; }
 

@@ -105,8 +105,10 @@ Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& set
   settings_.validate();
   width_ = settings.width > 0 ? settings.width : scene.camera.width;
   height_ = settings.height > 0 ? settings.height : scene.camera.height;
+  StepClock clock;
   measures_ = measure_scene(scene);
-  upload_scene();
+  setup_steps_.push_back({"scene measures", clock.lap_ms(), "bounds, ray epsilon"});
+  upload_scene(clock);
   BufferExtents extents;
   extents.pixels = uint64_t(width_) * uint64_t(height_);
   extents.shading_points = extents.pixels * uint64_t(settings_.mirror_depth + 1);
@@ -115,23 +117,28 @@ Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& set
   extents.control_pixels = control_grid(width_, height_).pixels();
   buffers_.allocate(BufferGroup::frame, extents);
   control_ = std::make_unique<BiasControl>(device_, buffers_, width_, height_);
+  setup_steps_.push_back({"frame buffers", clock.lap_ms(), "film, shading points, error control"});
   if (settings_.method) {
     MethodContext context{device_,  scene_,  measures_, buffers_, width_, height_, uint32_t(extents.shading_points),
                           settings_.passes};
     method_ = settings_.method->create(context);
+    setup_steps_.push_back({"method setup", clock.lap_ms(), settings_.method->method_name()});
   }
 }
 
 // Freeing a buffer unbinds it from the device's slot table (DeviceBuffer::reset).
 Renderer::~Renderer() = default;
 
-void Renderer::upload_scene() {
+void Renderer::upload_scene(StepClock& clock) {
   SceneBvh bvh = build_scene_bvh(scene_);
-  buffers_.upload(BufferSlot::scene_nodes, bvh.nodes);
-  buffers_.upload(BufferSlot::triangles, bvh.triangles);
-  buffers_.upload(BufferSlot::materials, to_device_materials(scene_));
+  setup_steps_.push_back({"BVH build", clock.lap_ms(), std::to_string(bvh.nodes.size()) + " nodes"});
   // Textures once per scene; an untextured scene leaves the three buffers unallocated (null).
   const DeviceTextures textures = pack_scene_textures(scene_, bvh);
+  const std::vector<Material> materials = to_device_materials(scene_);
+  setup_steps_.push_back({"textures and materials", clock.lap_ms(), std::to_string(scene_.images.size()) + " images"});
+  buffers_.upload(BufferSlot::scene_nodes, bvh.nodes);
+  buffers_.upload(BufferSlot::triangles, bvh.triangles);
+  buffers_.upload(BufferSlot::materials, materials);
   if (!textures.info.empty()) buffers_.upload(BufferSlot::texture_info, textures.info);
   if (!textures.texels.empty()) buffers_.upload(BufferSlot::texels, textures.texels);
   if (!textures.uvs.empty()) buffers_.upload(BufferSlot::triangle_uvs, textures.uvs);
@@ -145,6 +152,7 @@ void Renderer::upload_scene() {
   emitter_count_ = emitters.count;
   emitter_power_ = float(emitters.power);
   set_lights(scene_.lights);
+  setup_steps_.push_back({"scene upload", clock.lap_ms(), "BVH, triangles, materials, textures, lights"});
 }
 
 uint64_t Renderer::texture_bytes() const {
@@ -208,6 +216,7 @@ void Renderer::begin_frame(int frame) {
   change.camera = change.first || !same_camera(camera, last_camera_);
   frame_.light_run_start = light_run_start(frame, lights);  // before set_lights: compares with the last frame's
   set_lights(lights);
+  if (!rendered_before_) first_frame_begun_ = StartupClock::now();
   rendered_before_ = true;
   last_camera_ = camera;
 

@@ -133,9 +133,14 @@ class Renderer {
   std::string describe() const;
   // Every stage of a frame in order (camera, the method's, film), with its work per frame.
   std::vector<StageInfo> stages() const;
+  // What the constructor took, step by step (BVH build, scene upload, buffers, the method), and
+  // when the first frame began (its camera pass launched): the end of start-up, for reports.
+  const std::vector<StartupStep>& setup_steps() const { return setup_steps_; }
+  bool has_begun_a_frame() const { return rendered_before_; }
+  StartupClock::time_point first_frame_begun() const { return first_frame_begun_; }
 
  private:
-  void upload_scene();
+  void upload_scene(StepClock& clock);
   void set_lights(const std::vector<LightDesc>& lights);
   int light_run_start(int frame, const std::vector<LightDesc>& lights);
 
@@ -157,6 +162,8 @@ class Renderer {
   uint32_t odd_passes_ = 0;       // of those, the ones with an odd pass number
   uint32_t next_pass_ = 0;        // the pass run_pass() runs
   bool rendered_before_ = false;  // a frame was begun on this renderer
+  std::vector<StartupStep> setup_steps_;
+  StartupClock::time_point first_frame_begun_{};
   CameraDesc last_camera_;
   std::vector<LightDesc> device_lights_;  // the lights in the lights buffer
   uint32_t emitter_count_ = 0;  // area lights: emitting triangles uploaded (render/scene_emitters.h)

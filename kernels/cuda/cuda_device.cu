@@ -2,12 +2,14 @@
 // slot table copied into the kernels' constant-memory KernelGlobals when it changed (once per
 // frame), launches through cudaLaunchKernel with the LaunchParams alone, CUB's radix sort for
 // sort_pairs, CUDA events for timers. Every call makes its device current first, so several
-// CudaDevices can live in one process.
+// CudaDevices can live in one process. Opening a device times its steps for start-up reports
+// (render/startup_timing.h): the driver's initialisation, the context, the module load.
 #include "kernels/cuda/cuda_device.h"
 
 #include <cuda_runtime.h>
 
 #include <cub/device/device_radix_sort.cuh>
+#include <mutex>
 #include <string>
 
 #include "kernels/cuda/kernel_table.h"
@@ -24,14 +26,36 @@ void check(cudaError_t code, const char* call, const char* file, int line) {
 }
 #define PM_CUDA_CHECK(call) check((call), #call, __FILE__, __LINE__)
 
+// How long the process's first CUDA runtime call took: it initialises the driver, whichever call
+// it is (the device count of --backend auto, or of opening a device). Reported once, by the first
+// device opened; negative: not measured yet, or reported already.
+std::mutex driver_init_lock;
+double driver_init_ms = -1;
+bool driver_init_measured = false;
+
 int cuda_device_count() {
+  const StartupClock::time_point start = StartupClock::now();
   int count = 0;
   // Without a driver or a GPU this fails: that means "no CUDA devices", not an error.
-  if (cudaGetDeviceCount(&count) != cudaSuccess) {
+  const bool found = cudaGetDeviceCount(&count) == cudaSuccess;
+  {
+    std::lock_guard<std::mutex> lock(driver_init_lock);
+    if (!driver_init_measured) driver_init_ms = ms_between(start, StartupClock::now());
+    driver_init_measured = true;
+  }
+  if (!found) {
     cudaGetLastError();
     return 0;
   }
   return count;
+}
+
+// The driver's initialisation time, to the first caller only.
+double take_driver_init_ms() {
+  std::lock_guard<std::mutex> lock(driver_init_lock);
+  const double ms = driver_init_ms;
+  driver_init_ms = -1;
+  return ms;
 }
 
 DeviceInfo describe(int index) {
@@ -55,13 +79,28 @@ DeviceInfo describe(int index) {
 class CudaDevice final : public Device {
  public:
   explicit CudaDevice(int index) : index_(index) {
+    const double driver_ms = take_driver_init_ms();
+    if (driver_ms >= 0) startup_.steps.push_back({"driver init", driver_ms, "the process's first CUDA call"});
+    StepClock clock;
     info_ = describe(index);
+    startup_.steps.push_back({"device properties", clock.lap_ms(), "cudaGetDeviceProperties"});
     PM_CUDA_CHECK(cudaSetDevice(index));
+    PM_CUDA_CHECK(cudaFree(nullptr));  // creates the primary context now, so that its time is its own
+    startup_.steps.push_back({"context", clock.lap_ms(), "primary context creation"});
     PM_CUDA_CHECK(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking));
     // Pinned, so the copy into constant memory is asynchronous; the event says when the staging
     // copy may be overwritten.
     PM_CUDA_CHECK(cudaMallocHost(&globals_staging_, sizeof(void*) * kBufferSlotCount));
     PM_CUDA_CHECK(cudaEventCreateWithFlags(&globals_copied_, cudaEventDisableTiming));
+    startup_.steps.push_back({"stream", clock.lap_ms(), "stream, pinned staging, event"});
+    // With lazy loading (CUDA_MODULE_LOADING=LAZY, the default since CUDA 12.2) the module and
+    // each kernel load at their first use; asking for every kernel's attributes loads them here,
+    // so the first frame's time is the frame's and the load has a row of its own.
+    for (size_t i = 0; i < kKernelCount; ++i) {
+      cudaFuncAttributes attributes{};
+      PM_CUDA_CHECK(cudaFuncGetAttributes(&attributes, pm_cuda_kernel_table[i]));
+    }
+    startup_.steps.push_back({"module load", clock.lap_ms(), std::to_string(kKernelCount) + " kernels"});
   }
 
   ~CudaDevice() override {
@@ -199,6 +238,8 @@ class CudaDevice final : public Device {
 };
 
 }  // namespace
+
+int count_cuda_devices() { return cuda_device_count(); }
 
 std::vector<DeviceInfo> list_cuda_devices() {
   std::vector<DeviceInfo> infos;

@@ -1,6 +1,6 @@
 // OpenCL implementation of the device interface: one in-order queue, buffers as cl_mem, the
-// embedded kernel source built once per device (drivers such as PoCL and NVIDIA's cache the
-// binary themselves), every buffer slot a kernel argument in PM_BUFFER_LIST order. Kernel
+// embedded kernel source built once per device (or its binary loaded from the program cache:
+// opencl_program.h), every buffer slot a kernel argument in PM_BUFFER_LIST order. Kernel
 // arguments persist in each cl_kernel, so a launch sets only the slots that changed since that
 // kernel's last launch, and its LaunchParams.
 #include "kernels/opencl/opencl_device.h"
@@ -14,6 +14,8 @@
 #include <mutex>
 #include <string>
 
+#include "kernels/opencl/opencl_check.h"
+#include "kernels/opencl/opencl_program.h"
 #include "render/errors.h"
 #include "render/portable_sort.h"
 
@@ -23,30 +25,6 @@ extern const char kOpenclKernelSource[];
 extern const size_t kOpenclKernelSourceSize;
 
 namespace {
-
-const char* cl_error_name(cl_int code) {
-  switch (code) {
-#define PM_CL_ERROR(name) case name: return #name;
-    PM_CL_ERROR(CL_DEVICE_NOT_FOUND) PM_CL_ERROR(CL_DEVICE_NOT_AVAILABLE) PM_CL_ERROR(CL_COMPILER_NOT_AVAILABLE)
-    PM_CL_ERROR(CL_MEM_OBJECT_ALLOCATION_FAILURE) PM_CL_ERROR(CL_OUT_OF_RESOURCES) PM_CL_ERROR(CL_OUT_OF_HOST_MEMORY)
-    PM_CL_ERROR(CL_BUILD_PROGRAM_FAILURE) PM_CL_ERROR(CL_INVALID_VALUE) PM_CL_ERROR(CL_INVALID_PLATFORM)
-    PM_CL_ERROR(CL_INVALID_DEVICE) PM_CL_ERROR(CL_INVALID_CONTEXT) PM_CL_ERROR(CL_INVALID_COMMAND_QUEUE)
-    PM_CL_ERROR(CL_INVALID_MEM_OBJECT) PM_CL_ERROR(CL_INVALID_PROGRAM) PM_CL_ERROR(CL_INVALID_KERNEL_NAME)
-    PM_CL_ERROR(CL_INVALID_KERNEL) PM_CL_ERROR(CL_INVALID_ARG_INDEX) PM_CL_ERROR(CL_INVALID_ARG_VALUE)
-    PM_CL_ERROR(CL_INVALID_ARG_SIZE) PM_CL_ERROR(CL_INVALID_KERNEL_ARGS) PM_CL_ERROR(CL_INVALID_WORK_GROUP_SIZE)
-    PM_CL_ERROR(CL_INVALID_BUFFER_SIZE) PM_CL_ERROR(CL_INVALID_GLOBAL_WORK_SIZE) PM_CL_ERROR(CL_INVALID_EVENT)
-    PM_CL_ERROR(CL_INVALID_OPERATION) PM_CL_ERROR(CL_PLATFORM_NOT_FOUND_KHR)
-#undef PM_CL_ERROR
-    default: return "unknown OpenCL error";
-  }
-}
-
-void check(cl_int code, const char* call, const char* file, int line) {
-  if (code == CL_SUCCESS) return;
-  throw DeviceError(std::string("OpenCL: ") + call + " failed with " + cl_error_name(code) + " (" +
-                    std::to_string(code) + ") at " + file + ":" + std::to_string(line));
-}
-#define PM_CL_CHECK(call) check((call), #call, __FILE__, __LINE__)
 
 struct DeviceEntry {
   cl_platform_id platform;
@@ -72,24 +50,6 @@ std::vector<DeviceEntry> enumerate() {
     for (cl_device_id device : devices) entries.push_back({platform, device});
   }
   return entries;
-}
-
-std::string device_string(cl_device_id device, cl_device_info what) {
-  size_t size = 0;
-  PM_CL_CHECK(clGetDeviceInfo(device, what, 0, nullptr, &size));
-  std::string value(size, '\0');
-  PM_CL_CHECK(clGetDeviceInfo(device, what, size, value.data(), nullptr));
-  while (!value.empty() && value.back() == '\0') value.pop_back();
-  return value;
-}
-
-std::string platform_string(cl_platform_id platform, cl_platform_info what) {
-  size_t size = 0;
-  PM_CL_CHECK(clGetPlatformInfo(platform, what, 0, nullptr, &size));
-  std::string value(size, '\0');
-  PM_CL_CHECK(clGetPlatformInfo(platform, what, size, value.data(), nullptr));
-  while (!value.empty() && value.back() == '\0') value.pop_back();
-  return value;
 }
 
 std::string gib_text(uint64_t bytes) {
@@ -119,7 +79,11 @@ DeviceInfo describe(const DeviceEntry& entry, int index) {
 
 class OpenclDevice final : public Device {
  public:
-  OpenclDevice(const DeviceEntry& entry, int index) : device_(entry.device) {
+  // platforms_ms: the enumeration of platforms and devices that found this one.
+  OpenclDevice(const DeviceEntry& entry, int index, double platforms_ms)
+      : device_(entry.device), platform_(entry.platform) {
+    startup_.steps.push_back({"platforms", platforms_ms, "ICD loader and the drivers' initialisation"});
+    StepClock clock;
     info_ = describe(entry, index);
     cl_ulong max_allocation = 0;
     PM_CL_CHECK(clGetDeviceInfo(device_, CL_DEVICE_MAX_MEM_ALLOC_SIZE, sizeof(max_allocation), &max_allocation, nullptr));
@@ -129,6 +93,7 @@ class OpenclDevice final : public Device {
     PM_CL_CHECK(err);
     queue_ = clCreateCommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE, &err);
     PM_CL_CHECK(err);
+    startup_.steps.push_back({"context", clock.lap_ms(), "device properties, context, queue"});
     build_program();
   }
 
@@ -232,36 +197,33 @@ class OpenclDevice final : public Device {
   static cl_mem mem(const DeviceBuffer& buffer) { return static_cast<cl_mem>(buffer.handle()); }
 
   void build_program() {
-    const char* source = kOpenclKernelSource;
-    const size_t length = kOpenclKernelSourceSize;
-    cl_int err = CL_SUCCESS;
-    program_ = clCreateProgramWithSource(context_, 1, &source, &length, &err);
-    PM_CL_CHECK(err);
     // No -cl-fast-relaxed-math: it implies finite-math-only, and the slab tests rely on IEEE
     // infinities for axis-parallel rays. The device's index makes each device's program its own:
     // PoCL 5 shares one compiled library between identical programs of two of its CPU devices and
     // then releases it twice (an assertion in pocl_release_dlhandle_cache aborted the process).
-    const std::string options = "-cl-std=CL1.2 -cl-mad-enable -D PM_OPENCL_DEVICE_INDEX=" + std::to_string(info_.index);
-    err = clBuildProgram(program_, 1, &device_, options.c_str(), nullptr, nullptr);
-    if (err != CL_SUCCESS) {
-      size_t size = 0;
-      clGetProgramBuildInfo(program_, device_, CL_PROGRAM_BUILD_LOG, 0, nullptr, &size);
-      std::string log(size, '\0');
-      clGetProgramBuildInfo(program_, device_, CL_PROGRAM_BUILD_LOG, size, log.data(), nullptr);
-      throw DeviceError("OpenCL: building the kernels for " + info_.name + " failed with " + cl_error_name(err) +
-                        "; build log:\n" + log);
-    }
+    OpenclProgramRequest request;
+    request.context = context_;
+    request.device = device_;
+    request.platform = platform_;
+    request.source = kOpenclKernelSource;
+    request.source_size = kOpenclKernelSourceSize;
+    request.options = "-cl-std=CL1.2 -cl-mad-enable -D PM_OPENCL_DEVICE_INDEX=" + std::to_string(info_.index);
+    program_ = build_opencl_program(request, ProgramCache(program_cache_settings_from_environment()), startup_);
+    StepClock clock;
+    cl_int err = CL_SUCCESS;
     for (size_t i = 0; i < kKernelCount; ++i) {
       std::string name = std::string("pm_") + kernel_name(static_cast<KernelId>(i));
       kernels_[i] = clCreateKernel(program_, name.c_str(), &err);
       if (err != CL_SUCCESS)
         throw DeviceError("OpenCL: clCreateKernel(" + name + ") failed with " + cl_error_name(err));
     }
+    startup_.steps.push_back({"kernels", clock.lap_ms(), std::to_string(kKernelCount) + " clCreateKernel"});
   }
 
   DeviceInfo info_;
   uint64_t max_allocation_ = 0;  // CL_DEVICE_MAX_MEM_ALLOC_SIZE
   cl_device_id device_ = nullptr;
+  cl_platform_id platform_ = nullptr;
   cl_context context_ = nullptr;
   cl_command_queue queue_ = nullptr;
   cl_program program_ = nullptr;
@@ -283,13 +245,15 @@ std::vector<DeviceInfo> list_opencl_devices() {
 }
 
 std::unique_ptr<Device> create_opencl_device(int index) {
+  StepClock clock;
   std::vector<DeviceEntry> entries = enumerate();
+  const double platforms_ms = clock.lap_ms();
   if (entries.empty())
     throw DeviceError("OpenCL: no OpenCL device found (is an ICD such as pocl-opencl-icd installed?)");
   if (index < 0 || index >= static_cast<int>(entries.size()))
     throw SettingError("device", "no device " + std::to_string(index) + ": OpenCL has " + std::to_string(entries.size()) +
                      " device(s); see 'pmrender devices'");
-  return std::make_unique<OpenclDevice>(entries[index], index);
+  return std::make_unique<OpenclDevice>(entries[index], index, platforms_ms);
 }
 
 }  // namespace pm
