@@ -166,7 +166,7 @@ TEST_F(SceneJsonErrors, UnknownKeyListsTheKnownOnes) {
   json scene = valid_scene();
   scene["lights"][0]["colour"] = {1, 1, 1};
   expect_scene_message(error_of_scene(scene),
-                       "lights[0].colour: unknown key (expected one of: name, position, power)");
+                       "lights[0].colour: unknown key (expected one of: name, type, position, power, direction, inner_cone_angle, outer_cone_angle)");
 }
 
 TEST_F(SceneJsonErrors, UnknownKeysAreErrorsEverywhere) {
