@@ -15,10 +15,12 @@ class PathOptions final : public MethodOptions {
  public:
   PathSettings settings_;
   CLI::Option* bounces = nullptr;  // shared with photon mapping
+  std::string mis = "on";
 
   std::shared_ptr<const MethodSettings> settings() const override {
     auto s = std::make_shared<PathSettings>(settings_);
     if (bounces && bounces->count() > 0) s->bounces = bounces->as<int>();
+    s->mis = mis == "on";
     s->validate();
     return s;
   }
@@ -31,6 +33,9 @@ std::shared_ptr<MethodOptions> add_path_options(CLI::App* cmd) {
   const std::string group = "Path tracing (--method path)";
   cmd->add_option("--spp", o->settings_.samples, "Paths per pixel and pass (the image averages --passes of them)")
       ->capture_default_str()->transform(any_unsigned32())->group(group);
+  cmd->add_option("--path-mis", o->mis, "Area lights: on (multiple importance sampling of light samples and sampled "
+                                       "directions) or off (light samples only)")
+      ->capture_default_str()->check(CLI::IsMember({"on", "off"}))->group(group);
   o->bounces = cmd->get_option_no_throw("--bounces");
   if (!o->bounces)
     o->bounces = cmd->add_option("--bounces", o->settings_.bounces, "Diffuse bounces of indirect light")

@@ -32,6 +32,10 @@ void add_render_options(CLI::App* cmd, RenderOptions& o) {
                   "biased methods; docs/accuracy.md), grown up to 16x (within the frame's own time) where it cannot resolve the error; 0: the "
                   "estimate sees the noise between passes only")
       ->capture_default_str()->transform(integer_in(0, 65536));
+  cmd->add_option("--area-light-samples", o.area_light_samples,
+                  "Light samples of the emitting surfaces per pixel and mirror depth in the direct light (and per "
+                  "element in radiosity's light links)")
+      ->capture_default_str()->transform(integer_in(1, 65536));
   std::string method_help = "Indirect-light method:";
   for (const MethodEntry& m : methods()) method_help += std::string(" ") + m.name + " (" + m.summary + ")";
   cmd->add_option("--method", o.method, method_help)->capture_default_str()->check(CLI::IsMember(method_names()));
@@ -50,6 +54,7 @@ RenderSettings render_settings(const RenderOptions& o) {
   settings.seed = o.seed;
   settings.passes = o.passes;
   settings.control_paths = o.control_paths;
+  settings.area_light_samples = o.area_light_samples;
   settings.reuse_lighting = !o.no_reuse;
   if (!o.resolution.empty()) parse_resolution(o.resolution, &settings.width, &settings.height);
   settings.method = o.method_options.at(o.method)->settings();

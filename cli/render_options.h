@@ -23,6 +23,7 @@ struct RenderOptions {
   uint32_t seed = 1;
   uint32_t passes = 1;
   uint32_t control_paths = 1024;  // the error estimate's bias control (RenderSettings::control_paths)
+  uint32_t area_light_samples = 16;  // RenderSettings::area_light_samples
   std::string method = "photon";
   bool no_reuse = false;
   CLI::Option* passes_option = nullptr;  // given on the command line (a budget's cap then)

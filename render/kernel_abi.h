@@ -17,7 +17,7 @@
 namespace pm {
 
 // The shared structs' sizes, as every device compiler must see them too (layout_probe).
-static_assert(sizeof(Material) == 64 && sizeof(PointLight) == 32 && sizeof(CameraParams) == 64,
+static_assert(sizeof(Material) == 64 && sizeof(PointLight) == 48 && sizeof(CameraParams) == 64,
               "shared structs hold only float4 members");
 static_assert(sizeof(LaunchParams) % 16 == 0, "LaunchParams is a whole number of 16-byte rows");
 

@@ -13,6 +13,7 @@
 #include "kernels/common/pixel_order.h"
 #include "render/errors.h"
 #include "render/scene_bvh.h"
+#include "render/scene_emitters.h"
 #include "render/scene_frame.h"
 #include "render/scene_scale.h"
 #include "render/scene_textures.h"
@@ -52,6 +53,8 @@ void RenderSettings::validate() const {
     throw SettingError("resolution", "expected each side from 1 to 16384, got " + std::to_string(width) + "x" +
                                          std::to_string(height));
   if (passes < 1) throw SettingError("passes", "expected at least 1 pass, got 0");
+  if (area_light_samples < 1 || area_light_samples > 65536)
+    throw SettingError("area-light-samples", "expected 1 to 65536, got " + std::to_string(area_light_samples));
   if (method) method->validate();
 }
 
@@ -84,7 +87,16 @@ std::vector<Material> to_device_materials(const Scene& scene) {
 
 std::vector<PointLight> to_device_lights(const std::vector<LightDesc>& scene_lights) {
   std::vector<PointLight> lights;
-  for (const LightDesc& l : scene_lights) lights.push_back(PointLight{to_float4(l.position), to_float4(l.power)});
+  for (const LightDesc& l : scene_lights) {
+    PointLight light{to_float4(l.position), to_float4(l.power), float4{0, 0, 1, 0}};
+    light.position.w = light.power.w = -1.0f;  // an isotropic point light (spot_light.h)
+    if (l.type == LightType::spot) {
+      light.position.w = float(std::cos(double(l.outer_cone)));
+      light.power.w = float(std::cos(double(l.inner_cone)));
+      light.axis = to_float4(normalized(l.direction));
+    }
+    lights.push_back(light);
+  }
   return lights;
 }
 
@@ -131,6 +143,14 @@ void Renderer::upload_scene(StepClock& clock) {
   if (!textures.texels.empty()) buffers_.upload(BufferSlot::texels, textures.texels);
   if (!textures.uvs.empty()) buffers_.upload(BufferSlot::triangle_uvs, textures.uvs);
   if (!textures.srgb_table.empty()) buffers_.upload(BufferSlot::texture_srgb_table, textures.srgb_table);
+  // Area lights likewise: a scene without emitting materials allocates neither buffer.
+  const SceneEmitters emitters = build_scene_emitters(scene_);
+  if (emitters.count > 0) {
+    buffers_.upload(BufferSlot::emitters, emitters.records);
+    buffers_.upload(BufferSlot::material_emission, emitters.material_emission);
+  }
+  emitter_count_ = emitters.count;
+  emitter_power_ = float(emitters.power);
   set_lights(scene_.lights);
   setup_steps_.push_back({"scene upload", clock.lap_ms(), "BVH, triangles, materials, textures, lights"});
 }
@@ -207,6 +227,10 @@ void Renderer::begin_frame(int frame) {
   p.height = uint32_t(height_);
   p.triangle_count = uint32_t(scene_.triangle_count());
   p.light_count = uint32_t(lights.size());
+  p.emitter_count = emitter_count_;
+  p.emitter_power = emitter_power_;
+  p.area_light_samples = settings_.area_light_samples;
+  p.path_mis = 1u;  // paths of the error estimate's bias control; the path method sets its own
   p.ray_epsilon = measures_.ray_epsilon;
   p.mirror_depth = uint32_t(settings_.mirror_depth);
   p.seed = settings_.seed;

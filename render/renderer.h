@@ -36,6 +36,9 @@ struct RenderSettings {
   // Paths per control pixel of the error estimate's bias control (render/bias_control.h) by the
   // time a frame's error is estimated; 0: the estimate sees noise only.
   uint32_t control_paths = 1024;
+  // Light samples of the area lights per shading point in the camera pass (direct light) and per
+  // element in radiosity's light links; unused without emitting materials.
+  uint32_t area_light_samples = 16;
   std::shared_ptr<const MethodSettings> method;  // null: direct light only
   // Extra layers of the image (render/film_layers.h): none by default, and then no buffers,
   // no launch and no read-back for them.
@@ -163,6 +166,8 @@ class Renderer {
   StartupClock::time_point first_frame_begun_{};
   CameraDesc last_camera_;
   std::vector<LightDesc> device_lights_;  // the lights in the lights buffer
+  uint32_t emitter_count_ = 0;  // area lights: emitting triangles uploaded (render/scene_emitters.h)
+  float emitter_power_ = 0;
   int run_frame_ = -1, run_start_ = -1;   // light_run_start of the last frame asked (memo)
 };
 

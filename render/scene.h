@@ -1,5 +1,6 @@
 // The in-memory scene every loader produces and the renderer consumes: triangles in metres,
-// modified-Phong materials with their textures, isotropic point lights and a pinhole camera.
+// modified-Phong materials with their textures and emission (area lights), point and spot
+// lights and a pinhole camera.
 // Format-independent: scene_io/ fills it from JSON+OBJ or glTF; nothing here knows about files. Cameras and lights
 // may carry keyframe tracks (SceneAnimation); a scene without them is one still frame.
 #pragma once
@@ -60,14 +61,33 @@ struct MaterialDesc {
   int alpha_channel = 3;
   float alpha_factor = 1.0f;
   float alpha_cutoff = 0.5f;
+  // Emitted radiance (W sr^-1 m^-2 per channel) of a Lambertian emitter, from each triangle's
+  // front face (the side of (p1 - p0) x (p2 - p0)); zero: not a light.
+  Float3 emission{0, 0, 0};
+  bool emits() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
 };
 
-// Isotropic point light. position in metres, power in watts per RGB channel.
+enum class LightType : uint8_t { point, spot };
+
+// A point light (isotropic) or a spot light (a point light restricted to a cone about
+// `direction`, with the glTF KHR_lights_punctual falloff between the inner and the outer cone
+// angle; kernels/common/spot_light.h). position in metres; power in watts per RGB channel: a
+// point light's radiant flux, and for a spot the flux of the point light with the same on-axis
+// intensity (intensity = power / (4 pi) W/sr on the axis); the spot emits
+// power * spot_emitted_fraction().
 struct LightDesc {
   std::string name;
   Float3 position;
   Float3 power;
+  LightType type = LightType::point;
+  Float3 direction{0, 0, -1};  // spot: the axis, any length above zero
+  float inner_cone = 0.0f;     // spot: radians from the axis, 0 <= inner < outer
+  float outer_cone = 0.785398163f;  // spot: radians from the axis, outer <= pi / 2 (glTF's default pi / 4)
 };
+
+// The share of `power` a light emits: 1 for a point light; for a spot
+// ((1 - cos inner) + (cos inner - cos outer) / 3) / 2 (spot_light.h).
+double light_emitted_fraction(const LightDesc& light);
 
 // Pinhole camera. Positions in metres, vertical field of view in degrees.
 struct CameraDesc {
@@ -87,11 +107,12 @@ struct CameraAnimation {
   bool empty() const { return position.empty() && look_at.empty() && up.empty() && vertical_fov.empty(); }
 };
 
-// Keyframe tracks of one point light; an empty track leaves that value at the LightDesc's.
-// position in metres, power in watts per RGB channel (the light's colour is its RGB power).
+// Keyframe tracks of one point or spot light; an empty track leaves that value at the
+// LightDesc's. position in metres, power in watts per RGB channel (the light's colour is its RGB
+// power), direction (spot lights) any non-zero vector.
 struct LightAnimation {
-  Vec3Track position, power;
-  bool empty() const { return position.empty() && power.empty(); }
+  Vec3Track position, power, direction;
+  bool empty() const { return position.empty() && power.empty() && direction.empty(); }
 };
 
 // A sequence: frame f shows the scene at time f / frame_rate seconds (render/
@@ -138,6 +159,11 @@ struct Scene {
       if (m.base_color_texture >= 0 || m.alpha_mask) return true;
     return false;
   }
+  // True when some triangle's material emits: the scene has area lights.
+  bool has_emitters() const;
+  // True when some point or spot light has power above zero or the scene has emitters: there is
+  // light to render (loaders refuse scenes without).
+  bool has_light() const;
 };
 
 // The object of triangle t: triangle_object[t], or past its end the object after the named ones

@@ -39,6 +39,7 @@ std::vector<LightDesc> lights_at_frame(const Scene& scene, int frame) {
     const LightAnimation& a = scene.animation.lights[i];
     if (!a.position.empty()) lights[i].position = to_float3(a.position.evaluate(t));
     if (!a.power.empty()) lights[i].power = to_float3(a.power.evaluate(t));
+    if (!a.direction.empty()) lights[i].direction = to_float3(a.direction.evaluate(t));
   }
   return lights;
 }
@@ -46,7 +47,10 @@ std::vector<LightDesc> lights_at_frame(const Scene& scene, int frame) {
 bool same_lights(const std::vector<LightDesc>& a, const std::vector<LightDesc>& b) {
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i)
-    if (!same_bits(a[i].position, b[i].position) || !same_bits(a[i].power, b[i].power)) return false;
+    if (!same_bits(a[i].position, b[i].position) || !same_bits(a[i].power, b[i].power) || a[i].type != b[i].type ||
+        !same_bits(a[i].direction, b[i].direction) || std::memcmp(&a[i].inner_cone, &b[i].inner_cone, sizeof(float)) != 0 ||
+        std::memcmp(&a[i].outer_cone, &b[i].outer_cone, sizeof(float)) != 0)
+      return false;
   return true;
 }
 

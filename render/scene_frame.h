@@ -18,8 +18,9 @@ double frame_time(const Scene& scene, int frame);
 CameraDesc camera_at_frame(const Scene& scene, int frame);
 std::vector<LightDesc> lights_at_frame(const Scene& scene, int frame);
 
-// True when both lists have the same lights at bitwise the same positions and powers (names are
-// not compared): photons traced for one are valid for the other.
+// True when both lists have the same lights at bitwise the same positions, powers and (spot
+// lights) directions and cone angles (names are not compared): photons traced for one are valid
+// for the other.
 bool same_lights(const std::vector<LightDesc>& a, const std::vector<LightDesc>& b);
 
 // The first frame of the run of consecutive frames that ends at `frame` and whose lights all

@@ -113,9 +113,15 @@ void read_light_tracks(const JsonField& field, double meters_per_unit, Scene* sc
     }
     if (matches > 1) light.fail(std::to_string(matches) + " lights have this name; animated lights need unique names");
     LightAnimation& a = scene->animation.lights[by_name.find(item.key())->second];
-    light.expect_object_with_keys({"position", "power"});
+    light.expect_object_with_keys({"position", "power", "direction"});
     if (light.has("position")) a.position = read_track<3>(light.member("position"), position, last_time);
     if (light.has("power")) a.power = read_track<3>(light.member("power"), read_power, last_time);
+    if (light.has("direction")) {
+      const JsonField direction = light.member("direction");
+      if (scene->lights[by_name.find(item.key())->second].type != LightType::spot)
+        direction.fail("only a spot light has a direction");
+      a.direction = read_track<3>(direction, read_direction, last_time);
+    }
   }
 }
 

@@ -59,16 +59,47 @@ MaterialDesc GltfLoader::convert_material(int index) {
   if (pbr.metallicRoughnessTexture.index >= 0) ignored.push_back("metallicRoughnessTexture");
   if (m.normalTexture.index >= 0) ignored.push_back("normalTexture");
   if (m.occlusionTexture.index >= 0) ignored.push_back("occlusionTexture");
-  if (m.emissiveTexture.index >= 0) ignored.push_back("emissiveTexture");
-  if (m.emissiveFactor.size() == 3 && (m.emissiveFactor[0] > 0 || m.emissiveFactor[1] > 0 || m.emissiveFactor[2] > 0))
-    ignored.push_back("emissiveFactor (emissive surfaces do not become lights)");
-  for (const auto& extension : m.extensions) ignored.push_back(extension.first);
+  desc.emission = read_emission(index);
+  for (const auto& extension : m.extensions)
+    if (extension.first != "KHR_materials_emissive_strength") ignored.push_back(extension.first);
   if (!ignored.empty()) {
     std::string list;
     for (const std::string& item : ignored) list += (list.empty() ? "" : ", ") + item;
     warn(where + quoted_name(m.name) + ": ignored: " + list);
   }
   return desc;
+}
+
+// Emitted radiance: emissiveFactor times KHR_materials_emissive_strength's emissiveStrength is
+// a luminance in cd/m^2 (nits), turned into W sr^-1 m^-2 per channel at 683 lm/W as the
+// lights' candela are (docs/scene-format.md). emissiveTexture is not read (one warning per scene).
+Float3 GltfLoader::read_emission(int index) {
+  const tinygltf::Material& m = model_.materials[size_t(index)];
+  const std::string where = indexed("materials", size_t(index));
+  if (m.emissiveTexture.index >= 0) {
+    ++emissive_textures_;
+    if (first_emissive_texture_.empty()) first_emissive_texture_ = where + quoted_name(m.name);
+  }
+  if (m.emissiveFactor.empty()) return Float3{0, 0, 0};
+  if (m.emissiveFactor.size() != 3) fail(where + ".emissiveFactor", "expected 3 numbers");
+  double strength = 1;
+  auto ext = m.extensions.find("KHR_materials_emissive_strength");
+  if (ext != m.extensions.end() && ext->second.Has("emissiveStrength")) {
+    const tinygltf::Value& value = ext->second.Get("emissiveStrength");
+    strength = value.IsNumber() ? value.GetNumberAsDouble() : NAN;
+    if (!(strength >= 0) || !std::isfinite(strength))
+      fail(where + ".extensions.KHR_materials_emissive_strength.emissiveStrength",
+           "must be a finite number >= 0, got " + (value.IsNumber() ? str(strength) : std::string("a non-number")));
+  }
+  double radiance[3];
+  for (int c = 0; c < 3; ++c) {
+    const double factor = m.emissiveFactor[size_t(c)];
+    if (!(factor >= 0 && factor <= 1))
+      fail(where + ".emissiveFactor[" + std::to_string(c) + "]", "must be in [0, 1], got " + str(factor));
+    radiance[c] = factor * strength / kLumensPerWatt;
+    if (!(radiance[c] <= 3.0e38)) fail(where + ".extensions.KHR_materials_emissive_strength.emissiveStrength", "beyond float range");
+  }
+  return Float3{float(radiance[0]), float(radiance[1]), float(radiance[2])};
 }
 
 void GltfLoader::append_primitive(const tinygltf::Primitive& primitive, const std::string& where, const Mat4& world,
@@ -140,6 +171,14 @@ void GltfLoader::append_primitive(const tinygltf::Primitive& primitive, const st
       fail(where + ".attributes.POSITION", "vertex " + std::to_string(v) + " is beyond float range after its node transform");
     scene.positions.push_back(f);
   }
+  // A node transform of negative determinant turns glTF's counter-clockwise front faces
+  // clockwise: swapping two corners keeps the geometric normal on the front (the side emitters
+  // emit from).
+  const std::array<double, 16>& w = world.m;
+  const double determinant = w[0] * (w[5] * w[10] - w[9] * w[6]) - w[4] * (w[1] * w[10] - w[9] * w[2]) +
+                             w[8] * (w[1] * w[6] - w[5] * w[2]);
+  if (determinant < 0)
+    for (size_t t = 0; t + 2 < triangles.size(); t += 3) std::swap(triangles[t + 1], triangles[t + 2]);
   size_t dropped = 0;
   for (size_t t = 0; t + 2 < triangles.size(); t += 3) {
     const uint32_t a = uint32_t(base + triangles[t]), b = uint32_t(base + triangles[t + 1]), c = uint32_t(base + triangles[t + 2]);

@@ -59,6 +59,7 @@ class GltfLoader {
   void append_primitive(const tinygltf::Primitive& primitive, const std::string& where, const Mat4& world,
                         Scene& scene, std::map<int, uint32_t>& material_index);
   MaterialDesc convert_material(int index);
+  Float3 read_emission(int index);
   // Textures: the material's base-colour texture and alpha mask (into desc; features left out
   // into ignored), the scene image of a glTF image, the scene texture of a textureInfo (-1 when
   // it has no image pmrender can read), a primitive's texture coordinates.
@@ -70,6 +71,7 @@ class GltfLoader {
   int choose_camera_node();
   CameraDesc camera_at(int node, double t, bool animated) const;
   void read_lights(Scene& scene);
+  Vec3d light_direction_at(int node, double t, bool animated) const;
   void read_animation(Scene& scene);
 
   std::string path_;
@@ -92,6 +94,8 @@ class GltfLoader {
 
   int camera_node_ = -1;
   std::vector<int> light_nodes_;
+  int emissive_textures_ = 0;           // materials with an emissiveTexture (not read)
+  std::string first_emissive_texture_;  // the first of them, for the one warning
 
   SceneTextures* textures_ = nullptr;   // the scene's, while load() runs
   std::map<int, uint32_t> image_index_;  // glTF image -> Scene::images entry

@@ -1,5 +1,5 @@
 // The glTF 2.0 loader's entry and last steps (scene_io/gltf_loader.h has the whole loader): the
-// camera (the first or the named perspective one), KHR_lights_punctual point lights, their node
+// camera (the first or the named perspective one), KHR_lights_punctual point and spot lights, their node
 // animations sampled at every frame, and the Scene they make. glTF units are metres, so nothing
 // is rescaled.
 #include "scene_io/gltf_scene.h"
@@ -18,7 +18,7 @@
 
 namespace pm {
 
-double candela_to_watts(double candela, double colour) { return colour * 4.0 * M_PI * candela / 683.0; }
+double candela_to_watts(double candela, double colour) { return colour * 4.0 * M_PI * candela / kLumensPerWatt; }
 
 double roughness_to_phong_exponent(double roughness) {
   const double alpha = roughness * roughness;
@@ -76,8 +76,12 @@ CameraDesc GltfLoader::camera_at(int node, double t, bool animated) const {
   return camera;
 }
 
+// A spot light's axis at time t: the node's -z axis in world space.
+Vec3d GltfLoader::light_direction_at(int node, double t, bool animated) const {
+  return gltf::transform_direction(world_matrix(node, t, animated), {0, 0, -1});
+}
+
 void GltfLoader::read_lights(Scene& scene) {
-  double total = 0;
   for (int node : order_) {
     const tinygltf::Node& n = model_.nodes[size_t(node)];
     auto ext = n.extensions.find("KHR_lights_punctual");
@@ -89,8 +93,8 @@ void GltfLoader::read_lights(Scene& scene) {
       fail(where + ".light", "light index " + std::to_string(index) + " out of range (" + std::to_string(model_.lights.size()) + " lights)");
     const tinygltf::Light& l = model_.lights[size_t(index)];
     const std::string light_where = "extensions.KHR_lights_punctual.lights[" + std::to_string(index) + "]";
-    if (l.type != "point") {
-      warn(light_where + quoted_name(l.name) + ": " + l.type + " lights are not supported (isotropic point lights only); skipped");
+    if (l.type != "point" && l.type != "spot") {
+      warn(light_where + quoted_name(l.name) + ": " + l.type + " lights are not supported (point and spot lights only); skipped");
       continue;
     }
     if (!(l.intensity >= 0) || !std::isfinite(l.intensity))
@@ -106,17 +110,34 @@ void GltfLoader::read_lights(Scene& scene) {
     }
     if (l.range > 0) warn(light_where + quoted_name(l.name) + ": range is ignored (light falls off with the inverse square only)");
     LightDesc light;
+    if (l.type == "spot") {
+      const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
+      if (!(outer > 0 && outer <= M_PI / 2))
+        fail(light_where + ".spot.outerConeAngle", "must be in (0, pi/2] radians, got " + str(outer));
+      if (!(inner >= 0 && inner < outer))
+        fail(light_where + ".spot.innerConeAngle", "must be in [0, outerConeAngle = " + str(outer) + ") radians, got " + str(inner));
+      const Vec3d d = light_direction_at(node, 0.0, false);
+      if (!(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > 0))
+        fail(indexed("nodes", size_t(node)), "the spot light's node transform has no direction (zero scale)");
+      light.type = LightType::spot;
+      light.direction = Float3{float(d[0]), float(d[1]), float(d[2])};
+      light.inner_cone = float(inner);
+      light.outer_cone = float(outer);
+    }
     light.name = !l.name.empty() ? l.name : !n.name.empty() ? n.name : "light" + std::to_string(scene.lights.size());
     const Vec3d p = gltf::transform_point(world_matrix(node, 0.0, false), {0, 0, 0});
     light.position = Float3{float(p[0]), float(p[1]), float(p[2])};
     light.power = Float3{float(candela_to_watts(l.intensity, colour[0])), float(candela_to_watts(l.intensity, colour[1])),
                          float(candela_to_watts(l.intensity, colour[2]))};
-    total += double(light.power.x) + light.power.y + light.power.z;
     scene.lights.push_back(light);
     light_nodes_.push_back(node);
   }
-  if (scene.lights.empty()) fail("extensions.KHR_lights_punctual", "at least one point light is required");
-  if (total == 0) fail("extensions.KHR_lights_punctual", "every light has zero intensity");
+  if (emissive_textures_ > 0)
+    warn(first_emissive_texture_ + ": emissiveTexture is not rendered (" + std::to_string(emissive_textures_) +
+         " materials have one): their emission is emissiveFactor's alone");
+  // Checked before anything is built or traced: a scene without light renders black.
+  if (!scene.has_light())
+    fail("extensions.KHR_lights_punctual", "no light: no KHR_lights_punctual point or spot light with intensity above zero and no emissive material (emissiveFactor) on any triangle");
 }
 
 // Samples the camera's and the lights' node animations at every frame of the range into linear
@@ -162,6 +183,15 @@ void GltfLoader::read_animation(Scene& scene) {
       for (int f = a.first_frame; f <= a.last_frame; ++f) {
         const Vec3d p = gltf::transform_point(world_matrix(light_nodes_[i], key_time(f), true), {0, 0, 0});
         track.keys.push_back({key_time(f), {float(p[0]), float(p[1]), float(p[2])}});
+      }
+      if (scene.lights[i].type != LightType::spot) continue;
+      // A spot turns with its node: its axis is a track too.
+      Vec3Track& direction = a.lights[i].direction;
+      for (int f = a.first_frame; f <= a.last_frame; ++f) {
+        const Vec3d d = light_direction_at(light_nodes_[i], key_time(f), true);
+        if (!(d[0] * d[0] + d[1] * d[1] + d[2] * d[2] > 0))
+          fail(indexed("nodes", size_t(light_nodes_[i])), "the spot light has no direction at frame " + std::to_string(f) + " (zero scale)");
+        direction.keys.push_back({key_time(f), {float(d[0]), float(d[1]), float(d[2])}});
       }
     }
   }

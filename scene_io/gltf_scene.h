@@ -16,9 +16,14 @@ namespace pm {
 // Frame rate of a glTF sequence when the file does not set one (extras.pmrender.frame_rate).
 constexpr double kGltfDefaultFrameRate = 24.0;
 
+// Luminous efficacy of light at 555 nm: each RGB channel of a glTF light or emissive material is
+// taken as light of that wavelength.
+constexpr double kLumensPerWatt = 683.0;
+
 // Watts of one RGB channel of a point light of `candela` (lm/sr) and colour component `colour`:
 // an isotropic source of I cd emits 4 pi I lm; each channel is taken as light at 555 nm, where
-// 683 lm make one watt.
+// 683 lm make one watt. A spot light's power is converted alike (LightDesc: the power of the
+// point light with the same on-axis intensity).
 double candela_to_watts(double candela, double colour);
 
 // Phong exponent of the glossy lobe for a glTF roughness r: with alpha = r^2 (the GGX/Beckmann

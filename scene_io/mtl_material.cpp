@@ -50,6 +50,7 @@ MaterialDesc material_from_mtl(const MtlMaterial& mtl, std::vector<std::string>*
   check_non_negative(mtl, "Kd", mtl.kd, 3);
   check_non_negative(mtl, "Ks", mtl.ks, 3);
   check_non_negative(mtl, "Ns", &mtl.ns, 1);
+  check_non_negative(mtl, "Ke", mtl.ke, 3);
 
   MaterialDesc desc;
   desc.name = mtl.name;
@@ -63,6 +64,7 @@ MaterialDesc material_from_mtl(const MtlMaterial& mtl, std::vector<std::string>*
     desc.mirror = Float3{0, 0, 0};
   }
   desc.glossy_exponent = mtl.ns;
+  desc.emission = Float3{mtl.ke[0], mtl.ke[1], mtl.ke[2]};
   if (textures && !mtl.map_kd.file.empty()) desc.base_color_texture = mtl_texture(mtl, mtl.map_kd, "map_Kd", textures);
   if (textures && !mtl.map_d.file.empty()) {
     desc.alpha_mask = true;

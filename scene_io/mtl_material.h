@@ -1,5 +1,5 @@
 // Owns the mapping from Wavefront MTL materials to the renderer's modified-Phong MaterialDesc:
-// Kd -> diffuse, Ks -> glossy, Ns -> exponent, and for illum 3/5/7 (ray-traced reflection)
+// Kd -> diffuse, Ks -> glossy, Ns -> exponent, Ke -> emission (area lights), and for illum 3/5/7 (ray-traced reflection)
 // Ks -> mirror instead of glossy; map_Kd -> the base-colour texture (times Kd), map_d -> an
 // alpha mask. MTL files in the wild often break energy conservation (Kd + Ks > 1), so such
 // materials are scaled down rather than rejected (unlike JSON materials).
@@ -27,6 +27,7 @@ struct MtlMaterial {
   std::string mtl_file;  // where it was defined, for messages
   float kd[3] = {0, 0, 0};
   float ks[3] = {0, 0, 0};
+  float ke[3] = {0, 0, 0};  // emitted radiance, W sr^-1 m^-2 (an area light when above zero)
   float ns = 1;
   int illum = 0;
   MtlTexture map_kd, map_d;

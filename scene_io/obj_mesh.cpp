@@ -89,6 +89,7 @@ class SceneMtlReader : public tinyobj::MaterialReader {
       for (int c = 0; c < 3; ++c) {
         mtl.kd[c] = m.diffuse[c];
         mtl.ks[c] = m.specular[c];
+        mtl.ke[c] = m.emission[c];
       }
       mtl.ns = m.shininess;
       mtl.illum = m.illum;

@@ -1,6 +1,7 @@
 // Writing a Scene as JSON + per-material OBJ files (scene_export.h).
 #include "scene_io/scene_export.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
@@ -72,12 +73,21 @@ void export_scene(const Scene& scene, int frame, const std::string& json_path) {
                        {"glossy", vec(desc.glossy)},
                        {"exponent", Json::parse(number(desc.glossy_exponent))},
                        {"mirror", vec(desc.mirror)}};
+    if (desc.emits()) materials[name]["emission"] = vec(desc.emission);
   }
   Json lights = Json::array();
-  for (const LightDesc& l : lights_at_frame(scene, frame))
-    lights.push_back({{"name", l.name.empty() ? "light" + std::to_string(lights.size()) : l.name},
-                      {"position", vec(l.position)},
-                      {"power", vec(l.power)}});
+  for (const LightDesc& l : lights_at_frame(scene, frame)) {
+    Json light = {{"name", l.name.empty() ? "light" + std::to_string(lights.size()) : l.name},
+                  {"position", vec(l.position)},
+                  {"power", vec(l.power)}};
+    if (l.type == LightType::spot) {
+      light["type"] = "spot";
+      light["direction"] = vec(l.direction);
+      light["inner_cone_angle"] = Json::parse(number(float(l.inner_cone * 180.0 / M_PI)));
+      light["outer_cone_angle"] = Json::parse(number(float(l.outer_cone * 180.0 / M_PI)));
+    }
+    lights.push_back(light);
+  }
   const CameraDesc camera = camera_at_frame(scene, frame);
   Json j;
   j["format"] = "pmrender-scene";

@@ -62,12 +62,20 @@ Float3 read_reflectance(const JsonField& field) {
 }
 
 MaterialDesc read_json_material(const JsonField& field, const std::string& name) {
-  field.expect_object_with_keys({"diffuse", "glossy", "exponent", "mirror"});
+  field.expect_object_with_keys({"diffuse", "glossy", "exponent", "mirror", "emission"});
   MaterialDesc desc;  // defaults: diffuse 0.8 grey, no glossy or mirror, exponent 1
   desc.name = name;
   if (field.has("diffuse")) desc.diffuse = read_reflectance(field.member("diffuse"));
   if (field.has("glossy")) desc.glossy = read_reflectance(field.member("glossy"));
   if (field.has("mirror")) desc.mirror = read_reflectance(field.member("mirror"));
+  if (field.has("emission")) {
+    // Radiance of a Lambertian emitter (an area light), W sr^-1 m^-2 per channel.
+    const JsonField emission = field.member("emission");
+    desc.emission = emission.float3();
+    for (size_t i = 0; i < 3; ++i)
+      if (!(component(desc.emission, static_cast<int>(i)) >= 0))
+        emission.element(i).fail("must be >= 0 W sr^-1 m^-2, got " + describe_json_value(emission.element(i).value()));
+  }
   if (field.has("exponent")) {
     const JsonField exponent = field.member("exponent");
     const double value = exponent.finite_number();
@@ -261,36 +269,61 @@ void append_mesh(const JsonField& field, LoadContext& ctx, MaterialTable& table,
 
 // --- lights and camera -----------------------------------------------------------------------
 
+float length(const Float3& v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
+
+// A spot light's cone angle in degrees, as radians: in [0, 90] degrees.
+float read_cone_angle(const JsonField& field) {
+  const double degrees = field.finite_number();
+  if (!(degrees >= 0 && degrees <= 90)) field.fail("must be in [0, 90] degrees, got " + describe_json_value(field.value()));
+  return static_cast<float>(degrees * M_PI / 180.0);
+}
+
+LightDesc read_light(const JsonField& field, size_t index, double meters_per_unit) {
+  field.expect_object_with_keys({"name", "type", "position", "power", "direction", "inner_cone_angle", "outer_cone_angle"});
+  LightDesc light;
+  light.name = field.has("name") ? field.member("name").non_empty_string() : "light" + std::to_string(index);
+  if (field.has("type")) {
+    const JsonField type = field.member("type");
+    const std::string name = type.non_empty_string();
+    if (name == "spot") light.type = LightType::spot;
+    else if (name != "point") type.fail("expected \"point\" or \"spot\", got '" + name + "'");
+  }
+  const JsonField position = field.member("position");
+  light.position = to_metres(position.float3(), meters_per_unit, position);
+  const JsonField power = field.member("power");
+  light.power = power.float3();
+  for (size_t c = 0; c < 3; ++c)
+    if (component(light.power, static_cast<int>(c)) < 0)
+      power.element(c).fail("must be >= 0 W, got " + describe_json_value(power.element(c).value()));
+  if (light.type != LightType::spot) {
+    for (const char* key : {"direction", "inner_cone_angle", "outer_cone_angle"})
+      if (field.has(key)) field.member(key).fail("only a spot light has this key (\"type\": \"spot\")");
+    return light;
+  }
+  const JsonField direction = field.member("direction");
+  light.direction = direction.float3();
+  if (!(length(light.direction) > 0)) direction.fail("must not be zero");
+  light.outer_cone = field.has("outer_cone_angle") ? read_cone_angle(field.member("outer_cone_angle")) : float(M_PI / 4);
+  light.inner_cone = field.has("inner_cone_angle") ? read_cone_angle(field.member("inner_cone_angle")) : 0.0f;
+  if (!(light.inner_cone < light.outer_cone)) {
+    const JsonField where = field.has("inner_cone_angle") ? field.member("inner_cone_angle") : field.member("outer_cone_angle");
+    where.fail("the inner cone angle must be below the outer one (" + std::to_string(light.inner_cone * 180.0 / M_PI) +
+               " >= " + std::to_string(light.outer_cone * 180.0 / M_PI) + " degrees)");
+  }
+  return light;
+}
+
+// Lights are optional: a scene may be lit by emitting materials alone; load_scene_file checks
+// that some light, of either kind, is there.
 std::vector<LightDesc> read_lights(const JsonField& root, double meters_per_unit) {
-  // A photon mapper without lights has nothing to trace, so an empty list is an input error.
-  if (!root.has("lights")) throw_input_error(root.file() + ": lights", "at least one light is required");
+  std::vector<LightDesc> result;
+  if (!root.has("lights")) return result;
   const JsonField lights = root.member("lights");
   const size_t count = lights.expect_array();
-  if (count == 0) lights.fail("at least one light is required");
-  std::vector<LightDesc> result;
-  double total_power = 0;
-  for (size_t i = 0; i < count; ++i) {
-    const JsonField field = lights.element(i);
-    field.expect_object_with_keys({"name", "position", "power"});
-    LightDesc light;
-    light.name = field.has("name") ? field.member("name").non_empty_string() : "light" + std::to_string(i);
-    const JsonField position = field.member("position");
-    light.position = to_metres(position.float3(), meters_per_unit, position);
-    const JsonField power = field.member("power");
-    light.power = power.float3();
-    for (size_t c = 0; c < 3; ++c) {
-      const float watts = component(light.power, static_cast<int>(c));
-      if (watts < 0)
-        power.element(c).fail("must be >= 0 W, got " + describe_json_value(power.element(c).value()));
-      total_power += watts;
-    }
-    result.push_back(light);
-  }
-  if (total_power == 0) lights.fail("every light has zero power");
+  for (size_t i = 0; i < count; ++i) result.push_back(read_light(lights.element(i), i, meters_per_unit));
   return result;
 }
 
-float length(const Float3& v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
 
 CameraDesc read_camera(const JsonField& root, double meters_per_unit) {
   const JsonField field = root.member("camera");
@@ -399,6 +432,12 @@ Scene load_scene_file(const std::string& path, SceneLoadReport* report) {
   }
 
   scene.lights = read_lights(root, ctx.meters_per_unit);
+  // Nothing to render without light: say so now, before anything is built or traced.
+  if (!scene.has_light()) {
+    throw_input_error(root.file() + ": lights",
+                      "no light: no light with power above zero under lights and no emitting material "
+                      "(materials' emission, MTL Ke) on any triangle");
+  }
   scene.camera = read_camera(root, ctx.meters_per_unit);
   if (root.has("animation")) read_animation_json(root.member("animation"), ctx.meters_per_unit, &scene);
   return scene;

@@ -102,6 +102,23 @@ PM_DEVICE float brdf_glossy_albedo(float exponent, float mu)
   return (exponent + 2.0f) / (exponent + 1.0f) * sum * (1.0f / 256.0f);
 }
 
+/* Density per solid angle of the direction Russian roulette draws at a surface (the photon and
+   path tracers): the diffuse lobe (cos theta / pi) with probability p_diffuse, the glossy lobe
+   ((n + 1) / (2 pi) cos^n alpha about the mirror direction of wo) with p_glossy. wo and n as
+   in brdf_eval. Multiple importance sampling weighs light samples against it. */
+PM_DEVICE float brdf_sample_pdf(const Material* m, Vec3 n, Vec3 wo, Vec3 wi, float p_diffuse, float p_glossy)
+{
+  float cos_i = vec3_dot(n, wi);
+  if (cos_i <= 0.0f) return 0.0f;
+  float pdf = p_diffuse * cos_i * PM_INV_PI;
+  if (p_glossy > 0.0f) {
+    float exponent = m->glossy.w;
+    float cos_alpha = vec3_dot(vec3_reflect(vec3_neg(wo), n), wi);
+    if (cos_alpha > 0.0f) pdf += p_glossy * (exponent + 1.0f) * (0.5f * PM_INV_PI) * pm_powf(cos_alpha, exponent);
+  }
+  return pdf;
+}
+
 /* The sample as a world direction, (t, b, axis) an orthonormal frame. */
 PM_DEVICE Vec3 lobe_direction(LobeSample s, Vec3 t, Vec3 b, Vec3 axis)
 {

@@ -19,6 +19,9 @@
   X(scene, float4, triangles, uploaded, 1)    /* 3 float4 per triangle in BVH leaf order; v0.w = material */\
   X(scene, Material, materials, uploaded, 1)                                                               \
   X(scene, PointLight, lights, uploaded, 1)   /* re-uploaded when an animated light moves */               \
+  /* area lights (area_lights.h), uploaded only when a material emits: null otherwise */                     \
+  X(scene, float4, emitters, uploaded, 1)     /* PM_EMITTER_FLOAT4S per emitting triangle */                \
+  X(scene, float4, material_emission, uploaded, 1) /* per material: rgb L_e (W sr^-1 m^-2), w = mean */     \
   /* textures (texture.h), uploaded only when a material has one: null otherwise */                       \
   X(scene, float4, triangle_uvs, uploaded, 1) /* 2 per triangle in leaf order: (u0, v0, u1, v1), (u2, v2) */\
   X(scene, uint4, texture_info, uploaded, 1)  /* per texture: first texel, width, height, wrap bits */      \

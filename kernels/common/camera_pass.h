@@ -1,13 +1,17 @@
 /* Stage S5 (paper section 7): one work item per pixel traces the eye ray, follows up to
-   mirror_depth perfect-mirror bounces, adds direct light from every point light with a shadow
-   ray, and records a shading point per depth for the gather (S6) with the triangle it lies on. */
+   mirror_depth perfect-mirror bounces, adds direct light from every point or spot light with a
+   shadow ray and from the area lights by light sampling (area_lights.h), adds the emitted
+   radiance of the emitters it sees, and records a shading point per depth for the gather (S6)
+   with the triangle it lies on. */
 #ifndef PM_CAMERA_PASS_H
 #define PM_CAMERA_PASS_H
 
+#include "area_lights.h"
 #include "brdf.h"
 #include "kernel_globals.h"
 #include "pixel_order.h"
 #include "scene_traverse.h"
+#include "spot_light.h"
 
 PM_DEVICE Ray camera_primary_ray(const CameraParams* cam, uint x, uint y, uint width, uint height)
 {
@@ -19,8 +23,9 @@ PM_DEVICE Ray camera_primary_ray(const CameraParams* cam, uint x, uint y, uint w
   return ray_make(vec3_from_float4(cam->position), vec3_normalize(d));
 }
 
-/* Radiance reflected towards wo from the direct illumination of every point light:
-   L = sum f_r(wi, wo) * Phi / (4 pi r^2) * cos(theta_i), shadowed. The geometry is that of the
+/* Radiance reflected towards wo from the direct illumination of every point and spot light:
+   L = sum f_r(wi, wo) * Phi / (4 pi r^2) * f * cos(theta_i), shadowed, f the spot falloff
+   towards the point (spot_light.h; 1 for a point light). The geometry is that of the
    shading point itself; only the shadow ray starts off the surface, `offset` along n (ray.h). */
 PM_DEVICE Vec3 direct_light(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 pos, Vec3 n,
                             Vec3 wo, float offset)
@@ -37,6 +42,8 @@ PM_DEVICE Vec3 direct_light(const KernelGlobals* kg, const LaunchParams* p, cons
     Vec3 wi = vec3_scale(to_light, 1.0f / dist);
     float cos_i = vec3_dot(n, wi);
     if (cos_i <= 0.0f) continue;
+    float falloff = light_falloff(&light, vec3_neg(wi));
+    if (falloff <= 0.0f) continue;
     Vec3 f = brdf_eval(m, n, wi, wo);
     if (f.x == 0.0f && f.y == 0.0f && f.z == 0.0f) continue;
     Vec3 shadow_path = vec3_sub(light_position, origin);
@@ -45,7 +52,7 @@ PM_DEVICE Vec3 direct_light(const KernelGlobals* kg, const LaunchParams* p, cons
     Ray shadow = ray_make(origin, vec3_scale(shadow_path, 1.0f / shadow_length));
     SceneHit blocker = scene_trace(kg, &shadow, 0.0f, shadow_length * (1.0f - 1e-5f), 1);
     if (blocker.triangle >= 0) continue;
-    float irradiance_scale = cos_i / (4.0f * PM_PI * dist2);
+    float irradiance_scale = cos_i * falloff / (4.0f * PM_PI * dist2);
     sum = vec3_add(sum, vec3_scale(vec3_mul(f, vec3_from_float4(light.power)), irradiance_scale));
   }
   return sum;
@@ -95,13 +102,18 @@ PM_DEVICE void kernel_camera_pass(const KernelGlobals* kg, const LaunchParams* p
     if (hit.triangle < 0) break;
     Vec3 pos = vec3_madd(ray.origin, ray.direction, hit.t);
     Vec3 n = scene_triangle_normal(kg->triangles, hit.triangle);
+    int material_index = scene_triangle_material(kg->triangles, hit.triangle);
+    /* An emitter seen directly (or in a mirror) is direct light. */
+    radiance = vec3_add(radiance, vec3_mul(throughput, surface_emission(kg, p, material_index, n, ray.direction)));
     if (vec3_dot(n, ray.direction) > 0.0f) n = vec3_neg(n); /* shade the side the ray came from */
     Vec3 wo = vec3_neg(ray.direction);
-    int material_index = scene_triangle_material(kg->triangles, hit.triangle);
     Material m = surface_material(kg, material_index, hit.triangle, pos); /* texture.h */
 
     float offset = ray_offset_distance(ray.origin, hit.t, p->ray_epsilon);
-    radiance = vec3_add(radiance, vec3_mul(throughput, direct_light(kg, p, &m, pos, n, wo, offset)));
+    Vec3 direct = direct_light(kg, p, &m, pos, n, wo, offset);
+    direct = vec3_add(direct, area_light_direct(kg, p, &m, pos, n, wo, offset, p->area_light_samples, pixel,
+                                                depth * p->area_light_samples, 0u));
+    radiance = vec3_add(radiance, vec3_mul(throughput, direct));
     kg->shade_position[record] = vec3_to_float4(pos, PM_AS_FLOAT(material_index));
     kg->shade_normal[record] = vec3_to_float4(n, PM_AS_FLOAT(hit.triangle)); /* radiosity interpolates on it */
     kg->shade_outgoing[record] = vec3_to_float4(wo, 0.0f);

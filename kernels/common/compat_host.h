@@ -45,6 +45,7 @@ PM_DEVICE uint32_t pm_float_as_uint_bits(float f) { uint32_t i; memcpy(&i, &f, 4
 #define pm_acosf acosf
 #define pm_atan2f atan2f
 #define pm_powf powf
+#define pm_cbrtf cbrtf
 #define pm_expf expf
 #define pm_logf logf
 #define pm_floorf floorf

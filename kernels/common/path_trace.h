@@ -1,25 +1,33 @@
 /* The reference path tracer (--method path): from every shading point of the camera pass (S5),
-   unidirectional path tracing with next-event estimation to every point light at each vertex,
-   the modified-Phong BRDF and mirror term of brdf.h, and the photon tracer's Russian roulette over
-   the reflection events (photon_trace.h), so that its indirect layer converges to exactly what
-   the photon mapper's indirect layer estimates (docs/tradeoff.md, "Which light paths").
+   unidirectional path tracing with next-event estimation to every point and spot light and to
+   the area lights at each vertex, the modified-Phong BRDF and mirror term of brdf.h, and the
+   photon tracer's Russian roulette over the reflection events (photon_trace.h), so that its
+   indirect layer converges to exactly what the photon mapper's indirect layer estimates
+   (docs/tradeoff.md, "Which light paths").
 
    A path x <- v1 <- ... <- vn <- light starts at the shading point x, whose own diffuse and
    glossy lobes choose the first direction (its mirror term belongs to the camera pass), and
-   reflects at v1..vn: a diffuse or glossy event (D) or a perfect-mirror event (S). vn is joined
-   to the light by a shadow ray, so it is a D event. Counted, as in the photon tracer: paths with
-   1 to max_bounces D events and at most PM_PHOTON_MAX_SPECULAR S events. Not counted: paths that
-   leave the light through a mirror (light -> S -> ...): a point light seen in a perfect mirror
-   has zero probability under both BRDF sampling and next-event estimation. The photon mapper
-   does trace them (its caustic layer and part of its indirect layer).
+   reflects at v1..vn: a diffuse or glossy event (D) or a perfect-mirror event (S). Counted, as
+   in the photon tracer: paths with at most max_bounces D events and at most
+   PM_PHOTON_MAX_SPECULAR S events among v1..vn, and at least one event (x <- light is direct
+   light, the camera pass's). A point or spot light is reached only by a shadow ray from a D
+   vertex: a point light seen in a perfect mirror has zero probability under both BRDF sampling
+   and next-event estimation (the photon mapper does trace those paths, in its caustic layer and
+   part of its indirect layer). An area light is reached both ways: a light sample at each D
+   vertex, and a sampled direction that hits an emitter's front face. Where both strategies can
+   make the path, multiple importance sampling (power heuristic, Veach 1997) weighs them by their
+   densities per solid angle (brdf_sample_pdf, area_lights.h); with path_mis off, light samples
+   alone count those paths. A path that meets the emitter after a mirror event only the
+   sampled direction can make, so it counts fully.
 
    One work item per pixel (in tile order); each pass adds the mean of path_samples paths per shading point,
    weighted by the shading point's mirror weight, into film_indirect_sum (the caustic sum gets
    nothing). Random numbers: Philox keyed by (seed, path_frame), counter (pixel, depth and
-   vertex, PM_STREAM_PATH, path index within the frame). */
+   vertex, PM_STREAM_PATH or PM_STREAM_AREA, path index within the frame). */
 #ifndef PM_PATH_TRACE_H
 #define PM_PATH_TRACE_H
 
+#include "area_lights.h"
 #include "brdf.h"
 #include "camera_pass.h"
 #include "film.h"
@@ -67,36 +75,66 @@ PM_DEVICE Vec3 path_radiance(const KernelGlobals* kg, const LaunchParams* p, con
 
   Vec3 origin = offset_ray_origin(x, n, ray_offset_distance(x, 0.0f, p->ray_epsilon));
   uint diffuse_events = 0, mirror_events = 0;
+  int after_diffuse = 0;  /* the last event was a D event (1) or a mirror event (0), for MIS */
+  float direction_pdf = 0.0f; /* density per solid angle of the last D event's direction */
   for (uint vertex = 1; vertex <= p->max_bounces + PM_PHOTON_MAX_SPECULAR; ++vertex) {
     Ray ray = ray_make(origin, dir);
     SceneHit hit = scene_trace(kg, &ray, 0.0f, 1e30f, 0);
     if (hit.triangle < 0) break;
     Vec3 pos = vec3_madd(origin, dir, hit.t);
     Vec3 nv = scene_triangle_normal(kg->triangles, hit.triangle);
+    int material_index = scene_triangle_material(kg->triangles, hit.triangle);
+    /* An emitter reached by the sampled direction (from v2 on: at v1 it is x's direct light). */
+    if (vertex >= 2u && p->emitter_count > 0u) {
+      Vec3 emitted = surface_emission(kg, p, material_index, nv, dir);
+      if (vec3_max_component(emitted) > 0.0f) {
+        float weight = 1.0f;
+        if (after_diffuse) {
+          float cos_y = pm_fabsf(vec3_dot(vec3_normalize(nv), dir));
+          float light_pdf = cos_y > 0.0f ? area_light_pdf_area(p, channel_mean(emitted)) * hit.t * hit.t / cos_y : 0.0f;
+          weight = p->path_mis ? mis_power_weight(direction_pdf, light_pdf) : 0.0f;
+        }
+        radiance = vec3_add(radiance, vec3_scale(vec3_mul(beta, emitted), weight));
+      }
+    }
     if (vec3_dot(nv, dir) > 0.0f) nv = vec3_neg(nv); /* the side the path arrived on */
     Vec3 wv = vec3_neg(dir);
-    Material mv = surface_material(kg, scene_triangle_material(kg->triangles, hit.triangle), hit.triangle, pos);
+    Material mv = surface_material(kg, material_index, hit.triangle, pos);
     float offset = ray_offset_distance(origin, hit.t, p->ray_epsilon);
+    float pd = channel_mean(material_diffuse(&mv)), pg = channel_mean(material_glossy(&mv));
+    float pm = channel_mean(material_mirror(&mv));
+    /* A further D event leaves max_bounces no room for the next vertex's light. */
+    int may_continue = diffuse_events + 1u < p->max_bounces;
 
     /* Next-event estimation: the paths whose last D event is this vertex. */
     radiance = vec3_add(radiance, vec3_mul(beta, direct_light(kg, p, &mv, pos, nv, wv, offset)));
+    if (p->emitter_count > 0u) {
+      Uniform4 ua = rng_uniform4_bits(rng_bits4(p->seed, p->path_frame, pixel, event_base + vertex, PM_STREAM_AREA, path));
+      AreaLightSample s = area_light_sample(kg, p, pos, nv, offset, ua);
+      if (vec3_max_component(s.irradiance) > 0.0f) {
+        float weight = 1.0f;
+        if (p->path_mis && may_continue)
+          weight = mis_power_weight(s.pdf_solid_angle, brdf_sample_pdf(&mv, nv, wv, s.wi, pd, pg));
+        radiance = vec3_add(radiance, vec3_scale(vec3_mul(beta, vec3_mul(brdf_eval(&mv, nv, s.wi, wv), s.irradiance)), weight));
+      }
+    }
 
     /* Russian roulette over this vertex's events, as the photon tracer chooses them. */
     u = rng_uniform4_bits(rng_bits4(p->seed, p->path_frame, pixel, event_base + vertex, PM_STREAM_PATH, path));
-    float pd = channel_mean(material_diffuse(&mv)), pg = channel_mean(material_glossy(&mv));
-    float pm = channel_mean(material_mirror(&mv));
     if (u.u2 < pd + pg) {
-      /* A further D event leaves max_bounces no room for the next vertex's light. */
-      if (diffuse_events + 1u >= p->max_bounces) break;
+      if (!may_continue) break;
       int lobe_glossy = u.u2 >= pd;
       Vec3 f = path_sample_lobe(&mv, lobe_glossy, nv, wv, u.u0, u.u1, &dir);
       beta = vec3_scale(vec3_mul(beta, f), 1.0f / (lobe_glossy ? pg : pd));
       if (vec3_max_component(beta) <= 0.0f) break;
+      direction_pdf = brdf_sample_pdf(&mv, nv, wv, dir, pd, pg);
+      after_diffuse = 1;
       ++diffuse_events;
     } else if (u.u2 < pd + pg + pm) {
       if (mirror_events == PM_PHOTON_MAX_SPECULAR) break;
       beta = vec3_scale(vec3_mul(beta, material_mirror(&mv)), 1.0f / pm);
       dir = vec3_reflect(dir, nv);
+      after_diffuse = 0;
       ++mirror_events;
     } else {
       break; /* absorbed */

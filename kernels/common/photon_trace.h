@@ -1,5 +1,6 @@
 /* Stages S1 emission and S2 tracing (paper sections 4.1-4.3): one work item per photon emits it
-   from its point light with pre-scaled differentials (eq. 8), traces it through the scene,
+   from its point light, spot light (spot_light.h) or the area lights (area_lights.h) with
+   pre-scaled differentials (eq. 8), traces it through the scene,
    updates its differentials (Igehy transfer and mirror reflection, Russian roulette rescale,
    diffuse re-emission with the virtual offset of eq. 10-13) and records a hit at every diffuse or
    glossy surface that is not lit directly. Records go to slots [photon * slots_per_photon + k],
@@ -7,19 +8,23 @@
 #ifndef PM_PHOTON_TRACE_H
 #define PM_PHOTON_TRACE_H
 
+#include "area_lights.h"
 #include "brdf.h"
 #include "emission_order.h"
 #include "kernel_globals.h"
 #include "photon_differentials.h"
 #include "rng.h"
 #include "scene_traverse.h"
+#include "spot_light.h"
 
 
 /* Photons are shared out by power: light l owns pass indices [first, first + count) of
-   photon_emitters[l] = (first, count, 0, 0). */
+   photon_emitters[l] = (first, count, 0, 0). With area lights, entry light_count holds the
+   photons of all emitting triangles together. */
 PM_DEVICE int photon_light_of(const KernelGlobals* kg, const LaunchParams* p, uint photon)
 {
-  for (uint l = 0; l < p->light_count; ++l) {
+  uint emitters = p->light_count + (p->emitter_count > 0u ? 1u : 0u);
+  for (uint l = 0; l < emitters; ++l) {
     uint4 e = kg->photon_emitters[l];
     if (photon >= e.x && photon < e.x + e.y) return (int)l;
   }
@@ -59,11 +64,10 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
   uint stored = 0;
   int light_index = photon_light_of(kg, p, photon);
   if (light_index >= 0) {
-    PointLight light = kg->lights[light_index];
+    int area = (uint)light_index == p->light_count; /* the area lights' share (photon_light_of) */
     uint4 emitter = kg->photon_emitters[light_index];
     uint emitted = emitter.y;
     float delta = photon_spacing(emitted); /* eq. 9 with n = this light's photons in the pass */
-    Vec3 flux = vec3_scale(vec3_from_float4(light.power), 1.0f / (float)emitted);
     /* Random numbers: RANDOM keys them by (seed, photon_frame) and the photon's index in the
        frame; HALTON by the seed, the light and the photon's number within that light only, so
        the same lights give the same photons in every frame (types.h). */
@@ -92,9 +96,22 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
       u.u3 = 0.0f;
     }
     PhotonRay ray;
-    photon_emit_point(vec3_from_float4(light.position), u.u0, u.u1, &ray);
+    Vec3 flux;
+    Vec3 start;
+    if (area) {
+      /* The emitter and the point on it: a stream of their own, keyed like the direction. */
+      Uniform4 w = rng_uniform4_bits(rng_bits4(p->seed, rng_frame, rng_index, 0u, PM_STREAM_AREA, rng_extra));
+      Vec3 normal = photon_emit_area(kg, p, w.u0, w.u1, w.u2, u.u0, u.u1, emitted, &ray, &flux);
+      start = offset_ray_origin(ray.origin, normal, ray_offset_distance(ray.origin, 0.0f, p->ray_epsilon));
+    } else {
+      PointLight light = kg->lights[light_index];
+      /* Every photon of a light carries the same flux: its emitted power over its photons. */
+      flux = vec3_scale(vec3_from_float4(light.power), light_emitted_fraction(&light) / (float)emitted);
+      if (light_is_spot(&light)) photon_emit_spot(&light, u.u0, u.u1, &ray);
+      else photon_emit_point(vec3_from_float4(light.position), u.u0, u.u1, &ray);
+      start = ray.origin;
+    }
     uint diffuse_bounces = 0, specular_bounces = 0;
-    Vec3 start = ray.origin;
     for (uint event = 1; event <= p->max_bounces + PM_PHOTON_MAX_SPECULAR + 1; ++event) {
       Ray r = ray_make(start, ray.direction);
       SceneHit hit = scene_trace(kg, &r, 0.0f, 1e30f, 0);

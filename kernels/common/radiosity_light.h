@@ -22,11 +22,23 @@
    the triangle: the 1:4 points themselves (the vertex, the edge midpoints) lie on edges of the
    mesh, and where that edge is the foot of a wall a shadow ray from it starts in the wall's
    plane, and the wall may block it at t = 0. Far from the light both
-   modes agree to O(h^2). */
+   modes agree to O(h^2).
+
+   A spot light's falloff (spot_light.h) multiplies each visibility sample, so the one-ring
+   mode integrates intensity times solid angle with the same quadrature as the visibility.
+
+   Area lights (area_lights.h) are light links too: each element's direct irradiance from the
+   emitters is estimated by light sampling, area_light_samples samples at the vertex, or spread
+   over the four quadrature points of each one-ring triangle with their weights, with random
+   numbers keyed by the seed and the element, so the solution stays deterministic. Emitting
+   elements get no exitance of their own: the light they emit reaches the other elements through
+   these links only (as a point light's does), and the camera pass shows the emitter itself. */
 #ifndef PM_RADIOSITY_LIGHT_H
 #define PM_RADIOSITY_LIGHT_H
 
+#include "area_lights.h"
 #include "radiosity_mesh.h"
+#include "spot_light.h"
 
 /* 1 when the light is in front of the surface at x (normal n) and no triangle blocks it. */
 PM_DEVICE float radiosity_light_visible(const KernelGlobals* kg, const LaunchParams* p, Vec3 light_pos, Vec3 x, Vec3 n)
@@ -70,13 +82,23 @@ PM_DEVICE Vec3 radiosity_affine(Vec3 a, Vec3 b, Vec3 c, float wa, float wb, floa
   return vec3_scale(vec3_add(vec3_add(vec3_scale(a, wa), vec3_scale(b, wb)), vec3_scale(c, wc)), 1.0f / 6.0f);
 }
 
-/* Element e's irradiance from a light of unit power at light_pos (see above for the modes). */
-PM_DEVICE float radiosity_element_light(const KernelGlobals* kg, const LaunchParams* p, uint e, Vec3 light_pos)
+/* Visibility times the spot falloff towards x (1 for a point light). */
+PM_DEVICE float radiosity_light_reaches(const KernelGlobals* kg, const LaunchParams* p, const PointLight* light, Vec3 x,
+                                        Vec3 n)
 {
+  Vec3 light_pos = vec3_from_float4(light->position);
+  float falloff = light_falloff(light, vec3_normalize(vec3_sub(x, light_pos)));
+  return falloff > 0.0f ? falloff * radiosity_light_visible(kg, p, light_pos, x, n) : 0.0f;
+}
+
+/* Element e's irradiance from a light of unit power (see above for the modes). */
+PM_DEVICE float radiosity_element_light(const KernelGlobals* kg, const LaunchParams* p, uint e, const PointLight* light)
+{
+  Vec3 light_pos = vec3_from_float4(light->position);
   Vec3 v = radiosity_element_position(kg, e), n = radiosity_element_normal(kg, e);
   if (p->light_sampling == PM_RADIOSITY_LIGHT_VERTEX) {
     float g = radiosity_light_geometry(light_pos, v, n);
-    return g > 0.0f ? g * radiosity_light_visible(kg, p, light_pos, v, n) : 0.0f;
+    return g > 0.0f ? g * radiosity_light_reaches(kg, p, light, v, n) : 0.0f;
   }
   uint first = PM_LOAD(&kg->rad_element_ranges[e]).x, end = PM_LOAD(&kg->rad_element_ranges[e + 1u]).x;
   float power = 0.0f, area = 0.0f;
@@ -87,13 +109,57 @@ PM_DEVICE float radiosity_element_light(const KernelGlobals* kg, const LaunchPar
     area += twice_area * (0.5f / 3.0f);
     if (vec3_dot(face_n, vec3_sub(light_pos, v)) <= 0.0f) continue; /* lit from the other side */
     /* Centroids of the 1:4 sub-triangles at v, b, c and in the middle, weighted 4 : 1 : 1 : 2. */
-    float visible = 4.0f * radiosity_light_visible(kg, p, light_pos, radiosity_affine(v, b, c, 4.0f, 1.0f, 1.0f), face_n);
-    visible += radiosity_light_visible(kg, p, light_pos, radiosity_affine(v, b, c, 1.0f, 4.0f, 1.0f), face_n);
-    visible += radiosity_light_visible(kg, p, light_pos, radiosity_affine(v, b, c, 1.0f, 1.0f, 4.0f), face_n);
-    visible += 2.0f * radiosity_light_visible(kg, p, light_pos, radiosity_affine(v, b, c, 2.0f, 2.0f, 2.0f), face_n);
+    float visible = 4.0f * radiosity_light_reaches(kg, p, light, radiosity_affine(v, b, c, 4.0f, 1.0f, 1.0f), face_n);
+    visible += radiosity_light_reaches(kg, p, light, radiosity_affine(v, b, c, 1.0f, 4.0f, 1.0f), face_n);
+    visible += radiosity_light_reaches(kg, p, light, radiosity_affine(v, b, c, 1.0f, 1.0f, 4.0f), face_n);
+    visible += 2.0f * radiosity_light_reaches(kg, p, light, radiosity_affine(v, b, c, 2.0f, 2.0f, 2.0f), face_n);
     power += (1.0f / 3.0f) * (0.125f * visible) * radiosity_solid_angle(light_pos, v, b, c) * (1.0f / (4.0f * PM_PI));
   }
   return area > 0.0f ? power / area : 0.0f;
+}
+
+/* Mean of `samples` area-light samples' irradiance at x (normal n), random numbers keyed by the
+   seed and (element, first_event + k). */
+PM_DEVICE Vec3 radiosity_area_irradiance_at(const KernelGlobals* kg, const LaunchParams* p, uint e, Vec3 x, Vec3 n,
+                                            uint samples, uint first_event)
+{
+  Vec3 sum = vec3_splat(0.0f);
+  float offset = ray_offset_distance(x, 0.0f, p->ray_epsilon);
+  for (uint k = 0; k < samples; ++k) {
+    Uniform4 u = rng_uniform4_bits(rng_bits4(p->seed, 0u, e, first_event + k, PM_STREAM_AREA, 0x52414449u));
+    sum = vec3_add(sum, area_light_sample(kg, p, x, n, offset, u).irradiance);
+  }
+  return vec3_scale(sum, 1.0f / (float)samples);
+}
+
+/* Element e's direct irradiance from the area lights (see above). In one-ring mode each of the
+   ring's quadrature points takes a quarter of the samples (at least one), weighted 4 : 1 : 1 : 2
+   over each triangle and by a third of the triangle's area over the ring, as the hat function's
+   integral asks. */
+PM_DEVICE Vec3 radiosity_element_area_light(const KernelGlobals* kg, const LaunchParams* p, uint e)
+{
+  Vec3 v = radiosity_element_position(kg, e), n = radiosity_element_normal(kg, e);
+  uint samples = p->area_light_samples > 0u ? p->area_light_samples : 1u;
+  if (p->light_sampling == PM_RADIOSITY_LIGHT_VERTEX) return radiosity_area_irradiance_at(kg, p, e, v, n, samples, 0u);
+  uint per_point = samples / 4u > 0u ? samples / 4u : 1u;
+  uint first = PM_LOAD(&kg->rad_element_ranges[e]).x, end = PM_LOAD(&kg->rad_element_ranges[e + 1u]).x;
+  Vec3 sum = vec3_splat(0.0f);
+  float area = 0.0f;
+  uint event = 0u;
+  for (uint r = first; r < end; ++r) {
+    Vec3 b, c, face_n;
+    float twice_area = radiosity_ring_triangle(kg, e, PM_LOAD(&kg->rad_adjacency[r]), &b, &c, &face_n);
+    if (!(twice_area > 0.0f)) continue;
+    float third = twice_area * (0.5f / 3.0f);
+    area += third;
+    Vec3 e_tri = vec3_scale(radiosity_area_irradiance_at(kg, p, e, radiosity_affine(v, b, c, 4.0f, 1.0f, 1.0f), face_n, per_point, event), 4.0f);
+    e_tri = vec3_add(e_tri, radiosity_area_irradiance_at(kg, p, e, radiosity_affine(v, b, c, 1.0f, 4.0f, 1.0f), face_n, per_point, event + per_point));
+    e_tri = vec3_add(e_tri, radiosity_area_irradiance_at(kg, p, e, radiosity_affine(v, b, c, 1.0f, 1.0f, 4.0f), face_n, per_point, event + 2u * per_point));
+    e_tri = vec3_madd(e_tri, radiosity_area_irradiance_at(kg, p, e, radiosity_affine(v, b, c, 2.0f, 2.0f, 2.0f), face_n, per_point, event + 3u * per_point), 2.0f);
+    event += 4u * per_point;
+    sum = vec3_madd(sum, e_tri, third * 0.125f);
+  }
+  return area > 0.0f ? vec3_scale(sum, 1.0f / area) : vec3_splat(0.0f);
 }
 
 /* One work item per element: direct irradiance from every light, outgoing radiance of bounce 0
@@ -103,9 +169,10 @@ PM_DEVICE void kernel_radiosity_light_links(const KernelGlobals* kg, const Launc
   Vec3 irradiance = vec3_splat(0.0f);
   for (uint l = 0; l < p->light_count; ++l) {
     PointLight light = kg->lights[l];
-    float g = radiosity_element_light(kg, p, e, vec3_from_float4(light.position));
+    float g = radiosity_element_light(kg, p, e, &light);
     irradiance = vec3_madd(irradiance, vec3_from_float4(light.power), g);
   }
+  if (p->emitter_count > 0u) irradiance = vec3_add(irradiance, radiosity_element_area_light(kg, p, e));
   Vec3 radiance = vec3_scale(vec3_mul(radiosity_element_reflectance(kg, e), irradiance), PM_INV_PI);
   kg->rad_radiance[e] = vec3_to_float4(radiance, 0.0f);
   kg->rad_irradiance[e] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, 0.0f);

@@ -40,13 +40,23 @@ typedef struct Material {
 #define PM_WRAP_CLAMP 1u
 #define PM_WRAP_MIRROR 2u
 
-/* Isotropic point light: position.xyz in metres, power.rgb in watts (radiant flux); w unused.
+/* A point light, isotropic or a spot (a point light whose intensity is restricted to a cone
+   about its axis, with the glTF KHR_lights_punctual falloff; spot_light.h).
+   position.xyz in metres, w = cos of the spot's outer cone angle (-1: isotropic point light);
+   power.rgb in watts: the radiant flux of the isotropic light of the same (on-axis) intensity,
+   so the intensity towards a direction is power / (4 pi) times the spot falloff (1 for a point
+   light); power.w = cos of the spot's inner cone angle (-1: point light);
+   axis.xyz = the spot's unit axis (where it points), w unused.
    (Photon emission keeps each light's share of a pass's photons in its own buffer,
    photon_emitters.) */
 typedef struct PointLight {
   float4 position;
   float4 power;
+  float4 axis;
 } PointLight;
+
+/* Area lights (area_lights.h): one record of PM_EMITTER_FLOAT4S float4 per emitting triangle. */
+#define PM_EMITTER_FLOAT4S 4
 
 /* Pinhole camera. right and up are scaled so that a pixel's ray direction is
    forward + u * right + v * up with u, v in [-1, 1]. */
@@ -119,7 +129,7 @@ typedef struct LaunchParams {
   uint path_samples;      /* path tracer: paths per shading point in this pass */
   uint path_first_sample; /* path tracer: index of the pass's first path (random stream) */
   uint path_frame;        /* path tracer: the frame whose random numbers the paths draw */
-  uint path_unused;       /* keeps the row 16 bytes */
+  uint path_mis;          /* path tracer: 1: area lights by MIS of light and BSDF sampling; 0: light sampling only */
 
   uint element_count;    /* radiosity: elements (vertices split by side, feature edges and material) */
   uint link_directions;  /* radiosity: nC, hemisphere directions shot per element */
@@ -137,7 +147,9 @@ typedef struct LaunchParams {
   uint control_first_sample; /* bias control: index of the launch's first path (random stream) */
 
   float footprint_thickness; /* normal half-axis / shorter in-plane semiaxis of pd footprints (footprint.h) */
-  uint footprint_unused[3];  /* keeps the row 16 bytes */
+  uint emitter_count;        /* area lights: emitting triangles in the emitters buffer (0: none) */
+  float emitter_power;       /* area lights: total flux, sum over emitters of pi A mean(L_e) (watts, channel mean) */
+  uint area_light_samples;   /* area lights: samples per shading point in the camera pass and radiosity */
 } LaunchParams;
 
 /* Photon emission sequences (--photon-sequence). RANDOM: Philox keyed by (seed, photon_frame).

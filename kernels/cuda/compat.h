@@ -34,6 +34,7 @@ typedef unsigned int uint;
 #define pm_acosf acosf
 #define pm_atan2f atan2f
 #define pm_powf powf
+#define pm_cbrtf cbrtf
 #define pm_expf expf
 #define pm_logf logf
 #define pm_floorf floorf

@@ -36,6 +36,7 @@ typedef int int32_t;
 #define pm_acosf acos
 #define pm_atan2f atan2
 #define pm_powf pow
+#define pm_cbrtf cbrt
 #define pm_expf exp
 #define pm_logf log
 #define pm_floorf floor

@@ -17,6 +17,7 @@ void PathSettings::validate() const {
 std::string PathSettings::describe() const {
   std::ostringstream s;
   s << "spp=" << samples << " bounces=" << bounces;
+  if (!mis) s << " mis=off";
   return s.str();
 }
 

@@ -15,6 +15,9 @@ class PathSettings final : public MethodSettings {
  public:
   uint32_t samples = 16;  // paths per shading point per pass (--spp)
   int bounces = 2;        // diffuse and glossy bounces of indirect light, as PhotonSettings::bounces
+  // Area lights: multiple importance sampling of light samples and sampled directions (--path-mis
+  // on), or light samples alone (off); both converge to the same image.
+  bool mis = true;
 
   const char* method_name() const override { return "path"; }
   void validate() const override;

@@ -39,6 +39,7 @@ void PathTracing::run_pass(const FrameContext& frame, uint32_t pass) {
   LaunchParams params = frame.params;
   params.max_bounces = uint32_t(settings_.bounces);
   params.path_samples = settings_.samples;
+  params.path_mis = settings_.mis ? 1u : 0u;
   params.path_first_sample = pass * settings_.samples;
   params.path_frame = path_frame_;
   {

@@ -12,12 +12,15 @@
 #include "render/errors.h"
 #include "render/footprint_scale.h"
 #include "render/photon/vvh_builder.h"
+#include "render/scene_emitters.h"
 
 namespace pm {
 
-std::vector<uint32_t> share_photons_by_power(const std::vector<LightDesc>& lights, uint32_t total) {
+std::vector<uint32_t> share_photons_by_power(const std::vector<LightDesc>& lights, uint32_t total, double area_power) {
   std::vector<double> power;
-  for (const LightDesc& l : lights) power.push_back(double(l.power.x) + l.power.y + l.power.z);
+  for (const LightDesc& l : lights)
+    power.push_back((double(l.power.x) + l.power.y + l.power.z) * light_emitted_fraction(l));
+  if (area_power > 0) power.push_back(area_power);
   const double sum = std::accumulate(power.begin(), power.end(), 0.0);
   std::vector<uint32_t> share(power.size(), 0);
   if (sum <= 0) return share;
@@ -47,11 +50,12 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
   extents_.bounds_tiles = (extents_.hit_slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
   buffers_.allocate(BufferGroup::photon, extents_);
   reserve_map(photons_per_pass_);
+  area_power_ = build_scene_emitters(context.scene).power_rgb_sum;
   share_photons(context.scene.lights);
 }
 
 void PhotonMapping::share_photons(const std::vector<LightDesc>& lights) {
-  const std::vector<uint32_t> counts = share_photons_by_power(lights, photons_per_pass_);
+  const std::vector<uint32_t> counts = share_photons_by_power(lights, photons_per_pass_, area_power_);
   std::vector<uint4> emitters(std::max<size_t>(counts.size(), 1), uint4{0, 0, 0, 0});
   uint32_t first = 0;
   for (size_t i = 0; i < counts.size(); ++i) {

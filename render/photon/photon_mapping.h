@@ -43,6 +43,7 @@ class PhotonMapping final : public IndirectMethod {
  private:
   LaunchParams pass_params(const FrameContext& frame, uint32_t pass) const;
   void share_photons(const std::vector<LightDesc>& lights);
+  double area_power_ = 0;  // the area lights' summed RGB power (render/scene_emitters.h), fixed per scene
   void trace_and_build(LaunchParams params, StageTimer* timer);
   void build_vvh_map(const LaunchParams& params);
   // Photon map buffers (sorted hits, footprints, nodes) for at least `hits` valid hits.
@@ -71,7 +72,9 @@ class PhotonMapping final : public IndirectMethod {
   MethodStats stats_;
 };
 
-// Largest-remainder share of `total` photons by the lights' summed RGB power, in light order.
-std::vector<uint32_t> share_photons_by_power(const std::vector<LightDesc>& lights, uint32_t total);
+// Largest-remainder share of `total` photons by the lights' emitted power (summed over RGB; a
+// spot's is its power times light_emitted_fraction), in light order, then one more share for
+// the area lights together when area_power (their summed RGB power) is above zero.
+std::vector<uint32_t> share_photons_by_power(const std::vector<LightDesc>& lights, uint32_t total, double area_power = 0);
 
 }  // namespace pm

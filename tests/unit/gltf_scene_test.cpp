@@ -125,7 +125,10 @@ TEST_F(Gltf, MetallicRoughnessMapsOntoModifiedPhong) {
   EXPECT_FLOAT_EQ(brushed.glossy_exponent, 30.0f);
   EXPECT_EQ(scene.materials[3].diffuse.x, 1.0f);  // baseColorFactor defaults to white
   // An image only an ignored feature names is never read: missing.png is no error.
-  EXPECT_TRUE(has_warning(report, "materials[3] ('textured'): ignored: normalTexture, emissiveFactor"));
+  EXPECT_TRUE(has_warning(report, "materials[3] ('textured'): ignored: normalTexture"));
+  // emissiveFactor makes it an area light: 1 nit per channel at 683 lm/W.
+  EXPECT_FLOAT_EQ(scene.materials[3].emission.x, float(1.0 / 683.0));
+  EXPECT_EQ(scene.materials[0].emission.x, 0.0f);
   EXPECT_EQ(scene.materials[4].name, "default");
   EXPECT_EQ(scene.materials[4].diffuse.x, 0.8f);
 }
@@ -155,13 +158,14 @@ TEST_F(Gltf, CamerasLightsAndTheirConversions) {
   EXPECT_NEAR(scene.camera.vertical_fov_degrees, 45.0f, 1e-5);
   EXPECT_EQ(scene.camera.height, 512);
   EXPECT_EQ(scene.camera.width, 683);  // 512 * 4/3 rounded
-  ASSERT_EQ(scene.lights.size(), 1u);
+  ASSERT_EQ(scene.lights.size(), 2u);  // the point and the spot light; the directional one is skipped
+  EXPECT_EQ(scene.lights[1].type, LightType::spot);
   EXPECT_EQ(scene.lights[0].name, "bulb");
   EXPECT_NEAR(scene.lights[0].power.x, 1.0f, 1e-6);
   EXPECT_NEAR(scene.lights[0].power.y, 0.5f, 1e-6);
   EXPECT_EQ(scene.lights[0].power.z, 0.0f);
   EXPECT_EQ(scene.lights[0].position.y, 3.0f);
-  EXPECT_TRUE(has_warning(report, "spot lights are not supported"));
+  EXPECT_FALSE(has_warning(report, "spot lights are not supported"));
   EXPECT_TRUE(has_warning(report, "directional lights are not supported"));
   EXPECT_FALSE(scene.animation.enabled);
 
@@ -287,9 +291,9 @@ TEST_F(Gltf, ErrorsNameTheFileAndThePlace) {
     GltfBuilder b;
     b.node({{"mesh", b.triangle_mesh()}});
     b.add_camera_and_light();
-    b.doc()["extensions"]["KHR_lights_punctual"]["lights"][0]["type"] = "spot";
-    b.doc()["extensions"]["KHR_lights_punctual"]["lights"][0]["spot"] = json::object();
-    expect_error(b, "extensions.KHR_lights_punctual: at least one point light is required");
+    b.doc()["extensions"]["KHR_lights_punctual"]["lights"][0]["type"] = "directional";
+    expect_error(b, "extensions.KHR_lights_punctual: no light: no KHR_lights_punctual point or spot light with intensity "
+                    "above zero and no emissive material");
   }
   {
     GltfBuilder b;

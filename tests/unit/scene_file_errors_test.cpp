@@ -166,7 +166,7 @@ TEST_F(SceneJsonErrors, UnknownKeyListsTheKnownOnes) {
   json scene = valid_scene();
   scene["lights"][0]["colour"] = {1, 1, 1};
   expect_scene_message(error_of_scene(scene),
-                       "lights[0].colour: unknown key (expected one of: name, position, power)");
+                       "lights[0].colour: unknown key (expected one of: name, type, position, power, direction, inner_cone_angle, outer_cone_angle)");
 }
 
 TEST_F(SceneJsonErrors, UnknownKeysAreErrorsEverywhere) {
@@ -254,18 +254,54 @@ TEST_F(SceneJsonErrors, NegativeLightPower) {
   expect_scene_message(error_of_scene(scene), "lights[0].power[1]: must be >= 0 W, got -0.5");
 }
 
+const char* const kNoLight =
+    "lights: no light: no light with power above zero under lights and no emitting material (materials' emission, "
+    "MTL Ke) on any triangle";
+
 TEST_F(SceneJsonErrors, AtLeastOneLightIsRequired) {
   json scene = valid_scene();
   scene["lights"] = json::array();
-  expect_scene_message(error_of_scene(scene), "lights: at least one light is required");
+  expect_scene_message(error_of_scene(scene), kNoLight);
   scene.erase("lights");
-  expect_scene_message(error_of_scene(scene), "lights: at least one light is required");
+  expect_scene_message(error_of_scene(scene), kNoLight);
+  // An emitting material the triangles do not use is no light either.
+  scene["materials"]["glow"] = {{"emission", {1, 1, 1}}};
+  expect_scene_message(error_of_scene(scene), kNoLight);
 }
 
 TEST_F(SceneJsonErrors, AllLightsDark) {
   json scene = valid_scene();
   scene["lights"][0]["power"] = {0, 0, 0};
-  expect_scene_message(error_of_scene(scene), "lights: every light has zero power");
+  expect_scene_message(error_of_scene(scene), kNoLight);
+}
+
+TEST_F(SceneJsonErrors, SpotLightFields) {
+  json scene = valid_scene();
+  scene["lights"][0]["direction"] = {0, -1, 0};
+  expect_scene_message(error_of_scene(scene), "lights[0].direction: only a spot light has this key (\"type\": \"spot\")");
+  scene["lights"][0]["type"] = "cone";
+  expect_scene_message(error_of_scene(scene), "lights[0].type: expected \"point\" or \"spot\", got 'cone'");
+  scene["lights"][0]["type"] = "spot";
+  scene["lights"][0]["direction"] = {0, 0, 0};
+  expect_scene_message(error_of_scene(scene), "lights[0].direction: must not be zero");
+  scene["lights"][0].erase("direction");
+  expect_scene_message(error_of_scene(scene), "lights[0].direction: missing required key");
+  scene["lights"][0]["direction"] = {0, -1, 0};
+  scene["lights"][0]["outer_cone_angle"] = 91;
+  expect_scene_message(error_of_scene(scene), "lights[0].outer_cone_angle: must be in [0, 90] degrees, got 91");
+  scene["lights"][0]["outer_cone_angle"] = 30;
+  scene["lights"][0]["inner_cone_angle"] = -1;
+  expect_scene_message(error_of_scene(scene), "lights[0].inner_cone_angle: must be in [0, 90] degrees, got -1");
+  scene["lights"][0]["inner_cone_angle"] = 30;
+  expect_scene_message(error_of_scene(scene), "lights[0].inner_cone_angle: the inner cone angle must be below the outer one");
+}
+
+TEST_F(SceneJsonErrors, EmissionMustBeNonNegative) {
+  json scene = valid_scene();
+  scene["materials"]["white"]["emission"] = {1, -0.5, 1};
+  expect_scene_message(error_of_scene(scene), "materials.white.emission[1]: must be >= 0 W sr^-1 m^-2, got -0.5");
+  scene["materials"]["white"]["emission"] = {1, 1};
+  EXPECT_NE(error_of_scene(scene).find("materials.white.emission"), std::string::npos);
 }
 
 TEST_F(SceneJsonErrors, ResolutionMustBePositiveIntegersUpTo16384) {
