@@ -7,6 +7,7 @@
 #include "cli/commands.h"
 #include "cli/parse_errors.h"
 #include "render/errors.h"
+#include "render/program_cache.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"pmrender: global illumination by GPU photon mapping (Fabianowski & Dingliana 2009)"};
@@ -28,6 +29,8 @@ int main(int argc, char** argv) {
   }
 
   try {
+    // The environment is input too: a bad switch is refused before a device or a scene is opened.
+    pm::program_cache_settings_from_environment();
     if (app.got_subcommand("render")) return render();
     if (app.got_subcommand("devices")) return devices();
     if (app.got_subcommand("compare")) return compare();
