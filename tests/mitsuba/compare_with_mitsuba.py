@@ -38,8 +38,17 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 # 1 cm under the ceiling: the bright spot it makes there reaches the rest of the room through few
 # paths, so this scene needs the most samples for the same noise. The glossy scene's Mitsuba BSDF
 # is Python (pm_mitsuba.py), the slowest per sample, and needs fewer for the noise wanted.
-SAMPLE_SCALE = {"cornell-box": (4, 6), "glossy": (1, 0.5)}
+SAMPLE_SCALE = {"cornell-box": (4, 6), "glossy": (1, 0.5), "spot-box": (1, 4), "area-box": (1, 2), "textured-box": (1, 4)}
 ROOT = os.path.dirname(os.path.dirname(HERE))
+# The light and texture cases (light_scenes.py) also check photon mapping (pd) and radiosity at
+# their defaults against Mitsuba: their indirect light's bias, the direct light matched, within
+# ctest accuracy's 1.5 % target plus the noise of the comparison (indirect_bias). The error
+# estimate's control paths are left out (they change the estimate, not the image).
+METHODS = {"pd": ["--method", "photon", "--estimator", "pd", "--control-paths", "0"],
+           "radiosity": ["--method", "radiosity", "--control-paths", "0"]}
+# The bias allowed beyond the noise: ctest accuracy's target for pd and radiosity; none for the
+# path tracer, which is unbiased.
+INDIRECT_TOLERANCE = {"path": 0.0, "pd": 0.015, "radiosity": 0.015}
 
 
 def fail(message):
@@ -55,7 +64,10 @@ except ImportError as e:
          "environment; cmake -DPMRENDER_TEST_PYTHON=... points the test at it)" % e)
 
 sys.path.insert(0, HERE)
+import light_scenes  # noqa: E402
 import pm_mitsuba  # noqa: E402
+
+LIGHT_CASES = ("spot-box", "area-box", "textured-box")
 
 
 def read_exr_layers(path):
@@ -99,21 +111,59 @@ class Verdict:
         return z, mad, abs(z) <= 4.0 and mad <= self.bound
 
 
-def pmrender_path(args, scene, out, seed, bounces, mirror_depth, spp):
+def pmrender_render(args, scene, out, seed, bounces, mirror_depth, method):
+    """pmrender's layers (combined, direct, ...) of the scene rendered with the method's options."""
     cmd = [args.pmrender, "render"] + ([scene] if scene else []) + [
-        "--backend", args.backend, "--method", "path", "--spp", str(spp), "--bounces", str(bounces),
-        "--mirror-depth", str(mirror_depth), "--resolution", "%dx%d" % (args.size, args.size),
-        "--seed", str(seed), "--float", "-q", "-o", out]
+        "--backend", args.backend, "--bounces", str(bounces), "--mirror-depth", str(mirror_depth),
+        "--resolution", "%dx%d" % (args.size, args.size), "--seed", str(seed), "--float", "-q", "-o", out] + method
     subprocess.run(cmd, check=True)
-    return read_exr_layers(out)["combined"]
+    return read_exr_layers(out)
 
 
-def compare_scene(args, name, scene):
+def pmrender_path(args, scene, out, seed, bounces, mirror_depth, spp, layers=False):
+    image = pmrender_render(args, scene, out, seed, bounces, mirror_depth, ["--method", "path", "--spp", str(spp)])
+    return image if layers else image["combined"]
+
+
+def indirect_bias(pm, mi_full, mi_direct, block, tolerance):
+    """Photon mapping or radiosity against Mitsuba: the bias of the indirect light with the direct
+    light matched (render/image_metrics.h light_bias, what ctest accuracy checks): the ratio of
+    indirect to direct light in pmrender's image over the same ratio in Mitsuba's, minus 1.
+    Mitsuba's direct light is its max_depth 2 render with the same seeds as its full one, so its
+    direct part cancels from the difference sample by sample. Standard error from the region
+    differences between the seeds of both renderers (as mean_variance); pass when
+    |bias| <= 1.5 % + 4 standard errors, and an indirect light 5 % too high or too low must fail."""
+    blk = block
+    pm_dir = [region_means(p["direct"], blk) for p in pm]
+    pm_ind = [region_means(p["combined"], blk) - d for p, d in zip(pm, pm_dir)]
+    mi_dir = [region_means(d, blk) for d in mi_direct]
+    mi_ind = [region_means(f, blk) - d for f, d in zip(mi_full, mi_dir)]
+
+    def mean_and_rel_var(pair):
+        m = float(0.5 * (pair[0] + pair[1]).mean())
+        return m, mean_variance(pair[0], pair[1]) / (m * m)
+
+    (pi_, vpi), (pd_, vpd) = mean_and_rel_var(pm_ind), mean_and_rel_var(pm_dir)
+    (mi_, vmi), (md_, vmd) = mean_and_rel_var(mi_ind), mean_and_rel_var(mi_dir)
+    ratio = (pi_ / pd_) / (mi_ / md_)
+    se = ratio * math.sqrt(vpi + vpd + vmi + vmd)
+    limit = tolerance + 4.0 * se
+
+    def fails(scale):
+        return abs(ratio * scale - 1.0) > limit
+
+    return {"bias": ratio - 1.0, "se": se, "limit": limit, "rel_se": [math.sqrt(x) for x in (vpi, vpd, vmi, vmd)], "pass": abs(ratio - 1.0) <= limit,
+            "bias_detected": fails(1.05) and fails(0.95),
+            "region_diff": rel_mad(0.5 * (pm_ind[0] + pm_ind[1]), 0.5 * (mi_ind[0] + mi_ind[1]))}
+
+
+def compare_scene(args, name, scene, export_from=None, textures=None, methods=()):
     work = os.path.join(args.work, name)
     os.makedirs(work, exist_ok=True)
     exported = os.path.join(work, name + ".json")
-    subprocess.run([args.pmrender, "export-scene"] + ([scene] if scene else []) + ["-o", exported], check=True,
-                   stdout=subprocess.DEVNULL)
+    export_from = export_from or scene
+    subprocess.run([args.pmrender, "export-scene"] + ([export_from] if export_from else []) + ["-o", exported],
+                   check=True, stdout=subprocess.DEVNULL)
     with open(exported) as f:
         mirrors = any(max(m["mirror"]) > 0 for m in json.load(f)["materials"].values())
     bounces, mirror_depth, max_depth = (16, 8, -1) if mirrors else (args.bounces, 1, args.bounces + 2)
@@ -121,11 +171,12 @@ def compare_scene(args, name, scene):
     pm_scale, mi_scale = SAMPLE_SCALE.get(name, (1, 1))
     pm_spp, mi_spp = int(args.pm_spp * pm_scale), int(args.mi_spp * mi_scale)
     start = time.time()
-    pm = [pmrender_path(args, scene, os.path.join(work, "pm%d.exr" % s), s, bounces, mirror_depth, pm_spp)
-          for s in (1, 2)]
+    pm_layers = [pmrender_path(args, scene, os.path.join(work, "pm%d.exr" % s), s, bounces, mirror_depth, pm_spp,
+                               layers=True) for s in (1, 2)]
+    pm = [p["combined"] for p in pm_layers]
     pm_seconds = time.time() - start
     start = time.time()
-    mi_scene = mitsuba.load_dict(pm_mitsuba.scene_dict(exported, max_depth, args.size, args.size))
+    mi_scene = mitsuba.load_dict(pm_mitsuba.scene_dict(exported, max_depth, args.size, args.size, textures))
     mi = [pm_mitsuba.render(mi_scene, mi_spp, seed=s) for s in (1, 2)]
     mi_seconds = time.time() - start
 
@@ -149,7 +200,28 @@ def compare_scene(args, name, scene):
         detected = detected and not ok_fewer
     row["bias_detected"] = detected
     row["pass"] = ok and detected
+    if methods:
+        start = time.time()
+        mi_direct_scene = mitsuba.load_dict(pm_mitsuba.scene_dict(exported, 2, args.size, args.size, textures))
+        mi_direct = [pm_mitsuba.render(mi_direct_scene, mi_spp, seed=s) for s in (1, 2)]
+        row["mi_seconds"] += time.time() - start
+        row["path"] = indirect_bias(pm_layers, mi, mi_direct, args.block, INDIRECT_TOLERANCE["path"])
+        row["path"]["seconds"] = pm_seconds
+        for method in methods:
+            start = time.time()
+            # Radiosity's image does not depend on the seed (two seeds gave the same image): one.
+            seeds = (1,) if method == "radiosity" else (1, 2)
+            layers = [pmrender_render(args, scene, os.path.join(work, "%s%d.exr" % (method, s)), s, bounces, 1,
+                                      METHODS[method]) for s in seeds]
+            layers = layers * (3 - len(layers))
+            r = indirect_bias(layers, mi, mi_direct, args.block, INDIRECT_TOLERANCE[method])
+            r["seconds"] = time.time() - start
+            row[method] = r
     return row
+
+
+def case_passes(r):
+    return r["pass"] and all(r[m]["pass"] and r[m]["bias_detected"] for m in ("path",) + tuple(METHODS) if m in r)
 
 
 def main():
@@ -158,12 +230,14 @@ def main():
     parser.add_argument("--work", required=True, help="folder for exported scenes and renders")
     parser.add_argument("--backend", default="opencl")
     parser.add_argument("--scenes", nargs="*", help="scene files (default: the built-in Cornell box and "
-                        "golden/scenes/*.json)")
+                        "golden/scenes/*.json; none: --scenes)")
     parser.add_argument("--size", type=int, default=32, help="image side, pixels")
     parser.add_argument("--block", type=int, default=4, help="region side, pixels")
     parser.add_argument("--bounces", type=int, default=2)
     parser.add_argument("--pm-spp", type=int, default=512, help="pmrender paths per pixel, each seed")
     parser.add_argument("--mi-spp", type=int, default=128, help="Mitsuba samples per pixel, each seed")
+    parser.add_argument("--light-cases", nargs="*", default=list(LIGHT_CASES),
+                        help="the spot, area-light and texture cases to run (default: all; none: --light-cases)")
     parser.add_argument("--json", help="also write the table as JSON here")
     args = parser.parse_args()
     if args.size % args.block:
@@ -172,15 +246,20 @@ def main():
     scenes = [("cornell-box", None)]
     for path in args.scenes if args.scenes is not None else sorted(glob.glob(os.path.join(ROOT, "golden/scenes/*.json"))):
         scenes.append((os.path.splitext(os.path.basename(path))[0], path))
-    if args.scenes:
+    scenes = [(name, scene, None, None, ()) for name, scene in scenes]
+    if args.scenes is not None:
         scenes = scenes[1:]
+    if args.light_cases:
+        for name, scene, export_from, textures in light_scenes.make_cases(args.pmrender, args.work):
+            if name in args.light_cases:
+                scenes.append((name, scene, export_from, textures, tuple(METHODS)))
 
     rows = []
     print("%-13s %-8s %9s %9s %7s %6s %8s %8s %8s %8s %6s %6s  %s" % (
         "scene", "paths", "pmrender", "mitsuba", "diff", "z", "regions", "bound", "x1.05 z", "B-1 z", "pm s", "mi s",
         "result"))
-    for name, scene in scenes:
-        r = compare_scene(args, name, scene)
+    for name, scene, export_from, textures, methods in scenes:
+        r = compare_scene(args, name, scene, export_from, textures, methods)
         rows.append(r)
         paths = "conv." if r["mirrors"] else "B=%d" % r["bounces"]
         print("%-13s %-8s %9.5f %9.5f %+6.2f%% %+6.2f %7.3f%% %7.3f%% %+8.1f %8s %6.1f %6.1f  %s" % (
@@ -188,14 +267,21 @@ def main():
             100 * r["region_diff"], 100 * r["bound"], r["z_flux"],
             "%+8.1f" % r["z_fewer"] if "z_fewer" in r else "n/a", r["pm_seconds"], r["mi_seconds"],
             "pass" if r["pass"] else ("FAIL" if r["bias_detected"] else "FAIL (bias not detectable)")))
+        for m in ("path",) + tuple(METHODS):
+            if m in r:
+                x = r[m]
+                print("  %-11s indirect bias %+6.2f%% +- %.2f%% (limit %.2f%%), x1.05 / x0.95 %s, regions %6.2f%%, "
+                      "%5.1f s  %s" % (m, 100 * x["bias"], 100 * x["se"], 100 * x["limit"],
+                                       "caught" if x["bias_detected"] else "NOT caught", 100 * x["region_diff"],
+                                       x["seconds"], "pass" if x["pass"] and x["bias_detected"] else "FAIL"))
         sys.stdout.flush()
     if args.json:
         with open(args.json, "w") as f:
             json.dump(rows, f, indent=2)
-    failed = [r["scene"] for r in rows if not r["pass"]]
+    failed = [r["scene"] for r in rows if not case_passes(r)]
     if failed:
-        fail("path tracer and Mitsuba 3 disagree on: " + ", ".join(failed))
-    print("path tracer agrees with Mitsuba 3 on %d scenes" % len(rows))
+        fail("pmrender and Mitsuba 3 disagree on: " + ", ".join(failed))
+    print("pmrender agrees with Mitsuba 3 on %d scenes" % len(rows))
 
 
 if __name__ == "__main__":

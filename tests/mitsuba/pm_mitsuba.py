@@ -14,6 +14,19 @@ Conversions (docs/tradeoff.md, "Validation against Mitsuba 3"):
 - modified Phong (glossy > 0): Mitsuba 3 has no such BSDF. `modified_phong` below is a Mitsuba
   plugin written here from Lafortune & Willems 1994 (f = rho_d / pi + rho_s (n + 2) / (2 pi)
   cos^n alpha), sampled by Mitsuba's integrator with its own mixture pdf;
+- spot light: Mitsuba `spot`, intensity = power / (4 pi) W/sr on the axis, a hard cone at the
+  outer angle (cutoff_angle = beam_width = outer) that projects a texture of glTF
+  KHR_lights_punctual's falloff ((cos - cos outer) / (cos inner - cos outer))^2, clamped to
+  [0, 1] (spot_falloff_table). Mitsuba's own falloff is linear in the angle between beam_width
+  and cutoff_angle, not glTF's, so it cannot stand for pmrender's;
+- emitting material: the mesh carries an `area` emitter of that radiance (Mitsuba's area lights
+  emit from the front face, the side of (p1 - p0) x (p2 - p0), as pmrender's do), and the
+  integrator shows emitters to the camera as pmrender's direct layer does;
+- base-colour texture (scene_dict's `textures`: export-scene refuses textured scenes, so the
+  caller names the textured material's own OBJ, with its texture coordinates, and its image):
+  `bitmap`, sRGB decoded to linear before bilinear filtering (raw false), wrap repeat; Mitsuba's
+  OBJ loader flips v (flip_tex_coords) and its bitmaps have v = 0 at the top row, which is
+  pmrender's convention for OBJ texture coordinates;
 - camera: `perspective`, fov_axis y, the vertical field of view, to_world = look_at;
 - bounces: pmrender's direct light + B diffuse/glossy bounces is Mitsuba's max_depth = B + 2
   (Mitsuba counts every path segment: 2 is direct light only), on scenes without mirrors.
@@ -115,6 +128,45 @@ def modified_phong_class():
     return ModifiedPhong
 
 
+# Texels a side of a spot's falloff table (1024 x 1024 floats, 4 MiB).
+SPOT_TABLE_SIZE = 1024
+
+
+def spot_falloff(cos_theta, cos_outer, cos_inner):
+    """glTF KHR_lights_punctual's spot falloff, as docs/scene-format.md states it."""
+    t = np.clip((cos_theta - cos_outer) / (cos_inner - cos_outer), 0.0, 1.0)
+    return t * t
+
+
+def spot_falloff_table(outer, inner, size=SPOT_TABLE_SIZE):
+    """The falloff as the image a Mitsuba `spot` projects (its `texture`): Mitsuba looks the
+    texture up at uv = 0.5 + 0.5 (x, y) / (z tan(cutoff_angle)) for the direction (x, y, z) in the
+    light's frame (z the axis), so texel (i, j), centred at uv = ((i, j) + 0.5) / size, holds the
+    falloff at cos theta = 1 / sqrt(1 + t_x^2 + t_y^2), t = (2 uv - 1) tan(outer). Bilinear
+    lookups of it differ from the formula by little (tests/mitsuba/README.md gives the measured
+    difference); the table is symmetric, so neither its row order nor the light's roll matters."""
+    t = ((np.arange(size) + 0.5) / size * 2.0 - 1.0) * math.tan(math.radians(outer))
+    cos_theta = 1.0 / np.sqrt(1.0 + t[None, :] ** 2 + t[:, None] ** 2)
+    f = spot_falloff(cos_theta, math.cos(math.radians(outer)), math.cos(math.radians(inner)))
+    return f.astype(np.float32)[:, :, None]
+
+
+def spot_emitter(light):
+    """Mitsuba `spot` of a pmrender spot light (angles in degrees, direction not normalised): a hard
+    cone at the outer angle (beam_width = cutoff_angle) whose projected texture is glTF's falloff."""
+    outer, inner = float(light["outer_cone_angle"]), float(light["inner_cone_angle"])
+    axis = np.array(light["direction"], dtype=np.float64)
+    axis /= np.linalg.norm(axis)
+    up = [0.0, 1.0, 0.0] if abs(axis[1]) < 0.9 else [1.0, 0.0, 0.0]  # only the axis matters
+    position = np.array(light["position"], dtype=np.float64)
+    return {"type": "spot", "cutoff_angle": outer, "beam_width": outer,
+            "intensity": rgb([p / (4.0 * math.pi) for p in light["power"]]),
+            "texture": {"type": "bitmap", "bitmap": mi.Bitmap(spot_falloff_table(outer, inner)), "raw": True,
+                        "filter_type": "bilinear", "wrap_mode": "clamp"},
+            "to_world": mi.ScalarTransform4f().look_at(origin=position.tolist(), target=(position + axis).tolist(),
+                                                       up=up)}
+
+
 def rgb(v):
     return {"type": "rgb", "value": [float(x) for x in v]}
 
@@ -152,8 +204,11 @@ def material_bsdf(m):
     return {"type": "blendbsdf", "weight": w, "bsdf_0": base, "bsdf_1": mirror}
 
 
-def scene_dict(exported_json, max_depth, width=None, height=None):
-    """Mitsuba scene dict of a `pmrender export-scene` file; width/height override the camera's."""
+def scene_dict(exported_json, max_depth, width=None, height=None, textures=None):
+    """Mitsuba scene dict of a `pmrender export-scene` file; width/height override the camera's.
+    textures: {exported material name: {"obj": OBJ with texture coordinates, "image": file}} for
+    materials whose diffuse reflectance is a base-colour texture (times the material's diffuse,
+    which must then be 1: Mitsuba's bitmap has no factor); that OBJ replaces the exported one."""
     folder = os.path.dirname(os.path.abspath(exported_json))
     with open(exported_json) as f:
         s = json.load(f)
@@ -164,14 +219,32 @@ def scene_dict(exported_json, max_depth, width=None, height=None):
               "to_world": mi.ScalarTransform4f().look_at(origin=cam["position"], target=cam["look_at"], up=cam["up"]),
               "film": dict(film)}
     d = {"type": "scene",
-         "integrator": {"type": "path", "max_depth": int(max_depth), "hide_emitters": True},
+         # Emitters stay visible: pmrender's direct layer shows the emitting triangles' radiance.
+         "integrator": {"type": "path", "max_depth": int(max_depth), "hide_emitters": False},
          "sensor": {"type": "pixel_centres", "inner": camera, "film": film, "sampler": {"type": "independent"}}}
+    textures = textures or {}
     for i, mesh in enumerate(s["meshes"]):
-        d["mesh%d" % i] = {"type": "obj", "filename": os.path.join(folder, mesh["file"]), "face_normals": True,
-                           "bsdf": material_bsdf(s["materials"][mesh["material"]])}
+        material = s["materials"][mesh["material"]]
+        shape = {"type": "obj", "filename": os.path.join(folder, mesh["file"]), "face_normals": True,
+                 "bsdf": material_bsdf(material)}
+        texture = textures.get(mesh["material"])
+        if texture:
+            if max(material["glossy"]) > 0 or max(material["mirror"]) > 0 or min(material["diffuse"]) < 1:
+                raise ValueError("textured material %s: only diffuse 1 (the texture alone) is converted" %
+                                 mesh["material"])
+            shape["filename"] = texture["obj"]
+            shape["flip_tex_coords"] = True  # OBJ's v counts from the image's bottom row
+            shape["bsdf"]["bsdf"]["reflectance"] = {"type": "bitmap", "filename": texture["image"], "raw": False,
+                                                    "filter_type": "bilinear", "wrap_mode": "repeat"}
+        if max(material.get("emission", [0.0])) > 0:
+            shape["emitter"] = {"type": "area", "radiance": rgb(material["emission"])}
+        d["mesh%d" % i] = shape
     for i, light in enumerate(s["lights"]):
-        d["light%d" % i] = {"type": "point", "position": light["position"],
-                            "intensity": rgb([p / (4.0 * math.pi) for p in light["power"]])}
+        if light.get("type", "point") == "spot":
+            d["light%d" % i] = spot_emitter(light)
+        else:
+            d["light%d" % i] = {"type": "point", "position": light["position"],
+                                "intensity": rgb([p / (4.0 * math.pi) for p in light["power"]])}
     return d
 
 
