@@ -1,5 +1,7 @@
 #!/usr/bin/env python3
-"""pmrender's path tracer against Mitsuba 3 on every golden scene and the built-in Cornell box
+"""pmrender's path tracer against Mitsuba 3 on every golden scene, the built-in Cornell box and
+the light and texture cases of light_scenes.py (a spot light, an emitting panel, a textured
+floor), where photon mapping (pd) and radiosity are checked against the same reference too
 (ctest `mitsuba`; tests/mitsuba/README.md says how to run it and why the tolerances are what
 they are). Exit code 0 when every scene agrees within the noise of both renderers and every
 injected bias is detected, 1 otherwise (also when Mitsuba is missing), 2 on bad arguments.
@@ -23,7 +25,11 @@ depth, pmrender does not: eye mirrors up to --mirror-depth, then up to 8 more be
 bounces), so both render to convergence instead: pmrender --bounces 16 --mirror-depth 8 against
 Mitsuba max_depth -1 (Russian roulette, unbiased); what pmrender then leaves out is below
 0.1 % here. Neither renderer samples light that leaves a point light through a perfect mirror
-(docs/tradeoff.md), so the same light paths are compared."""
+(docs/tradeoff.md), so the same light paths are compared.
+
+Light and texture cases, besides the above: the bias of the indirect light with the direct light
+matched (indirect_bias), of the path tracer (tolerance: 4 standard errors), of pd and of
+radiosity at their defaults (ctest accuracy's 1.5 % plus 4 standard errors)."""
 import argparse
 import glob
 import json
@@ -108,7 +114,7 @@ class Verdict:
         diff = pm_regions.mean() - self.mi.mean()
         z = diff / math.sqrt(self.var_pm + self.var_mi)
         mad = rel_mad(pm_regions, self.mi)
-        return z, mad, abs(z) <= 4.0 and mad <= self.bound
+        return float(z), mad, bool(abs(z) <= 4.0 and mad <= self.bound)
 
 
 def pmrender_render(args, scene, out, seed, bounces, mirror_depth, method):
@@ -129,10 +135,11 @@ def indirect_bias(pm, mi_full, mi_direct, block, tolerance):
     """Photon mapping or radiosity against Mitsuba: the bias of the indirect light with the direct
     light matched (render/image_metrics.h light_bias, what ctest accuracy checks): the ratio of
     indirect to direct light in pmrender's image over the same ratio in Mitsuba's, minus 1.
-    Mitsuba's direct light is its max_depth 2 render with the same seeds as its full one, so its
-    direct part cancels from the difference sample by sample. Standard error from the region
-    differences between the seeds of both renderers (as mean_variance); pass when
-    |bias| <= 1.5 % + 4 standard errors, and an indirect light 5 % too high or too low must fail."""
+    Mitsuba's direct light is its max_depth 2 render (with the seeds of its full render; their
+    difference is its indirect light). Standard errors from the region differences between the
+    two seeds of each renderer (mean_variance), of the indirect and the direct light of both;
+    pass when |bias| <= tolerance + 4 standard errors, and an indirect light 5 % too high and one
+    5 % too low must both fail."""
     blk = block
     pm_dir = [region_means(p["direct"], blk) for p in pm]
     pm_ind = [region_means(p["combined"], blk) - d for p, d in zip(pm, pm_dir)]
@@ -152,8 +159,8 @@ def indirect_bias(pm, mi_full, mi_direct, block, tolerance):
     def fails(scale):
         return abs(ratio * scale - 1.0) > limit
 
-    return {"bias": ratio - 1.0, "se": se, "limit": limit, "rel_se": [math.sqrt(x) for x in (vpi, vpd, vmi, vmd)], "pass": abs(ratio - 1.0) <= limit,
-            "bias_detected": fails(1.05) and fails(0.95),
+    return {"bias": ratio - 1.0, "se": se, "limit": limit, "rel_se": [math.sqrt(x) for x in (vpi, vpd, vmi, vmd)],
+            "pass": bool(abs(ratio - 1.0) <= limit), "bias_detected": bool(fails(1.05) and fails(0.95)),
             "region_diff": rel_mad(0.5 * (pm_ind[0] + pm_ind[1]), 0.5 * (mi_ind[0] + mi_ind[1]))}
 
 
