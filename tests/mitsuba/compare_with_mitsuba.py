@@ -267,19 +267,21 @@ def main():
                 scenes.append((name, scene, export_from, textures, tuple(METHODS)))
 
     rows = []
-    print("%-13s %-8s %9s %9s %7s %6s %8s %8s %8s %8s %6s %6s %6s  %s" % (
+    print("%-13s %-8s %9s %9s %7s %6s %8s %8s %8s %8s %6s %6s %6s %6s  %s" % (
         "scene", "paths", "pmrender", "mitsuba", "diff", "z", "regions", "bound", "x1.05 z", "B-1 z", "pm s", "mi s",
-        "all s", "result"))
+        "all s", "cpu s", "result"))
     for name, scene, export_from, textures, methods in scenes:
-        start = time.time()
+        start, cpu = time.time(), sum(os.times()[:4])
         r = compare_scene(args, name, scene, export_from, textures, methods)
         r["seconds"] = time.time() - start
+        r["cpu_seconds"] = sum(os.times()[:4]) - cpu  # this process's threads and pmrender's
         rows.append(r)
         paths = "conv." if r["mirrors"] else "B=%d" % r["bounces"]
-        print("%-13s %-8s %9.5f %9.5f %+6.2f%% %+6.2f %7.3f%% %7.3f%% %+8.1f %8s %6.1f %6.1f %6.1f  %s" % (
+        print("%-13s %-8s %9.5f %9.5f %+6.2f%% %+6.2f %7.3f%% %7.3f%% %+8.1f %8s %6.1f %6.1f %6.1f %6.1f  %s" % (
             name, paths, r["pm_mean"], r["mi_mean"], 100 * (r["pm_mean"] / r["mi_mean"] - 1), r["z"],
             100 * r["region_diff"], 100 * r["bound"], r["z_flux"],
             "%+8.1f" % r["z_fewer"] if "z_fewer" in r else "n/a", r["pm_seconds"], r["mi_seconds"], r["seconds"],
+            r["cpu_seconds"],
             "pass" if r["pass"] else ("FAIL" if r["bias_detected"] else "FAIL (bias not detectable)")))
         for m in ("path",) + tuple(METHODS):
             if m in r:
