@@ -56,6 +56,9 @@ std::shared_ptr<MethodOptions> add_radiosity_options(CLI::App* cmd) {
   cmd->add_option("--link-origins", o->link_origins, "Link rays from the vertex only, or from points over its "
                                                      "one-ring drawn by its hat function")
       ->capture_default_str()->check(CLI::IsMember(names_of(kRadiosityLinkOriginsNames)))->group(group);
+  cmd->add_option("--hidden-origins", r.hidden_origins, "Link rays that meet a back face nearer than this many "
+                                                       "max edges started inside geometry and are left out (0: none)")
+      ->capture_default_str()->transform(finite_float())->group(group);
   cmd->add_option("--link-batch", r.link_batch, "Elements per link-build batch (0: as many as 256 MiB of scratch hold)")
       ->capture_default_str()->transform(any_unsigned32())->group(group);
   return o;

@@ -173,6 +173,11 @@ PM_DEVICE void kernel_radiosity_light_links(const KernelGlobals* kg, const Launc
     irradiance = vec3_madd(irradiance, vec3_from_float4(light.power), g);
   }
   if (p->emitter_count > 0u) irradiance = vec3_add(irradiance, radiosity_element_area_light(kg, p, e));
+  /* The part of the one-ring inside other geometry is shadowed: the light is what the seen part
+     received, over the seen part (the link build counted the hidden origins, radiosity_links.h). */
+  uint hidden = PM_LOAD(&kg->rad_element_ranges[e]).w;
+  if (hidden > 0u && hidden < p->link_directions)
+    irradiance = vec3_scale(irradiance, (float)p->link_directions / (float)(p->link_directions - hidden));
   Vec3 radiance = vec3_scale(vec3_mul(radiosity_element_reflectance(kg, e), irradiance), PM_INV_PI);
   kg->rad_radiance[e] = vec3_to_float4(radiance, 0.0f);
   kg->rad_irradiance[e] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, 0.0f);

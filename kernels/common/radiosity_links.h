@@ -69,6 +69,18 @@ PM_DEVICE Vec3 radiosity_link_origin(const KernelGlobals* kg, const LaunchParams
   return v;
 }
 
+/* Whether a ray along d meets triangle `leaf` from behind its winding. A link ray that does so
+   close to its origin started inside a closed object (a floor point under a chair's leg, a
+   one-ring reaching into a wall): that part of the one-ring is never seen, and what its rays
+   gather (the object's dark inside) must not enter the vertex's value (hidden origins, below). */
+PM_DEVICE int radiosity_hits_back_face(const KernelGlobals* kg, int leaf, Vec3 d)
+{
+  Vec3 a = scene_triangle_vertex(kg->triangles, leaf, 0);
+  Vec3 b = scene_triangle_vertex(kg->triangles, leaf, 1);
+  Vec3 c = scene_triangle_vertex(kg->triangles, leaf, 2);
+  return vec3_dot(vec3_cross(vec3_sub(b, a), vec3_sub(c, a)), d) > 0.0f;
+}
+
 /* One work item per (element of the batch, direction): entries [3 index, 3 index + 3). */
 PM_DEVICE void kernel_radiosity_link_trace(const KernelGlobals* kg, const LaunchParams* p, uint index)
 {
@@ -84,6 +96,10 @@ PM_DEVICE void kernel_radiosity_link_trace(const KernelGlobals* kg, const Launch
   Ray ray = ray_make(offset_ray_origin(pos, n, ray_offset_distance(pos, 0.0f, p->ray_epsilon)), d);
   SceneHit hit = scene_trace(kg, &ray, 0.0f, 1e30f, 0);
   if (hit.triangle < 0) return;
+  if (hit.t < p->link_hidden_distance && radiosity_hits_back_face(kg, hit.triangle, d)) {
+    radiosity_put_entry(kg, entry, PM_RADIOSITY_HIDDEN, 0.0f);
+    return;
+  }
   Vec3 x = vec3_madd(ray.origin, d, hit.t);
   uint targets[3];
   /* The side of the hit surface that faces the ray's origin. */
@@ -150,10 +166,14 @@ PM_DEVICE void kernel_radiosity_link_merge(const KernelGlobals* kg, const Launch
   uint count = 3u * p->link_directions;
   uint base = item * count;
   radiosity_sort_entries(kg, base, count);
-  uint merged = 0, raw = 0, words = 0, previous = 0;
+  uint merged = 0, raw = 0, words = 0, previous = 0, hidden = 0;
   for (uint j = 0; j < count; ++j) {
     uint target = radiosity_entry_target(kg, base + j);
     if (target == PM_RADIOSITY_NONE) break; /* empty entries sort last */
+    if (target == PM_RADIOSITY_HIDDEN) {
+      ++hidden;
+      continue;
+    }
     float w = PM_AS_FLOAT(kg->rad_batch_links[2u * (base + j) + 1u]);
     ++raw;
     if (merged > 0u && previous == target) {
@@ -166,8 +186,18 @@ PM_DEVICE void kernel_radiosity_link_merge(const KernelGlobals* kg, const Launch
       ++merged;
     }
   }
+  /* The rays from the visible part of the one-ring stand for all of it: their weights over the
+     visible rays, so the vertex's value is the mean over the part of its one-ring that is seen. */
+  if (hidden > 0u && hidden < p->link_directions) {
+    float scale = (float)p->link_directions / (float)(p->link_directions - hidden);
+    for (uint j = 0; j < merged; ++j) {
+      uint slot = 2u * (base + j) + 1u;
+      kg->rad_batch_links[slot] = PM_AS_UINT(PM_AS_FLOAT(kg->rad_batch_links[slot]) * scale);
+    }
+  }
   kg->rad_batch_counts[4u * item] = words;
   kg->rad_batch_counts[4u * item + 1u] = raw;
+  kg->rad_batch_counts[4u * item + 2u] = hidden; /* read by the host before it writes the offset */
   kg->rad_batch_counts[4u * item + 3u] = merged;
 }
 

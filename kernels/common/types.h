@@ -150,6 +150,9 @@ typedef struct LaunchParams {
   uint emitter_count;        /* area lights: emitting triangles in the emitters buffer (0: none) */
   float emitter_power;       /* area lights: total flux, sum over emitters of pi A mean(L_e) (watts, channel mean) */
   uint area_light_samples;   /* area lights: samples per shading point in the camera pass and radiosity */
+
+  float link_hidden_distance; /* radiosity: a link ray meeting a back face nearer than this started inside
+                                 geometry (radiosity_links.h); 0: no origin is hidden */
 } LaunchParams;
 
 /* Photon emission sequences (--photon-sequence). RANDOM: Philox keyed by (seed, photon_frame).
@@ -162,6 +165,8 @@ typedef struct LaunchParams {
 /* Vertex link radiosity (docs/radiosity.md). An element index that does not exist (the back side
    of a one-sided surface, an empty link slot). */
 #define PM_RADIOSITY_NONE 0xffffffffu
+/* A link slot whose ray started inside other geometry (radiosity_links.h); sorts just before NONE. */
+#define PM_RADIOSITY_HIDDEN 0xfffffffeu
 /* Light links (section 3.3): the vertex alone, or the centroids of the paper's 1:4 subdivision
    of its one-ring triangles, weighted as a quadrature of the vertex's hat function. */
 #define PM_RADIOSITY_LIGHT_VERTEX 0

@@ -39,6 +39,8 @@ void RadiositySettings::validate() const {
     throw SettingError("light-samples", "expected " + names_list(kRadiosityLightSamplesNames));
   if (std::string(name_of(kRadiosityLinkOriginsNames, link_origins)) == "?")
     throw SettingError("link-origins", "expected " + names_list(kRadiosityLinkOriginsNames));
+  if (!(hidden_origins >= 0) || !std::isfinite(hidden_origins))
+    throw SettingError("hidden-origins", "expected 0 (off) or a positive multiple of the max edge");
   // One launch traces batch * nC rays, indexed with 32 bits.
   if (uint64_t(link_batch) * directions > 0x7fffffffull)
     throw SettingError("link-batch", std::to_string(link_batch) + " elements of " + std::to_string(directions) +
@@ -68,7 +70,7 @@ std::string RadiositySettings::describe() const {
     << " sides=" << name_of(kRadiositySidesNames, sides)
     << " light_samples=" << name_of(kRadiosityLightSamplesNames, light_samples)
     << " link_origins=" << name_of(kRadiosityLinkOriginsNames, link_origins)
-    << " link_batch=" << (link_batch > 0 ? std::to_string(link_batch) : "auto");
+    << " hidden_origins=" << hidden_origins << " link_batch=" << (link_batch > 0 ? std::to_string(link_batch) : "auto");
   return s.str();
 }
 

@@ -28,6 +28,10 @@ class RadiositySettings final : public MethodSettings {
   int light_samples = PM_RADIOSITY_LIGHT_ONE_RING;  // light links at the vertex, or oversampled (1:4)
   int link_origins = PM_RADIOSITY_ORIGINS_ONE_RING;  // link rays from the vertex, or over its one-ring
   uint32_t link_batch = 0;    // elements per link batch; 0: as many as 256 MiB of scratch holds
+  // A link ray that meets a back face nearer than this many max_edge started inside geometry and
+  // is left out of its vertex's value (radiosity_links.h); 0: every origin counts. One max edge:
+  // measured across the benchmark scenes (docs/accuracy.md, "Hidden origins").
+  float hidden_origins = 1.0f;
 
   const char* method_name() const override { return "radiosity"; }
   void validate() const override;

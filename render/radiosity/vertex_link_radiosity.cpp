@@ -35,6 +35,7 @@ LaunchParams VertexLinkRadiosity::launch_params(const FrameContext& frame) const
   p.light_sampling = uint32_t(settings_.light_samples);
   p.link_origins = uint32_t(settings_.link_origins);
   p.feature_cos = float(std::cos(double(settings_.feature_angle) * M_PI / 180.0));
+  p.link_hidden_distance = settings_.hidden_origins * settings_.max_edge;
   return p;
 }
 
@@ -125,6 +126,7 @@ void VertexLinkRadiosity::build_links(LaunchParams p, StageTimer* timer) {
     device_.download(buffers_[BufferSlot::rad_batch_counts], counts.data(), 4 * size_t(count) * sizeof(uint32_t));
     const uint64_t used = total;
     for (uint32_t i = 0; i < count; ++i) {
+      ranges_[first + i].w = counts[4 * i + 2];  // hidden link origins (radiosity_links.h)
       counts[4 * i + 2] = uint32_t(total);
       ranges_[first + i].z = uint32_t(total);
       total += counts[4 * i];

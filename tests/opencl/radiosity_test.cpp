@@ -143,7 +143,8 @@ TEST_F(RadiosityCli, RenderAndBenchRunAndBadOptionsAreRefused) {
 
   for (const std::pair<const char*, const char*>& bad :
        {std::pair{"--directions 0", "--directions: expected 1 to 16384"}, {"--feature-angle 0", "--feature-angle:"},
-        {"--max-edge -1", "--max-edge:"}, {"--max-edge 0.00001", "--max-edge:"}, {"--sides three", "--sides"}}) {
+        {"--max-edge -1", "--max-edge:"}, {"--max-edge 0.00001", "--max-edge:"}, {"--sides three", "--sides"},
+        {"--hidden-origins -1", "--hidden-origins:"}}) {
     r = pmrender(std::string("render --backend opencl --method radiosity --resolution 8x8 -o ") + (dir_ / "bad.exr").string() +
                  " " + bad.first);
     EXPECT_EQ(r.exit_code, 2) << bad.first << "\n" << r.err;
