@@ -69,16 +69,37 @@ PM_DEVICE Vec3 radiosity_link_origin(const KernelGlobals* kg, const LaunchParams
   return v;
 }
 
-/* Whether a ray along d meets triangle `leaf` from behind its winding. A link ray that does so
-   close to its origin started inside a closed object (a floor point under a chair's leg, a
-   one-ring reaching into a wall): that part of the one-ring is never seen, and what its rays
-   gather (the object's dark inside) must not enter the vertex's value (hidden origins, below). */
+/* Hidden origins. Closed objects are wound with their front faces outwards, into the air, as
+   modelling tools leave them for renderers that cull back faces. A link ray that starts on the
+   front side of its surface (in the air, by that surface's account) and meets the back of a
+   triangle (inside a solid, by that one's) close to its origin started inside a closed object
+   that crosses its surface: a floor point under a chair's leg, a one-ring reaching into a wall.
+   That part of the one-ring is never seen, and what its rays gather (the object's dark inside)
+   must not enter the vertex's value. Rays from the back side of a surface are never taken as
+   hidden: a room wound outwards is seen from its back sides, and its corners would be. */
+
+/* Whether a ray along d meets triangle `leaf` from behind its winding. */
 PM_DEVICE int radiosity_hits_back_face(const KernelGlobals* kg, int leaf, Vec3 d)
 {
   Vec3 a = scene_triangle_vertex(kg->triangles, leaf, 0);
   Vec3 b = scene_triangle_vertex(kg->triangles, leaf, 1);
   Vec3 c = scene_triangle_vertex(kg->triangles, leaf, 2);
   return vec3_dot(vec3_cross(vec3_sub(b, a), vec3_sub(c, a)), d) > 0.0f;
+}
+
+/* Whether element e lies on the front (winding) side of its surface: its first non-degenerate
+   one-ring triangle's winding normal (the ring's corners follow the winding) against the
+   element's normal. All of an element's ring triangles are on its one side. */
+PM_DEVICE int radiosity_element_on_front(const KernelGlobals* kg, uint e)
+{
+  uint first = PM_LOAD(&kg->rad_element_ranges[e]).x, end = PM_LOAD(&kg->rad_element_ranges[e + 1u]).x;
+  Vec3 v = radiosity_element_position(kg, e);
+  for (uint r = first; r < end; ++r) {
+    Vec3 b, c, face_n;
+    if (!(radiosity_ring_triangle(kg, e, PM_LOAD(&kg->rad_adjacency[r]), &b, &c, &face_n) > 0.0f)) continue;
+    return vec3_dot(vec3_cross(vec3_sub(b, v), vec3_sub(c, v)), face_n) > 0.0f;
+  }
+  return 0;
 }
 
 /* One work item per (element of the batch, direction): entries [3 index, 3 index + 3). */
@@ -96,7 +117,8 @@ PM_DEVICE void kernel_radiosity_link_trace(const KernelGlobals* kg, const Launch
   Ray ray = ray_make(offset_ray_origin(pos, n, ray_offset_distance(pos, 0.0f, p->ray_epsilon)), d);
   SceneHit hit = scene_trace(kg, &ray, 0.0f, 1e30f, 0);
   if (hit.triangle < 0) return;
-  if (hit.t < p->link_hidden_distance && radiosity_hits_back_face(kg, hit.triangle, d)) {
+  if (hit.t < p->link_hidden_distance && radiosity_hits_back_face(kg, hit.triangle, d) &&
+      radiosity_element_on_front(kg, e)) {
     radiosity_put_entry(kg, entry, PM_RADIOSITY_HIDDEN, 0.0f);
     return;
   }

@@ -15,10 +15,14 @@
 #include "support/device_checks.h"
 #include "support/image_stats.h"
 #include "support/render_settings.h"
+#include "support/lit_boxes.h"
 #include "support/room_scenes.h"
 
 namespace pm {
 namespace {
+
+using test::area_box;
+using test::spot_box;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -142,43 +146,6 @@ TEST_F(Lights, AreaLightIrradianceUnderASquareMatchesTheClosedForm) {
   EXPECT_NEAR(test::mean(direct_only(scene, 8).find("direct")->rgb), radiance, 1e-5);
   scene.camera.position = {0, 2, 0};
   EXPECT_EQ(test::mean(direct_only(scene, 8).find("direct")->rgb), 0.0);
-}
-
-// A closed white box of 1 m with its light under the ceiling, seen from inside.
-Scene lit_box() {
-  Scene s;
-  s.name = "box";
-  s.source = "test";
-  s.materials = {test::diffuse_material("white", {0.6f, 0.6f, 0.6f}), test::diffuse_material("red", {0.6f, 0.15f, 0.1f})};
-  test::add_box(s, {0, 0, 0}, {1, 1, 1});
-  for (size_t t = s.triangle_material.size() - 4; t < s.triangle_material.size() - 2; ++t) s.triangle_material[t] = 1;
-  s.camera.position = {0.5f, 0.5f, 0.03f};
-  s.camera.look_at = {0.5f, 0.45f, 1.0f};
-  s.camera.vertical_fov_degrees = 80;
-  return s;
-}
-
-Scene spot_box() {
-  Scene s = lit_box();
-  LightDesc spot;
-  spot.name = "spot";
-  spot.type = LightType::spot;
-  spot.position = {0.5f, 0.95f, 0.5f};
-  spot.power = {12, 12, 12};
-  spot.direction = {0.1f, -1, 0.2f};
-  spot.inner_cone = float(25 * kPi / 180);
-  spot.outer_cone = float(40 * kPi / 180);
-  s.lights = {spot};
-  return s;
-}
-
-Scene area_box() {
-  Scene s = lit_box();
-  MaterialDesc lamp = test::diffuse_material("lamp", {0.5f, 0.5f, 0.5f});
-  lamp.emission = {6, 6, 6};
-  s.materials.push_back(lamp);
-  test::add_quad(s, {0.3f, 0.999f, 0.3f}, {0.7f, 0.999f, 0.3f}, {0.7f, 0.999f, 0.7f}, {0.3f, 0.999f, 0.7f}, 2);
-  return s;
 }
 
 RenderSettings box_settings(std::shared_ptr<const MethodSettings> method, uint32_t passes) {

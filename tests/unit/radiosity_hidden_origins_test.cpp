@@ -3,11 +3,13 @@
 // under the slab must gather what the floor beside the slab gathers, and receive the light it
 // receives, when the rays and quadrature points inside the slab are left out; counted in, they
 // darken those vertices by the hidden share of their one-ring. Also: the merge scales the seen
-// rays' weights so that they keep the sum of a fully seen element, and reports the hidden count.
+// rays' weights so that they keep the sum of a fully seen element, and reports the hidden count;
+// and a closed room, wound either way, has no hidden origins.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 #include <vector>
 
 #include "kernels/common/compat_host.h"
@@ -164,6 +166,29 @@ TEST(RadiosityHiddenOrigins, VerticesBesideASunkSlabGatherWhatTheOpenFloorGather
   EXPECT_NEAR(direct_kept / direct_open, 1.0, 0.03);
   EXPECT_LT(sum_counted / sum_open, 0.92);
   EXPECT_LT(direct_counted / direct_open, 0.92);
+}
+
+// A room wound outwards is seen from inside through the back sides of its faces: its corners
+// put walls' backs within a max edge of every origin near them, and none of those is hidden (an
+// origin on a back side never is). Wound inwards, the same room has none either.
+TEST(RadiosityHiddenOrigins, NoneInARoomWhateverItsWinding) {
+  for (bool outwards : {true, false}) {
+    Scene room;
+    room.name = "room";
+    room.source = "test";
+    room.materials = {test::grey_material(0.5f)};
+    test::add_box(room, {0, 0, 0}, {1, 1, 1});
+    if (!outwards)
+      for (size_t t = 0; 3 * t < room.indices.size(); ++t) std::swap(room.indices[3 * t + 1], room.indices[3 * t + 2]);
+    room.lights = {LightDesc{"light", {0.5f, 0.9f, 0.5f}, {10, 10, 10}}};
+    HostMesh h(room, kMaxEdge, 40.0f, true);
+    h.p.link_hidden_distance = float(kMaxEdge);
+    std::vector<uint32_t> batch, counts, words;
+    const std::vector<uint32_t> hidden = build_links(h, batch, counts, words);
+    uint32_t total = 0;
+    for (uint32_t n : hidden) total += n;
+    EXPECT_EQ(total, 0u) << (outwards ? "wound outwards" : "wound inwards");
+  }
 }
 
 }  // namespace
