@@ -6,6 +6,7 @@
 // relit frame equals a fresh render of that frame.
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -35,55 +36,55 @@ class MovingLights : public ::testing::Test {
   std::unique_ptr<Device> device_;
 };
 
-TEST_F(MovingLights, RadiosityRelightsOnlyWhileTheSpotTurns) {
+// Renders frames 0 to kLastTurningFrame + 2 of the turning spot in one renderer, checks each
+// frame's statistics with `check`, and returns frame `kept`'s image after checking that a fresh
+// renderer computes the same image for it, and that `layer` changed from frame 0 to it.
+FrameImage render_turning(Device& device, const RenderSettings& settings, int kept, const char* layer,
+                          const std::function<void(int, const FrameStats&)>& check) {
   const Scene scene = turning_spot();
+  Renderer renderer(device, scene, settings);
+  FrameImage first, image;
+  for (int f = 0; f <= kLastTurningFrame + 2; ++f) {
+    SCOPED_TRACE("frame " + std::to_string(f));
+    FrameStats stats;
+    FrameImage frame = renderer.render_frame(f, &stats);
+    check(f, stats);
+    if (f == 0) first = frame;
+    if (f == kept) image = frame;
+  }
+  EXPECT_GT(test::compare_rgb(image.find(layer)->rgb, first.find(layer)->rgb).mean_relative, 0.01) << layer;
+  Renderer fresh(device, scene, settings);
+  test::expect_same_image(image, fresh.render_frame(kept), "against a fresh render");
+  return image;
+}
+
+TEST_F(MovingLights, RadiosityRelightsOnlyWhileTheSpotTurns) {
   RadiositySettings radiosity;
   radiosity.directions = 16;
   RenderSettings settings = test::radiosity_render_settings(radiosity);
   settings.width = 40;
   settings.height = 30;
-  Renderer renderer(*device_, scene, settings);
-  FrameImage first, turned;
-  for (int f = 0; f <= kLastTurningFrame + 2; ++f) {
-    SCOPED_TRACE("frame " + std::to_string(f));
-    FrameStats stats;
-    FrameImage image = renderer.render_frame(f, &stats);
+  // A relit frame (the spot still turning), whose indirect light changed.
+  render_turning(*device_, settings, kLastTurningFrame - 1, "indirect", [](int f, const FrameStats& stats) {
     EXPECT_EQ(stat(stats, "link_builds"), 1);
     EXPECT_EQ(stat(stats, "light_links_run"), f <= kLastTurningFrame ? 1 : 0);
     EXPECT_EQ(stat(stats, "light_link_runs"), f <= kLastTurningFrame ? f + 1 : kLastTurningFrame + 1);
-    if (f == 0) first = image;
-    if (f == kLastTurningFrame - 1) turned = image;
-  }
-  // The spot turned: the indirect light changed.
-  EXPECT_GT(test::compare_rgb(turned.find("indirect")->rgb, first.find("indirect")->rgb).mean_relative, 0.01);
-  Renderer fresh(*device_, scene, settings);
-  test::expect_same_image(turned, fresh.render_frame(kLastTurningFrame - 1), "relit against fresh");
+  });
 }
 
 TEST_F(MovingLights, PhotonsAreTracedOnlyWhileTheSpotTurns) {
-  const Scene scene = turning_spot();
   PhotonSettings photons;
   photons.photons = 20000;
   RenderSettings settings = test::photon_render_settings(photons);
   settings.width = 48;
   settings.height = 36;
-  Renderer renderer(*device_, scene, settings);
-  FrameImage first, turned;
-  for (int f = 0; f <= kLastTurningFrame + 2; ++f) {
-    SCOPED_TRACE("frame " + std::to_string(f));
-    FrameStats stats;
-    FrameImage image = renderer.render_frame(f, &stats);
+  // A reused frame (photons keyed by the run's first frame); the camera pass's direct light shows
+  // that the spot turned without the photons' noise.
+  render_turning(*device_, settings, kLastTurningFrame + 2, "direct", [](int f, const FrameStats& stats) {
     EXPECT_EQ(stat(stats, "photons_reused"), f > kLastTurningFrame ? 1 : 0);
     EXPECT_EQ(stat(stats, "photon_frame"), f > kLastTurningFrame ? kLastTurningFrame : f);
     EXPECT_GT(stat(stats, "hits"), 0.0);
-    if (f == 0) first = image;
-    if (f == kLastTurningFrame + 2) turned = image;
-  }
-  // The spot turned (the camera pass's direct light shows it without the photons' noise).
-  EXPECT_GT(test::compare_rgb(turned.find("direct")->rgb, first.find("direct")->rgb).mean_relative, 0.01);
-  // A reused frame is what a fresh renderer computes for it (photons keyed by the run's first frame).
-  Renderer fresh(*device_, scene, settings);
-  test::expect_same_image(turned, fresh.render_frame(kLastTurningFrame + 2), "reused against fresh");
+  });
 }
 
 }  // namespace
