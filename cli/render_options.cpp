@@ -33,8 +33,8 @@ void add_render_options(CLI::App* cmd, RenderOptions& o) {
                   "estimate sees the noise between passes only")
       ->capture_default_str()->transform(integer_in(0, 65536));
   cmd->add_option("--area-light-samples", o.area_light_samples,
-                  "Light samples of the emitting surfaces per pixel and mirror depth in the direct light (and per "
-                  "element in radiosity's light links)")
+                  "Light samples of the emitting surfaces and of the environment per pixel and mirror depth in the "
+                  "direct light (and per element in radiosity's light links)")
       ->capture_default_str()->transform(integer_in(1, 65536));
   std::string method_help = "Indirect-light method:";
   for (const MethodEntry& m : methods()) method_help += std::string(" ") + m.name + " (" + m.summary + ")";
