@@ -85,9 +85,9 @@ std::shared_ptr<PathSettings> path_method(int bounces, uint32_t samples, bool mi
   return path;
 }
 
-std::shared_ptr<PhotonSettings> photon_method(int bounces) {
+std::shared_ptr<PhotonSettings> photon_method(int bounces, uint64_t photons_per_pass = 65536) {
   auto photons = std::make_shared<PhotonSettings>();
-  photons->photons = 65536;
+  photons->photons = photons_per_pass;
   photons->bounces = bounces;
   photons->estimator = PM_ESTIMATOR_RADIUS;
   photons->radius = 0.04f;
@@ -246,7 +246,7 @@ TEST_F(Environment, MethodsAgreeUnderAMapAndMisAgreesWithLightSampling) {
   Scene scene = floor_and_wall(0.6f, floor_with_map(rgb, width, height, 0.6f).environment);
   const FrameImage traced = render(scene, settings_for(path_method(2, 64), 16, 4));
   const FrameImage light_only = render(scene, settings_for(path_method(2, 64, false), 16, 4));
-  const FrameImage mapped = render(scene, settings_for(photon_method(2), 16, 8));
+  const FrameImage mapped = render(scene, settings_for(photon_method(2, 262144), 16, 8));
   const FrameImage solved = render(scene, settings_for(radiosity_method(2), 16, 1));
   const double path = layer_mean(traced, "indirect"), path_light = layer_mean(light_only, "indirect");
   const double photon = layer_mean(mapped, "indirect") + layer_mean(mapped, "caustic");
