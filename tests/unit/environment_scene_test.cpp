@@ -1,8 +1,9 @@
 // Loading a JSON scene's environment: the constant radiance, an OpenEXR map (written here with
 // the project's EXR writer) with its scale and turn and its path relative to the scene file, an
-// environment as the scene's only light, and the one-line errors naming the scene file, the
-// field and the map file: a missing or unreadable map, negative or NaN texels, negative or
-// infinite radiance, both or neither of radiance and map, map-only keys on a constant.
+// environment as the scene's only light, export-scene keeping it, and the one-line errors
+// naming the scene file, the field and the map file: a missing or unreadable map, negative or
+// NaN texels, negative or infinite radiance, both or neither of radiance and map, map-only keys
+// on a constant.
 #include <ImfRgbaFile.h>
 #include <gtest/gtest.h>
 
@@ -15,6 +16,7 @@
 #include "render/errors.h"
 #include "render/exr_io.h"
 #include "render/scene_environment.h"
+#include "scene_io/scene_export.h"
 #include "scene_io/scene_file.h"
 
 namespace pm {
@@ -98,6 +100,19 @@ TEST_F(EnvironmentScene, MapIsReadRelativeToTheSceneWithScaleAndTurn) {
   EXPECT_EQ(fs::path(env.map_file), dir_ / "skies" / "sky.exr");
   EXPECT_TRUE(scene.has_light());
   EXPECT_EQ(build_environment_distribution(env).type, PM_ENVIRONMENT_MAP);
+}
+
+TEST_F(EnvironmentScene, ExportedScenesKeepTheEnvironment) {
+  write_map("sky.exr", 3.0f);
+  const Scene scene = load_scene_file(scene_with(R"({"map": "skies/sky.exr", "scale": 2, "rotation_deg": 15})"));
+  export_scene(scene, 0, (dir_ / "export" / "scene.json").string());
+  const Scene again = load_scene_file((dir_ / "export" / "scene.json").string());
+  EXPECT_EQ(again.environment.type, EnvironmentType::map);
+  EXPECT_EQ(again.environment.texels, scene.environment.texels);  // the file once, scaled once
+  EXPECT_FLOAT_EQ(again.environment.rotation_degrees, 15.0f);
+  const Scene constant = load_scene_file(scene_with(R"({"radiance": [0.5, 1, 2]})"));
+  export_scene(constant, 0, (dir_ / "export2" / "scene.json").string());
+  EXPECT_FLOAT_EQ(load_scene_file((dir_ / "export2" / "scene.json").string()).environment.radiance.z, 2.0f);
 }
 
 TEST_F(EnvironmentScene, BadMapsNameTheFieldAndTheFile) {
