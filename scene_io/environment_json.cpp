@@ -1,5 +1,5 @@
-// Reads the JSON scene's "environment" object (scene_io/environment_json.h): the radiance or the
-// map, which the OpenEXR reader of render/exr_io.h decodes, and the checks that keep a map
+// Reads environments (scene_io/environment_json.h): the JSON scene's "environment" object, and
+// maps, which the OpenEXR reader of render/exr_io.h decodes, with the checks that keep a map
 // renderable (finite, non-negative texels) before any device is opened.
 #include "scene_io/environment_json.h"
 
@@ -9,6 +9,7 @@
 
 #include "render/errors.h"
 #include "render/exr_io.h"
+#include "scene_io/load_error.h"
 
 namespace pm {
 namespace {
@@ -23,40 +24,10 @@ float read_scale(const JsonField& field) {
   return float(scale);
 }
 
-// Decodes the map and refuses texels the renderer cannot use; messages name the field and file.
-void read_map(const JsonField& field, const fs::path& scene_dir, float scale, EnvironmentDesc* out) {
+// The map's path as the JSON names it, relative to the scene file's folder.
+fs::path map_path(const JsonField& field, const fs::path& scene_dir) {
   const std::string name = field.non_empty_string();
-  const fs::path path = fs::path(name).is_absolute() ? fs::path(name) : scene_dir / name;
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) field.fail("cannot open '" + name + "' (it is a directory)");
-  if (!fs::exists(path, ec)) field.fail("cannot open '" + path.string() + "' (no such file)");
-  FrameImage image;
-  try {
-    image = read_exr(path.string());
-  } catch (const InputError& e) {
-    field.fail(e.what());
-  }
-  // The combined layer (bare R, G, B) when the file has one, else its first RGB layer.
-  const ImageLayer* layer = image.find("");
-  if (!layer) layer = &image.layers.front();
-  const size_t texels = size_t(image.width) * size_t(image.height);
-  for (size_t t = 0; t < texels; ++t) {
-    for (int c = 0; c < 3; ++c) {
-      const float v = layer->rgb[3 * t + size_t(c)];
-      if (std::isfinite(v) && v >= 0) continue;
-      std::ostringstream text;
-      text << "'" << path.string() << "': texel (" << t % size_t(image.width) << ", " << t / size_t(image.width) << ") "
-           << kChannels[c] << " is " << v << "; an environment's radiance must be finite and >= 0";
-      field.fail(text.str());
-    }
-  }
-  out->type = EnvironmentType::map;
-  out->map_file = path.string();
-  out->width = image.width;
-  out->height = image.height;
-  out->scale = scale;
-  out->texels = layer->rgb;
-  for (float& v : out->texels) v *= scale;
+  return fs::path(name).is_absolute() ? fs::path(name) : scene_dir / name;
 }
 
 }  // namespace
@@ -86,7 +57,44 @@ EnvironmentDesc read_environment_json(const JsonField& field, const fs::path& sc
     env.rotation_degrees = float(degrees);
   }
   const float scale = field.has("scale") ? read_scale(field.member("scale")) : 1.0f;
-  read_map(field.member("map"), scene_dir, scale, &env);
+  const JsonField map = field.member("map");
+  return read_environment_map(map_path(map, scene_dir), scale, env.rotation_degrees, map.file() + ": " + map.path());
+}
+
+EnvironmentDesc read_environment_map(const fs::path& path, float scale, float rotation_degrees,
+                                     const std::string& where) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw_input_error(where, "cannot open '" + path.string() + "' (it is a directory)");
+  if (!fs::exists(path, ec)) throw_input_error(where, "cannot open '" + path.string() + "' (no such file)");
+  FrameImage image;
+  try {
+    image = read_exr(path.string());
+  } catch (const InputError& e) {
+    throw_input_error(where, e.what());
+  }
+  // The combined layer (bare R, G, B) when the file has one, else its first RGB layer.
+  const ImageLayer* layer = image.find("");
+  if (!layer) layer = &image.layers.front();
+  const size_t texels = size_t(image.width) * size_t(image.height);
+  for (size_t t = 0; t < texels; ++t) {
+    for (int c = 0; c < 3; ++c) {
+      const float v = layer->rgb[3 * t + size_t(c)];
+      if (std::isfinite(v) && v >= 0) continue;
+      std::ostringstream text;
+      text << "'" << path.string() << "': texel (" << t % size_t(image.width) << ", " << t / size_t(image.width) << ") "
+           << kChannels[c] << " is " << v << "; an environment's radiance must be finite and >= 0";
+      throw_input_error(where, text.str());
+    }
+  }
+  EnvironmentDesc env;
+  env.type = EnvironmentType::map;
+  env.map_file = path.string();
+  env.width = image.width;
+  env.height = image.height;
+  env.scale = scale;
+  env.rotation_degrees = rotation_degrees;
+  env.texels = layer->rgb;
+  for (float& v : env.texels) v *= scale;
   return env;
 }
 

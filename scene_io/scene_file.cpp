@@ -378,8 +378,8 @@ bool has_extension(const std::string& path, const std::string& extension) {
 
 }  // namespace
 
-Scene load_scene_file(const std::string& path, SceneLoadReport* report) {
-  if (has_extension(path, ".gltf") || has_extension(path, ".glb")) return load_gltf_scene(path, report);
+Scene load_scene_file(const std::string& path, SceneLoadReport* report, const EnvironmentDesc* environment) {
+  if (has_extension(path, ".gltf") || has_extension(path, ".glb")) return load_gltf_scene(path, report, environment);
   SceneLoadReport local_report;
   LoadContext ctx;
   ctx.json_dir = fs::path(path).parent_path();
@@ -436,6 +436,7 @@ Scene load_scene_file(const std::string& path, SceneLoadReport* report) {
 
   scene.lights = read_lights(root, ctx.meters_per_unit);
   if (root.has("environment")) scene.environment = read_environment_json(root.member("environment"), ctx.json_dir);
+  if (environment) scene.environment = *environment;
   // Nothing to render without light: say so now, before anything is built or traced.
   if (!scene.has_light()) {
     throw_input_error(root.file() + ": lights",

@@ -121,7 +121,7 @@ TEST_F(EnvironmentScene, BadMapsNameTheFieldAndTheFile) {
   std::ofstream(dir_ / "skies" / "text.exr") << "not an image\n";
   expect_error(R"({"map": "skies/text.exr"})", "environment.map: EXR file '" + (dir_ / "skies/text.exr").string() +
                                                    "': not an OpenEXR file");
-  expect_error(R"({"map": "skies"})", "environment.map: cannot open 'skies' (it is a directory)");
+  expect_error(R"({"map": "skies"})", "environment.map: cannot open '" + (dir_ / "skies").string() + "' (it is a directory)");
   write_map("negative.exr", -1.0f);
   expect_error(R"({"map": "skies/negative.exr"})", "environment.map: '" + (dir_ / "skies/negative.exr").string() +
                                                        "': texel (3, 1) green is -1; an environment's radiance must be "
