@@ -183,6 +183,14 @@ std::string Renderer::describe() const {
   // The estimator's settings; the pass count is the budget's (pmrender/passes in EXR headers).
   s << width_ << "x" << height_ << " mirror_depth=" << settings_.mirror_depth << " seed=" << settings_.seed;
   if (!settings_.reuse_lighting) s << " reuse=off";
+  // The environment, which the command line may change for the same scene file: part of the
+  // checkpoint fingerprint, so a resumed frame is never finished under another sky.
+  const EnvironmentDesc& env = scene_.environment;
+  if (environment_.type == PM_ENVIRONMENT_CONSTANT)
+    s << " environment=" << env.radiance.x << "," << env.radiance.y << "," << env.radiance.z;
+  else if (environment_.type == PM_ENVIRONMENT_MAP)
+    s << " environment=" << env.map_file << " environment_scale=" << env.scale
+      << " environment_rotation=" << env.rotation_degrees;
   if (method_) s << " method=" << settings_.method->method_name() << " " << method_->describe();
   else s << " method=none";
   return s.str();

@@ -1,7 +1,8 @@
 // --environment on the command line: a constant radiance or an OpenEXR map (written here) with
 // --environment-scale replaces the scene's environment and counts as its light, in a JSON scene
 // without lights and in a glTF scene without lights; the sky the camera sees is that radiance.
-// Bad values are refused with one line naming the option, exit code 2, before any device work.
+// The EXR header's settings name it. Bad values are refused with one line naming the option,
+// exit code 2, before any device work.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -47,6 +48,11 @@ TEST_F(EnvironmentCli, ConstantRadianceLightsASceneWithoutLights) {
   const ProcessResult r = render(scene + " --environment 0.25,0.5,1");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const FrameImage image = read_exr((dir_ / "out.exr").string());
+  // The settings (and so a checkpoint's fingerprint) name the environment.
+  std::string settings;
+  for (const auto& [key, value] : image.attributes)
+    if (key == "pmrender/settings") settings = value;
+  EXPECT_NE(settings.find(" environment=0.25,0.5,1 "), std::string::npos) << settings;
   const std::vector<float>& rgb = image.find("")->rgb;
   for (size_t p = 0; p < rgb.size() / 3; ++p) {
     EXPECT_EQ(rgb[3 * p], 0.25f);
