@@ -33,8 +33,8 @@ std::shared_ptr<MethodOptions> add_path_options(CLI::App* cmd) {
   const std::string group = "Path tracing (--method path)";
   cmd->add_option("--spp", o->settings_.samples, "Paths per pixel and pass (the image averages --passes of them)")
       ->capture_default_str()->transform(any_unsigned32())->group(group);
-  cmd->add_option("--path-mis", o->mis, "Area lights: on (multiple importance sampling of light samples and sampled "
-                                       "directions) or off (light samples only)")
+  cmd->add_option("--path-mis", o->mis, "Area lights and the environment: on (multiple importance sampling of light "
+                                       "samples and sampled directions) or off (light samples only)")
       ->capture_default_str()->check(CLI::IsMember({"on", "off"}))->group(group);
   o->bounces = cmd->get_option_no_throw("--bounces");
   if (!o->bounces)

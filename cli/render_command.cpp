@@ -127,7 +127,7 @@ int run_render(const RenderCommandOptions& o) {
     throw InputError("--exposure: sets the exposure of the --preview PNG; give --preview NAME.png too");
   startup.mark("options");
   SceneLoadReport report;
-  Scene scene = o.render.scene_path.empty() ? builtin_cornell_box() : load_scene_file(o.render.scene_path, &report);
+  Scene scene = load_scene(o.render, &report);
   startup.mark("scene load", scene.source);
   RenderSettings settings = render_settings(o.render);
   settings.layers = parse_film_layers(o.layers);

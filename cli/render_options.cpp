@@ -3,6 +3,9 @@
 #include "cli/render_options.h"
 
 #include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
 
 #include "cli/commands.h"
 #include "cli/number_parsing.h"
@@ -10,6 +13,7 @@
 
 #include "scene_io/cornell_box.h"
 #include "scene_io/frame_spec.h"
+#include "scene_io/environment_json.h"
 #include "scene_io/scene_file.h"
 
 namespace pm::cli {
@@ -33,19 +37,73 @@ void add_render_options(CLI::App* cmd, RenderOptions& o) {
                   "estimate sees the noise between passes only")
       ->capture_default_str()->transform(integer_in(0, 65536));
   cmd->add_option("--area-light-samples", o.area_light_samples,
-                  "Light samples of the emitting surfaces per pixel and mirror depth in the direct light (and per "
-                  "element in radiosity's light links)")
+                  "Light samples of the emitting surfaces and of the environment per pixel and mirror depth in the "
+                  "direct light (and per element in radiosity's light links)")
       ->capture_default_str()->transform(integer_in(1, 65536));
   std::string method_help = "Indirect-light method:";
   for (const MethodEntry& m : methods()) method_help += std::string(" ") + m.name + " (" + m.summary + ")";
   cmd->add_option("--method", o.method, method_help)->capture_default_str()->check(CLI::IsMember(method_names()));
   cmd->add_flag("--no-photon-reuse,--no-reuse", o.no_reuse,
                 "Compute the lighting of every frame keyed by its own frame number, also over camera-only motion");
+  cmd->add_option("--environment", o.environment,
+                  "Light from every direction, replacing the scene's: R,G,B (a constant radiance, W sr^-1 m^-2) or "
+                  "an OpenEXR lat-long map (docs/scene-format.md, \"Environment\")");
+  o.environment_scale_option =
+      cmd->add_option("--environment-scale", o.environment_scale, "Factor on every texel of the --environment map")
+          ->capture_default_str()->transform(finite_in(0, 1e30));
+  o.environment_rotation_option =
+      cmd->add_option("--environment-rotation", o.environment_rotation,
+                      "Degrees the --environment map turns about +y (right-handed)")
+          ->capture_default_str()->transform(finite_in(-3600, 3600));
   for (const MethodEntry& m : methods()) o.method_options[m.name] = m.add_options(cmd);
 }
 
-Scene load_scene(const RenderOptions& o) {
-  return o.scene_path.empty() ? builtin_cornell_box() : load_scene_file(o.scene_path);
+namespace {
+
+// "r,g,b": three decimal numbers >= 0 (InputError naming --environment otherwise).
+Float3 parse_radiance(const std::string& text) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  for (size_t comma; (comma = text.find(',', start)) != std::string::npos; start = comma + 1)
+    parts.push_back(text.substr(start, comma - start));
+  parts.push_back(text.substr(start));
+  if (parts.size() != 3)
+    throw InputError("--environment: expected R,G,B (three numbers >= 0) or an OpenEXR file, got '" + text + "'");
+  const double limit = double(std::numeric_limits<float>::max());
+  return Float3{float(parse_finite("--environment", parts[0], 0, limit)),
+                float(parse_finite("--environment", parts[1], 0, limit)),
+                float(parse_finite("--environment", parts[2], 0, limit))};
+}
+
+// The environment --environment asks for; type none when it is not given.
+EnvironmentDesc command_line_environment(const RenderOptions& o) {
+  EnvironmentDesc env;
+  const bool map_options = o.environment_scale_option->count() > 0 || o.environment_rotation_option->count() > 0;
+  const char* map_option = o.environment_scale_option->count() > 0 ? "environment-scale" : "environment-rotation";
+  if (o.environment.empty()) {
+    if (map_options) throw SettingError(map_option, "applies to an --environment map; give --environment FILE.exr");
+    return env;
+  }
+  // A comma makes it a radiance; anything else names a file.
+  if (o.environment.find(',') != std::string::npos) {
+    env.type = EnvironmentType::constant;
+    env.radiance = parse_radiance(o.environment);
+    if (map_options)
+      throw SettingError(map_option, "applies to an --environment map, not to a constant radiance");
+    return env;
+  }
+  return read_environment_map(o.environment, float(o.environment_scale), float(o.environment_rotation), "--environment");
+}
+
+}  // namespace
+
+Scene load_scene(const RenderOptions& o, SceneLoadReport* report) {
+  const EnvironmentDesc env = command_line_environment(o);
+  const EnvironmentDesc* override_env = env.type == EnvironmentType::none ? nullptr : &env;
+  if (!o.scene_path.empty()) return load_scene_file(o.scene_path, report, override_env);
+  Scene scene = builtin_cornell_box();
+  if (override_env) scene.environment = env;
+  return scene;
 }
 
 RenderSettings render_settings(const RenderOptions& o) {

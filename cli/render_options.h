@@ -11,6 +11,7 @@
 #include "cli/method_options.h"
 #include "render/renderer.h"
 #include "render/scene.h"
+#include "scene_io/scene_file.h"
 
 namespace pm::cli {
 
@@ -26,14 +27,22 @@ struct RenderOptions {
   uint32_t area_light_samples = 16;  // RenderSettings::area_light_samples
   std::string method = "photon";
   bool no_reuse = false;
+  // --environment: "r,g,b" (a constant radiance) or an OpenEXR lat-long map, replacing the scene's
+  // environment; empty: the scene's own. Scale and turn apply to a map only.
+  std::string environment;
+  double environment_scale = 1.0;
+  double environment_rotation = 0.0;
+  CLI::Option* environment_scale_option = nullptr;
+  CLI::Option* environment_rotation_option = nullptr;
   CLI::Option* passes_option = nullptr;  // given on the command line (a budget's cap then)
   std::map<std::string, std::shared_ptr<MethodOptions>> method_options;  // by method name
 };
 
 void add_render_options(CLI::App* cmd, RenderOptions& options);
 
-// The scene the options name, and the settings they describe; SettingError/InputError on bad values.
-Scene load_scene(const RenderOptions& options);
+// The scene the options name (with --environment's environment, if given), and the settings they
+// describe; SettingError/InputError on bad values. report as for load_scene_file.
+Scene load_scene(const RenderOptions& options, SceneLoadReport* report = nullptr);
 RenderSettings render_settings(const RenderOptions& options);
 
 }  // namespace pm::cli

@@ -14,6 +14,7 @@
 #include "render/errors.h"
 #include "render/scene_bvh.h"
 #include "render/scene_emitters.h"
+#include "render/scene_environment.h"
 #include "render/scene_frame.h"
 #include "render/scene_scale.h"
 #include "render/scene_textures.h"
@@ -151,8 +152,16 @@ void Renderer::upload_scene(StepClock& clock) {
   }
   emitter_count_ = emitters.count;
   emitter_power_ = float(emitters.power);
+  // The environment map likewise, once per scene; the constant environment needs no buffer.
+  environment_ = build_environment_distribution(scene_.environment);
+  if (environment_.type == PM_ENVIRONMENT_MAP) {
+    buffers_.upload(BufferSlot::environment_texels, environment_.texels);
+    buffers_.upload(BufferSlot::environment_cdf, environment_.cdf);
+  }
+  environment_.texels = {};  // on the device now; the launch parameters need the sizes only
+  environment_.cdf = {};
   set_lights(scene_.lights);
-  setup_steps_.push_back({"scene upload", clock.lap_ms(), "BVH, triangles, materials, textures, lights"});
+  setup_steps_.push_back({"scene upload", clock.lap_ms(), "BVH, triangles, materials, textures, lights, environment"});
 }
 
 uint64_t Renderer::texture_bytes() const {
@@ -174,6 +183,14 @@ std::string Renderer::describe() const {
   // The estimator's settings; the pass count is the budget's (pmrender/passes in EXR headers).
   s << width_ << "x" << height_ << " mirror_depth=" << settings_.mirror_depth << " seed=" << settings_.seed;
   if (!settings_.reuse_lighting) s << " reuse=off";
+  // The environment, which the command line may change for the same scene file: part of the
+  // checkpoint fingerprint, so a resumed frame is never finished under another sky.
+  const EnvironmentDesc& env = scene_.environment;
+  if (environment_.type == PM_ENVIRONMENT_CONSTANT)
+    s << " environment=" << env.radiance.x << "," << env.radiance.y << "," << env.radiance.z;
+  else if (environment_.type == PM_ENVIRONMENT_MAP)
+    s << " environment=" << env.map_file << " environment_scale=" << env.scale
+      << " environment_rotation=" << env.rotation_degrees;
   if (method_) s << " method=" << settings_.method->method_name() << " " << method_->describe();
   else s << " method=none";
   return s.str();
@@ -230,6 +247,7 @@ void Renderer::begin_frame(int frame) {
   p.emitter_count = emitter_count_;
   p.emitter_power = emitter_power_;
   p.area_light_samples = settings_.area_light_samples;
+  set_environment_params(environment_, scene_.environment, measures_, &p);
   p.path_mis = 1u;  // paths of the error estimate's bias control; the path method sets its own
   p.ray_epsilon = measures_.ray_epsilon;
   p.mirror_depth = uint32_t(settings_.mirror_depth);

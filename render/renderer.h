@@ -19,6 +19,7 @@
 #include "render/image.h"
 #include "render/indirect_method.h"
 #include "render/scene.h"
+#include "render/scene_environment.h"
 #include "render/stage_timer.h"
 
 namespace pm {
@@ -36,8 +37,9 @@ struct RenderSettings {
   // Paths per control pixel of the error estimate's bias control (render/bias_control.h) by the
   // time a frame's error is estimated; 0: the estimate sees noise only.
   uint32_t control_paths = 1024;
-  // Light samples of the area lights per shading point in the camera pass (direct light) and per
-  // element in radiosity's light links; unused without emitting materials.
+  // Light samples of the area lights, and as many of the environment, per shading point in the
+  // camera pass (direct light) and per element in radiosity's light links; unused without
+  // emitting materials or an environment.
   uint32_t area_light_samples = 16;
   std::shared_ptr<const MethodSettings> method;  // null: direct light only
   // Extra layers of the image (render/film_layers.h): none by default, and then no buffers,
@@ -168,6 +170,7 @@ class Renderer {
   std::vector<LightDesc> device_lights_;  // the lights in the lights buffer
   uint32_t emitter_count_ = 0;  // area lights: emitting triangles uploaded (render/scene_emitters.h)
   float emitter_power_ = 0;
+  EnvironmentDistribution environment_;  // its type and size; texels and CDFs live on the device
   int run_frame_ = -1, run_start_ = -1;   // light_run_start of the last frame asked (memo)
 };
 

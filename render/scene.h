@@ -89,6 +89,24 @@ struct LightDesc {
 // ((1 - cos inner) + (cos inner - cos outer) / 3) / 2 (spot_light.h).
 double light_emitted_fraction(const LightDesc& light);
 
+// Light arriving from infinitely far away (kernels/common/environment_light.h): none, one
+// radiance from every direction, or an equirectangular (lat-long) map whose top row is the
+// zenith (+y), turned about +y by rotation_degrees (kernels/common/environment_map.h has the
+// parameterisation). Radiance in W sr^-1 m^-2 per channel. Static: animations do not touch it.
+enum class EnvironmentType : uint8_t { none, constant, map };
+
+struct EnvironmentDesc {
+  EnvironmentType type = EnvironmentType::none;
+  Float3 radiance{0, 0, 0};    // constant: the radiance from every direction
+  std::string map_file;        // map: the OpenEXR file it was read from, as resolved by the loader
+  int width = 0, height = 0;   // map: texels
+  std::vector<float> texels;   // map: rgb radiance per texel, top row first, scale already applied
+  float scale = 1.0f;          // map: the factor applied to the file's values (kept for export)
+  float rotation_degrees = 0;  // map: the turn about +y
+  // True when some direction sends light (radiance or a texel above zero in some channel).
+  bool emits() const;
+};
+
 // Pinhole camera. Positions in metres, vertical field of view in degrees.
 struct CameraDesc {
   Float3 position{0, 0, 0};
@@ -148,6 +166,7 @@ struct Scene {
   std::vector<TextureRef> textures;
   std::vector<Float2> triangle_uvs;
   std::vector<LightDesc> lights;
+  EnvironmentDesc environment;  // none unless the scene asks for one
   CameraDesc camera;            // the camera where no camera track says otherwise
   SceneAnimation animation;     // disabled by default: one still frame
 
@@ -161,8 +180,8 @@ struct Scene {
   }
   // True when some triangle's material emits: the scene has area lights.
   bool has_emitters() const;
-  // True when some point or spot light has power above zero or the scene has emitters: there is
-  // light to render (loaders refuse scenes without).
+  // True when some point or spot light has power above zero, the scene has emitters or its
+  // environment emits: there is light to render (loaders refuse scenes without).
   bool has_light() const;
 };
 

@@ -69,7 +69,7 @@ bool Scene::has_emitters() const {
 bool Scene::has_light() const {
   for (const LightDesc& l : lights)
     if (l.power.x > 0 || l.power.y > 0 || l.power.z > 0) return true;
-  return has_emitters();
+  return has_emitters() || environment.emits();
 }
 
 double light_emitted_fraction(const LightDesc& light) {

@@ -33,7 +33,8 @@ inline std::string quoted_name(const std::string& name) { return name.empty() ? 
 
 class GltfLoader {
  public:
-  GltfLoader(std::string path, SceneLoadReport* report) : path_(std::move(path)), report_(report) {}
+  GltfLoader(std::string path, SceneLoadReport* report, const EnvironmentDesc* environment = nullptr)
+      : path_(std::move(path)), report_(report), environment_(environment) {}
 
   Scene load();
 
@@ -76,6 +77,7 @@ class GltfLoader {
 
   std::string path_;
   SceneLoadReport* report_;
+  const EnvironmentDesc* environment_;  // the command line's --environment, or null
   tinygltf::Model model_;
   int scene_index_ = 0;
   std::vector<int> parent_;

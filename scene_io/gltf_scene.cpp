@@ -135,6 +135,7 @@ void GltfLoader::read_lights(Scene& scene) {
   if (emissive_textures_ > 0)
     warn(first_emissive_texture_ + ": emissiveTexture is not rendered (" + std::to_string(emissive_textures_) +
          " materials have one): their emission is emissiveFactor's alone");
+  if (environment_) scene.environment = *environment_;
   // Checked before anything is built or traced: a scene without light renders black.
   if (!scene.has_light())
     fail("extensions.KHR_lights_punctual", "no light: no KHR_lights_punctual point or spot light with intensity above zero and no emissive material (emissiveFactor) on any triangle");
@@ -248,11 +249,11 @@ Scene GltfLoader::load() {
 
 }  // namespace gltf
 
-Scene load_gltf_scene(const std::string& path, SceneLoadReport* report) {
+Scene load_gltf_scene(const std::string& path, SceneLoadReport* report, const EnvironmentDesc* environment) {
   SceneLoadReport local_report;
   SceneLoadReport* r = report ? report : &local_report;
   *r = SceneLoadReport{};
-  return gltf::GltfLoader(path, r).load();
+  return gltf::GltfLoader(path, r, environment).load();
 }
 
 }  // namespace pm

@@ -32,6 +32,8 @@ double roughness_to_phong_exponent(double roughness);
 // Exponents at or above this become a perfect mirror instead of a glossy lobe.
 constexpr double kGltfMirrorExponent = 10000.0;
 
-Scene load_gltf_scene(const std::string& path, SceneLoadReport* report = nullptr);
+// environment: as for load_scene_file (glTF has none of its own).
+Scene load_gltf_scene(const std::string& path, SceneLoadReport* report = nullptr,
+                      const EnvironmentDesc* environment = nullptr);
 
 }  // namespace pm

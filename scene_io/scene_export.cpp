@@ -96,6 +96,16 @@ void export_scene(const Scene& scene, int frame, const std::string& json_path) {
   j["meshes"] = meshes;
   j["materials"] = materials;
   j["lights"] = lights;
+  // The environment as the scene file said it: a map by its resolved (absolute) path, so the
+  // exported scene finds it from any folder.
+  const EnvironmentDesc& env = scene.environment;
+  if (env.type == EnvironmentType::constant) {
+    j["environment"] = {{"radiance", vec(env.radiance)}};
+  } else if (env.type == EnvironmentType::map) {
+    j["environment"] = {{"map", std::filesystem::absolute(env.map_file).string()},
+                        {"scale", Json::parse(number(env.scale))},
+                        {"rotation_deg", Json::parse(number(env.rotation_degrees))}};
+  }
   j["camera"] = {{"position", vec(camera.position)},
                  {"look_at", vec(camera.look_at)},
                  {"up", vec(camera.up)},

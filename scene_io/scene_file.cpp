@@ -1,5 +1,6 @@
 // Owns loading a pmrender JSON scene (format version 1, docs/scene-format.md) into pm::Scene:
-// the top-level keys, JSON materials, meshes (through obj_mesh), lights, camera, unit conversion
+// the top-level keys, JSON materials, meshes (through obj_mesh), lights, the environment
+// (through environment_json), camera, unit conversion
 // to metres and the usemtl name -> material resolution (JSON materials first, then MTL); the
 // optional "animation" object goes through animation_json. Files ending in .gltf or .glb go to
 // the glTF loader (gltf_scene.h) instead.
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "scene_io/animation_json.h"
+#include "scene_io/environment_json.h"
 #include "scene_io/gltf_scene.h"
 #include "scene_io/json_reader.h"
 #include "scene_io/load_error.h"
@@ -376,8 +378,8 @@ bool has_extension(const std::string& path, const std::string& extension) {
 
 }  // namespace
 
-Scene load_scene_file(const std::string& path, SceneLoadReport* report) {
-  if (has_extension(path, ".gltf") || has_extension(path, ".glb")) return load_gltf_scene(path, report);
+Scene load_scene_file(const std::string& path, SceneLoadReport* report, const EnvironmentDesc* environment) {
+  if (has_extension(path, ".gltf") || has_extension(path, ".glb")) return load_gltf_scene(path, report, environment);
   SceneLoadReport local_report;
   LoadContext ctx;
   ctx.json_dir = fs::path(path).parent_path();
@@ -403,7 +405,8 @@ Scene load_scene_file(const std::string& path, SceneLoadReport* report) {
                  std::to_string(kSceneFormatVersion) + ")");
   }
   root.expect_object_with_keys(
-      {"format", "version", "name", "meters_per_unit", "meshes", "materials", "lights", "camera", "animation"});
+      {"format", "version", "name", "meters_per_unit", "meshes", "materials", "lights", "environment", "camera",
+       "animation"});
 
   Scene scene;
   SceneTextures textures(&scene);
@@ -432,11 +435,13 @@ Scene load_scene_file(const std::string& path, SceneLoadReport* report) {
   }
 
   scene.lights = read_lights(root, ctx.meters_per_unit);
+  if (root.has("environment")) scene.environment = read_environment_json(root.member("environment"), ctx.json_dir);
+  if (environment) scene.environment = *environment;
   // Nothing to render without light: say so now, before anything is built or traced.
   if (!scene.has_light()) {
     throw_input_error(root.file() + ": lights",
                       "no light: no light with power above zero under lights and no emitting material "
-                      "(materials' emission, MTL Ke) on any triangle");
+                      "(materials' emission, MTL Ke) on any triangle, and no environment with radiance above zero");
   }
   scene.camera = read_camera(root, ctx.meters_per_unit);
   if (root.has("animation")) read_animation_json(root.member("animation"), ctx.meters_per_unit, &scene);

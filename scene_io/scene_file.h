@@ -25,7 +25,10 @@ struct SceneLoadReport {
 // Loads the scene at path. Positions (meshes, lights, camera) are converted to metres with the
 // file's meters_per_unit. Scene.name is the "name" key or else the file stem; Scene.source = path.
 // Scene.materials holds the materials the triangles use, in order of first use. When report is
-// given it is reset and then filled with what this load tolerated.
-Scene load_scene_file(const std::string& path, SceneLoadReport* report = nullptr);
+// given it is reset and then filled with what this load tolerated. When environment is given it
+// becomes the scene's environment, replacing the file's (the command line's --environment), before
+// the check that the scene has some light.
+Scene load_scene_file(const std::string& path, SceneLoadReport* report = nullptr,
+                      const EnvironmentDesc* environment = nullptr);
 
 }  // namespace pm

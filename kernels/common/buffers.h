@@ -22,6 +22,9 @@
   /* area lights (area_lights.h), uploaded only when a material emits: null otherwise */                     \
   X(scene, float4, emitters, uploaded, 1)     /* PM_EMITTER_FLOAT4S per emitting triangle */                \
   X(scene, float4, material_emission, uploaded, 1) /* per material: rgb L_e (W sr^-1 m^-2), w = mean */     \
+  /* the environment map (environment_map.h), uploaded only for a map: null otherwise */                   \
+  X(scene, float4, environment_texels, uploaded, 1) /* W H: rgb radiance, w = pdf_uv; top row first */      \
+  X(scene, float, environment_cdf, uploaded, 1) /* H: marginal CDF over rows, then W per row: conditional */\
   /* textures (texture.h), uploaded only when a material has one: null otherwise */                       \
   X(scene, float4, triangle_uvs, uploaded, 1) /* 2 per triangle in leaf order: (u0, v0, u1, v1), (u2, v2) */\
   X(scene, uint4, texture_info, uploaded, 1)  /* per texture: first texel, width, height, wrap bits */      \

@@ -1,13 +1,15 @@
 /* Stage S5 (paper section 7): one work item per pixel traces the eye ray, follows up to
    mirror_depth perfect-mirror bounces, adds direct light from every point or spot light with a
-   shadow ray and from the area lights by light sampling (area_lights.h), adds the emitted
-   radiance of the emitters it sees, and records a shading point per depth for the gather (S6)
-   with the triangle it lies on. */
+   shadow ray and from the area lights and the environment by light sampling (area_lights.h,
+   environment_light.h), adds the emitted radiance of the emitters it sees and the environment's
+   where the eye ray (or its mirror reflection) leaves the scene, and records a shading point per
+   depth for the gather (S6) with the triangle it lies on. */
 #ifndef PM_CAMERA_PASS_H
 #define PM_CAMERA_PASS_H
 
 #include "area_lights.h"
 #include "brdf.h"
+#include "environment_light.h"
 #include "kernel_globals.h"
 #include "pixel_order.h"
 #include "scene_traverse.h"
@@ -99,7 +101,11 @@ PM_DEVICE void kernel_camera_pass(const KernelGlobals* kg, const LaunchParams* p
   for (; depth <= p->mirror_depth; ++depth) {
     uint record = depth * pixels + pixel;
     SceneHit hit = scene_trace(kg, &ray, 0.0f, 1e30f, 0);
-    if (hit.triangle < 0) break;
+    if (hit.triangle < 0) {
+      /* The environment seen directly (or in a mirror) is direct light too. */
+      radiance = vec3_add(radiance, vec3_mul(throughput, environment_radiance(kg, p, ray.direction)));
+      break;
+    }
     Vec3 pos = vec3_madd(ray.origin, ray.direction, hit.t);
     Vec3 n = scene_triangle_normal(kg->triangles, hit.triangle);
     int material_index = scene_triangle_material(kg->triangles, hit.triangle);
@@ -113,6 +119,8 @@ PM_DEVICE void kernel_camera_pass(const KernelGlobals* kg, const LaunchParams* p
     Vec3 direct = direct_light(kg, p, &m, pos, n, wo, offset);
     direct = vec3_add(direct, area_light_direct(kg, p, &m, pos, n, wo, offset, p->area_light_samples, pixel,
                                                 depth * p->area_light_samples, 0u));
+    direct = vec3_add(direct, environment_direct(kg, p, &m, pos, n, wo, offset, p->area_light_samples, pixel,
+                                                 depth * p->area_light_samples, 0u));
     radiance = vec3_add(radiance, vec3_mul(throughput, direct));
     kg->shade_position[record] = vec3_to_float4(pos, PM_AS_FLOAT(material_index));
     kg->shade_normal[record] = vec3_to_float4(n, PM_AS_FLOAT(hit.triangle)); /* radiosity interpolates on it */

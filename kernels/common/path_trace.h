@@ -18,7 +18,9 @@
    make the path, multiple importance sampling (power heuristic, Veach 1997) weighs them by their
    densities per solid angle (brdf_sample_pdf, area_lights.h); with path_mis off, light samples
    alone count those paths. A path that meets the emitter after a mirror event only the
-   sampled direction can make, so it counts fully.
+   sampled direction can make, so it counts fully. The environment (environment_light.h) is
+   met the same two ways: a light sample at each D vertex, and a sampled direction that leaves
+   the scene, weighed by MIS against light sampling's density for that direction.
 
    One work item per pixel (in tile order); each pass adds the mean of path_samples paths per shading point,
    weighted by the shading point's mirror weight, into film_indirect_sum (the caustic sum gets
@@ -30,6 +32,7 @@
 #include "area_lights.h"
 #include "brdf.h"
 #include "camera_pass.h"
+#include "environment_light.h"
 #include "film.h"
 #include "kernel_globals.h"
 #include "pixel_order.h"
@@ -80,7 +83,15 @@ PM_DEVICE Vec3 path_radiance(const KernelGlobals* kg, const LaunchParams* p, con
   for (uint vertex = 1; vertex <= p->max_bounces + PM_PHOTON_MAX_SPECULAR; ++vertex) {
     Ray ray = ray_make(origin, dir);
     SceneHit hit = scene_trace(kg, &ray, 0.0f, 1e30f, 0);
-    if (hit.triangle < 0) break;
+    if (hit.triangle < 0) {
+      /* The environment reached by the sampled direction (from v2 on, as for an emitter). */
+      if (vertex >= 2u && p->environment != PM_ENVIRONMENT_NONE) {
+        float weight = 1.0f;
+        if (after_diffuse) weight = p->path_mis ? mis_power_weight(direction_pdf, environment_pdf(kg, p, dir)) : 0.0f;
+        radiance = vec3_add(radiance, vec3_scale(vec3_mul(beta, environment_radiance(kg, p, dir)), weight));
+      }
+      break;
+    }
     Vec3 pos = vec3_madd(origin, dir, hit.t);
     Vec3 nv = scene_triangle_normal(kg->triangles, hit.triangle);
     int material_index = scene_triangle_material(kg->triangles, hit.triangle);
@@ -111,6 +122,17 @@ PM_DEVICE Vec3 path_radiance(const KernelGlobals* kg, const LaunchParams* p, con
     if (p->emitter_count > 0u) {
       Uniform4 ua = rng_uniform4_bits(rng_bits4(p->seed, p->path_frame, pixel, event_base + vertex, PM_STREAM_AREA, path));
       AreaLightSample s = area_light_sample(kg, p, pos, nv, offset, ua);
+      if (vec3_max_component(s.irradiance) > 0.0f) {
+        float weight = 1.0f;
+        if (p->path_mis && may_continue)
+          weight = mis_power_weight(s.pdf_solid_angle, brdf_sample_pdf(&mv, nv, wv, s.wi, pd, pg));
+        radiance = vec3_add(radiance, vec3_scale(vec3_mul(beta, vec3_mul(brdf_eval(&mv, nv, s.wi, wv), s.irradiance)), weight));
+      }
+    }
+    if (p->environment != PM_ENVIRONMENT_NONE) {
+      Uniform4 ue = rng_uniform4_bits(
+          rng_bits4(p->seed, p->path_frame, pixel, event_base + vertex, PM_STREAM_ENVIRONMENT, path));
+      EnvironmentLightSample s = environment_light_sample(kg, p, pos, nv, offset, ue);
       if (vec3_max_component(s.irradiance) > 0.0f) {
         float weight = 1.0f;
         if (p->path_mis && may_continue)

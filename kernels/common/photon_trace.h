@@ -1,6 +1,6 @@
 /* Stages S1 emission and S2 tracing (paper sections 4.1-4.3): one work item per photon emits it
-   from its point light, spot light (spot_light.h) or the area lights (area_lights.h) with
-   pre-scaled differentials (eq. 8), traces it through the scene,
+   from its point light, spot light (spot_light.h), the area lights (area_lights.h) or the
+   environment (environment_light.h) with pre-scaled differentials (eq. 8), traces it through the scene,
    updates its differentials (Igehy transfer and mirror reflection, Russian roulette rescale,
    diffuse re-emission with the virtual offset of eq. 10-13) and records a hit at every diffuse or
    glossy surface that is not lit directly. Records go to slots [photon * slots_per_photon + k],
@@ -11,6 +11,7 @@
 #include "area_lights.h"
 #include "brdf.h"
 #include "emission_order.h"
+#include "environment_light.h"
 #include "kernel_globals.h"
 #include "photon_differentials.h"
 #include "rng.h"
@@ -20,10 +21,16 @@
 
 /* Photons are shared out by power: light l owns pass indices [first, first + count) of
    photon_emitters[l] = (first, count, 0, 0). With area lights, entry light_count holds the
-   photons of all emitting triangles together. */
+   photons of all emitting triangles together; the environment's share comes last
+   (photon_environment_entry). */
+PM_DEVICE uint photon_environment_entry(const LaunchParams* p)
+{
+  return p->light_count + (p->emitter_count > 0u ? 1u : 0u);
+}
+
 PM_DEVICE int photon_light_of(const KernelGlobals* kg, const LaunchParams* p, uint photon)
 {
-  uint emitters = p->light_count + (p->emitter_count > 0u ? 1u : 0u);
+  uint emitters = photon_environment_entry(p) + (p->environment != PM_ENVIRONMENT_NONE ? 1u : 0u);
   for (uint l = 0; l < emitters; ++l) {
     uint4 e = kg->photon_emitters[l];
     if (photon >= e.x && photon < e.x + e.y) return (int)l;
@@ -64,7 +71,9 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
   uint stored = 0;
   int light_index = photon_light_of(kg, p, photon);
   if (light_index >= 0) {
-    int area = (uint)light_index == p->light_count; /* the area lights' share (photon_light_of) */
+    /* The area lights' and the environment's shares (photon_light_of). */
+    int area = p->emitter_count > 0u && (uint)light_index == p->light_count;
+    int environment = p->environment != PM_ENVIRONMENT_NONE && (uint)light_index == photon_environment_entry(p);
     uint4 emitter = kg->photon_emitters[light_index];
     uint emitted = emitter.y;
     float delta = photon_spacing(emitted); /* eq. 9 with n = this light's photons in the pass */
@@ -98,7 +107,13 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
     PhotonRay ray;
     Vec3 flux;
     Vec3 start;
-    if (area) {
+    int emits = 1;
+    if (environment) {
+      /* The point on the disk: a stream of its own, keyed like the direction. */
+      Uniform4 w = rng_uniform4_bits(rng_bits4(p->seed, rng_frame, rng_index, 0u, PM_STREAM_ENVIRONMENT, rng_extra));
+      emits = photon_emit_environment(kg, p, u.u0, u.u1, w.u0, w.u1, emitted, &ray, &flux);
+      start = ray.origin;
+    } else if (area) {
       /* The emitter and the point on it: a stream of their own, keyed like the direction. */
       Uniform4 w = rng_uniform4_bits(rng_bits4(p->seed, rng_frame, rng_index, 0u, PM_STREAM_AREA, rng_extra));
       Vec3 normal = photon_emit_area(kg, p, w.u0, w.u1, w.u2, u.u0, u.u1, emitted, &ray, &flux);
@@ -112,7 +127,7 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
       start = ray.origin;
     }
     uint diffuse_bounces = 0, specular_bounces = 0;
-    for (uint event = 1; event <= p->max_bounces + PM_PHOTON_MAX_SPECULAR + 1; ++event) {
+    for (uint event = 1; emits && event <= p->max_bounces + PM_PHOTON_MAX_SPECULAR + 1; ++event) {
       Ray r = ray_make(start, ray.direction);
       SceneHit hit = scene_trace(kg, &r, 0.0f, 1e30f, 0);
       if (hit.triangle < 0) break;

@@ -32,11 +32,19 @@
    over the four quadrature points of each one-ring triangle with their weights, with random
    numbers keyed by the seed and the element, so the solution stays deterministic. Emitting
    elements get no exitance of their own: the light they emit reaches the other elements through
-   these links only (as a point light's does), and the camera pass shows the emitter itself. */
+   these links only (as a point light's does), and the camera pass shows the emitter itself.
+
+   The environment (environment_light.h) is gathered the same way: its light samples, with a
+   shadow ray each, join the area lights' at the same quadrature points (its own random stream),
+   so an element's light link carries the environment's direct irradiance integral
+   E = int L(w) cos theta V(w) dw. Link rays that leave the scene make no link, so the light the
+   environment sends reaches the elements through these light links alone, and from there
+   bounces through the element links like any other direct light. */
 #ifndef PM_RADIOSITY_LIGHT_H
 #define PM_RADIOSITY_LIGHT_H
 
 #include "area_lights.h"
+#include "environment_light.h"
 #include "radiosity_mesh.h"
 #include "spot_light.h"
 
@@ -118,29 +126,36 @@ PM_DEVICE float radiosity_element_light(const KernelGlobals* kg, const LaunchPar
   return area > 0.0f ? power / area : 0.0f;
 }
 
-/* Mean of `samples` area-light samples' irradiance at x (normal n), random numbers keyed by the
+/* Mean of `samples` light samples' irradiance at x (normal n) from the area lights and from the
+   environment (one of each per sample, when the scene has them), random numbers keyed by the
    seed and (element, first_event + k). */
-PM_DEVICE Vec3 radiosity_area_irradiance_at(const KernelGlobals* kg, const LaunchParams* p, uint e, Vec3 x, Vec3 n,
+PM_DEVICE Vec3 radiosity_sampled_irradiance_at(const KernelGlobals* kg, const LaunchParams* p, uint e, Vec3 x, Vec3 n,
                                             uint samples, uint first_event)
 {
   Vec3 sum = vec3_splat(0.0f);
   float offset = ray_offset_distance(x, 0.0f, p->ray_epsilon);
   for (uint k = 0; k < samples; ++k) {
-    Uniform4 u = rng_uniform4_bits(rng_bits4(p->seed, 0u, e, first_event + k, PM_STREAM_AREA, 0x52414449u));
-    sum = vec3_add(sum, area_light_sample(kg, p, x, n, offset, u).irradiance);
+    if (p->emitter_count > 0u) {
+      Uniform4 u = rng_uniform4_bits(rng_bits4(p->seed, 0u, e, first_event + k, PM_STREAM_AREA, 0x52414449u));
+      sum = vec3_add(sum, area_light_sample(kg, p, x, n, offset, u).irradiance);
+    }
+    if (p->environment != PM_ENVIRONMENT_NONE) {
+      Uniform4 u = rng_uniform4_bits(rng_bits4(p->seed, 0u, e, first_event + k, PM_STREAM_ENVIRONMENT, 0x52414449u));
+      sum = vec3_add(sum, environment_light_sample(kg, p, x, n, offset, u).irradiance);
+    }
   }
   return vec3_scale(sum, 1.0f / (float)samples);
 }
 
-/* Element e's direct irradiance from the area lights (see above). In one-ring mode each of the
+/* Element e's direct irradiance from the area lights and the environment (see above). In one-ring mode each of the
    ring's quadrature points takes a quarter of the samples (at least one), weighted 4 : 1 : 1 : 2
    over each triangle and by a third of the triangle's area over the ring, as the hat function's
    integral asks. */
-PM_DEVICE Vec3 radiosity_element_area_light(const KernelGlobals* kg, const LaunchParams* p, uint e)
+PM_DEVICE Vec3 radiosity_element_sampled_light(const KernelGlobals* kg, const LaunchParams* p, uint e)
 {
   Vec3 v = radiosity_element_position(kg, e), n = radiosity_element_normal(kg, e);
   uint samples = p->area_light_samples > 0u ? p->area_light_samples : 1u;
-  if (p->light_sampling == PM_RADIOSITY_LIGHT_VERTEX) return radiosity_area_irradiance_at(kg, p, e, v, n, samples, 0u);
+  if (p->light_sampling == PM_RADIOSITY_LIGHT_VERTEX) return radiosity_sampled_irradiance_at(kg, p, e, v, n, samples, 0u);
   uint per_point = samples / 4u > 0u ? samples / 4u : 1u;
   uint first = PM_LOAD(&kg->rad_element_ranges[e]).x, end = PM_LOAD(&kg->rad_element_ranges[e + 1u]).x;
   Vec3 sum = vec3_splat(0.0f);
@@ -152,10 +167,10 @@ PM_DEVICE Vec3 radiosity_element_area_light(const KernelGlobals* kg, const Launc
     if (!(twice_area > 0.0f)) continue;
     float third = twice_area * (0.5f / 3.0f);
     area += third;
-    Vec3 e_tri = vec3_scale(radiosity_area_irradiance_at(kg, p, e, radiosity_affine(v, b, c, 4.0f, 1.0f, 1.0f), face_n, per_point, event), 4.0f);
-    e_tri = vec3_add(e_tri, radiosity_area_irradiance_at(kg, p, e, radiosity_affine(v, b, c, 1.0f, 4.0f, 1.0f), face_n, per_point, event + per_point));
-    e_tri = vec3_add(e_tri, radiosity_area_irradiance_at(kg, p, e, radiosity_affine(v, b, c, 1.0f, 1.0f, 4.0f), face_n, per_point, event + 2u * per_point));
-    e_tri = vec3_madd(e_tri, radiosity_area_irradiance_at(kg, p, e, radiosity_affine(v, b, c, 2.0f, 2.0f, 2.0f), face_n, per_point, event + 3u * per_point), 2.0f);
+    Vec3 e_tri = vec3_scale(radiosity_sampled_irradiance_at(kg, p, e, radiosity_affine(v, b, c, 4.0f, 1.0f, 1.0f), face_n, per_point, event), 4.0f);
+    e_tri = vec3_add(e_tri, radiosity_sampled_irradiance_at(kg, p, e, radiosity_affine(v, b, c, 1.0f, 4.0f, 1.0f), face_n, per_point, event + per_point));
+    e_tri = vec3_add(e_tri, radiosity_sampled_irradiance_at(kg, p, e, radiosity_affine(v, b, c, 1.0f, 1.0f, 4.0f), face_n, per_point, event + 2u * per_point));
+    e_tri = vec3_madd(e_tri, radiosity_sampled_irradiance_at(kg, p, e, radiosity_affine(v, b, c, 2.0f, 2.0f, 2.0f), face_n, per_point, event + 3u * per_point), 2.0f);
     event += 4u * per_point;
     sum = vec3_madd(sum, e_tri, third * 0.125f);
   }
@@ -172,7 +187,8 @@ PM_DEVICE void kernel_radiosity_light_links(const KernelGlobals* kg, const Launc
     float g = radiosity_element_light(kg, p, e, &light);
     irradiance = vec3_madd(irradiance, vec3_from_float4(light.power), g);
   }
-  if (p->emitter_count > 0u) irradiance = vec3_add(irradiance, radiosity_element_area_light(kg, p, e));
+  if (p->emitter_count > 0u || p->environment != PM_ENVIRONMENT_NONE)
+    irradiance = vec3_add(irradiance, radiosity_element_sampled_light(kg, p, e));
   /* The part of the one-ring inside other geometry is shadowed: the light is what the seen part
      received, over the seen part (the link build counted the hidden origins, radiosity_links.h). */
   uint hidden = PM_LOAD(&kg->rad_element_ranges[e]).w;

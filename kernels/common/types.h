@@ -129,7 +129,7 @@ typedef struct LaunchParams {
   uint path_samples;      /* path tracer: paths per shading point in this pass */
   uint path_first_sample; /* path tracer: index of the pass's first path (random stream) */
   uint path_frame;        /* path tracer: the frame whose random numbers the paths draw */
-  uint path_mis;          /* path tracer: 1: area lights by MIS of light and BSDF sampling; 0: light sampling only */
+  uint path_mis;          /* path tracer: 1: area lights and environment by MIS of light and BSDF sampling; 0: light sampling only */
 
   uint element_count;    /* radiosity: elements (vertices split by side, feature edges and material) */
   uint link_directions;  /* radiosity: nC, hemisphere directions shot per element */
@@ -149,11 +149,24 @@ typedef struct LaunchParams {
   float footprint_thickness; /* normal half-axis / shorter in-plane semiaxis of pd footprints (footprint.h) */
   uint emitter_count;        /* area lights: emitting triangles in the emitters buffer (0: none) */
   float emitter_power;       /* area lights: total flux, sum over emitters of pi A mean(L_e) (watts, channel mean) */
-  uint area_light_samples;   /* area lights: samples per shading point in the camera pass and radiosity */
+  uint area_light_samples;   /* area lights and the environment: samples per shading point in the camera pass and radiosity */
+
+  uint environment;          /* PM_ENVIRONMENT_*: light from infinitely far away (environment_light.h) */
+  uint environment_width;    /* map: texels per row */
+  uint environment_height;   /* map: rows */
+  float environment_rotation; /* map: radians about +y (environment_map.h) */
+  float4 environment_radiance; /* constant: rgb radiance (W sr^-1 m^-2), w = channel mean */
+  float4 environment_sphere;   /* the scene's bounding sphere: xyz centre, w radius (photon emission) */
 
   float link_hidden_distance; /* radiosity: a link ray meeting a back face nearer than this started inside
                                  geometry (radiosity_links.h); 0: no origin is hidden */
 } LaunchParams;
+
+/* Environment lights (environment_light.h): none, one radiance from every direction, or an
+   equirectangular map (environment_map.h). */
+#define PM_ENVIRONMENT_NONE 0u
+#define PM_ENVIRONMENT_CONSTANT 1u
+#define PM_ENVIRONMENT_MAP 2u
 
 /* Photon emission sequences (--photon-sequence). RANDOM: Philox keyed by (seed, photon_frame).
    HALTON: directions from the Halton sequence (bases 2, 3) indexed by the photon's number within

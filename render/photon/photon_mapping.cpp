@@ -13,14 +13,17 @@
 #include "render/footprint_scale.h"
 #include "render/photon/vvh_builder.h"
 #include "render/scene_emitters.h"
+#include "render/scene_environment.h"
 
 namespace pm {
 
-std::vector<uint32_t> share_photons_by_power(const std::vector<LightDesc>& lights, uint32_t total, double area_power) {
+std::vector<uint32_t> share_photons_by_power(const std::vector<LightDesc>& lights, uint32_t total, double area_power,
+                                             double environment_power) {
   std::vector<double> power;
   for (const LightDesc& l : lights)
     power.push_back((double(l.power.x) + l.power.y + l.power.z) * light_emitted_fraction(l));
   if (area_power > 0) power.push_back(area_power);
+  if (environment_power > 0) power.push_back(environment_power);
   const double sum = std::accumulate(power.begin(), power.end(), 0.0);
   std::vector<uint32_t> share(power.size(), 0);
   if (sum <= 0) return share;
@@ -51,11 +54,12 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
   buffers_.allocate(BufferGroup::photon, extents_);
   reserve_map(photons_per_pass_);
   area_power_ = build_scene_emitters(context.scene).power_rgb_sum;
+  environment_power_ = environment_power_rgb_sum(context.scene.environment, context.measures);
   share_photons(context.scene.lights);
 }
 
 void PhotonMapping::share_photons(const std::vector<LightDesc>& lights) {
-  const std::vector<uint32_t> counts = share_photons_by_power(lights, photons_per_pass_, area_power_);
+  const std::vector<uint32_t> counts = share_photons_by_power(lights, photons_per_pass_, area_power_, environment_power_);
   std::vector<uint4> emitters(std::max<size_t>(counts.size(), 1), uint4{0, 0, 0, 0});
   uint32_t first = 0;
   for (size_t i = 0; i < counts.size(); ++i) {

@@ -44,6 +44,7 @@ class PhotonMapping final : public IndirectMethod {
   LaunchParams pass_params(const FrameContext& frame, uint32_t pass) const;
   void share_photons(const std::vector<LightDesc>& lights);
   double area_power_ = 0;  // the area lights' summed RGB power (render/scene_emitters.h), fixed per scene
+  double environment_power_ = 0;  // the environment's (render/scene_environment.h), fixed per scene
   void trace_and_build(LaunchParams params, StageTimer* timer);
   void build_vvh_map(const LaunchParams& params);
   // Photon map buffers (sorted hits, footprints, nodes) for at least `hits` valid hits.
@@ -74,7 +75,10 @@ class PhotonMapping final : public IndirectMethod {
 
 // Largest-remainder share of `total` photons by the lights' emitted power (summed over RGB; a
 // spot's is its power times light_emitted_fraction), in light order, then one more share for
-// the area lights together when area_power (their summed RGB power) is above zero.
-std::vector<uint32_t> share_photons_by_power(const std::vector<LightDesc>& lights, uint32_t total, double area_power = 0);
+// the area lights together when area_power (their summed RGB power) is above zero, then one for
+// the environment when environment_power (its flux through the scene's bounding sphere, summed
+// over RGB) is above zero: the order of photon_emitters (kernels/common/photon_trace.h).
+std::vector<uint32_t> share_photons_by_power(const std::vector<LightDesc>& lights, uint32_t total, double area_power = 0,
+                                             double environment_power = 0);
 
 }  // namespace pm
