@@ -1,6 +1,6 @@
-// Spot and area lights on CUDA against OpenCL (NVIDIA's driver on the same GPU where it is
-// present): the spot-lit and the area-lit box of tests/opencl/lights_test.cpp, rendered by each
-// method on both backends. Both run the same kernel source and draw the same random numbers, so
+// Spot lights, area lights and the environment on CUDA against OpenCL (NVIDIA's driver on the same
+// GPU where it is present): the spot-lit and the area-lit box of tests/opencl/lights_test.cpp and
+// a floor and wall under a constant sky and under a map, rendered by each method on both backends. Both run the same kernel source and draw the same random numbers, so
 // the direct light (the camera pass, with its area-light samples) must agree to rounding and each
 // method's indirect mean within the few paths or photons that rounding sends another way.
 #include <gtest/gtest.h>
@@ -14,6 +14,7 @@
 #include "support/image_stats.h"
 #include "support/lit_boxes.h"
 #include "support/render_settings.h"
+#include "support/room_scenes.h"
 
 namespace pm {
 namespace {
@@ -58,9 +59,48 @@ void expect_backends_agree(const Scene& scene, const char* label) {
   }
 }
 
+// A 2 x 2 m floor and a 2 x 2 m wall on its back edge (albedo 0.6) open to the environment.
+Scene corner_under(const EnvironmentDesc& environment) {
+  Scene s;
+  s.name = "corner";
+  s.source = "test";
+  s.materials = {test::diffuse_material("white", {0.6f, 0.6f, 0.6f})};
+  test::add_quad(s, {0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0});
+  test::add_quad(s, {0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0});
+  s.environment = environment;
+  s.camera.position = {1.0f, 1.6f, 2.6f};
+  s.camera.look_at = {1.0f, 0.5f, 0.4f};
+  s.camera.vertical_fov_degrees = 60;
+  return s;
+}
+
+// A 16 x 8 map: a dim bluish sky with one bright warm patch above the horizon, turned 30 degrees.
+EnvironmentDesc sky_map() {
+  EnvironmentDesc env;
+  env.type = EnvironmentType::map;
+  env.width = 16;
+  env.height = 8;
+  env.rotation_degrees = 30;
+  for (int y = 0; y < env.height; ++y)
+    for (int x = 0; x < env.width; ++x) {
+      const bool sun = y == 2 && (x == 5 || x == 6);
+      env.texels.insert(env.texels.end(), {sun ? 40.0f : 0.3f, sun ? 36.0f : 0.4f, sun ? 30.0f : 0.6f});
+    }
+  return env;
+}
+
 TEST(CudaLights, SpotLitBoxMatchesOpencl) { expect_backends_agree(test::spot_box(), "spot-lit box"); }
 
 TEST(CudaLights, AreaLitBoxMatchesOpencl) { expect_backends_agree(test::area_box(), "area-lit box"); }
+
+TEST(CudaLights, ConstantSkyMatchesOpencl) {
+  EnvironmentDesc sky;
+  sky.type = EnvironmentType::constant;
+  sky.radiance = {1.0f, 1.1f, 1.3f};
+  expect_backends_agree(corner_under(sky), "corner under a constant sky");
+}
+
+TEST(CudaLights, SkyMapMatchesOpencl) { expect_backends_agree(corner_under(sky_map()), "corner under a map"); }
 
 }  // namespace
 }  // namespace pm
