@@ -119,23 +119,6 @@ PM_DEVICE float mis_power_weight(float own, float other)
   return a + b > 0.0f ? a / (a + b) : 0.0f;
 }
 
-/* Radiance reflected towards wo from `samples` light samples of the area lights, shadowed
-   (camera pass: no BSDF sampling to combine with). Random numbers keyed by (seed, frame),
-   counter (index, event + k, PM_STREAM_AREA, extra). */
-PM_DEVICE Vec3 area_light_direct(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 x, Vec3 n,
-                                 Vec3 wo, float offset, uint samples, uint index, uint event, uint extra)
-{
-  Vec3 sum = vec3_splat(0.0f);
-  if (p->emitter_count == 0u || samples == 0u) return sum;
-  for (uint k = 0; k < samples; ++k) {
-    Uniform4 u = rng_uniform4_bits(rng_bits4(p->seed, p->frame, index, event + k, PM_STREAM_AREA, extra));
-    AreaLightSample s = area_light_sample(kg, p, x, n, offset, u);
-    if (vec3_max_component(s.irradiance) <= 0.0f) continue;
-    sum = vec3_add(sum, vec3_mul(brdf_eval(m, n, s.wi, wo), s.irradiance));
-  }
-  return vec3_scale(sum, 1.0f / (float)samples);
-}
-
 /* S1 from the area lights (section 4.1 for a surface): an emitter chosen by power, a point
    uniform on it (u_select, u_pos1, u_pos2), a cosine-distributed direction (u_dir1, u_dir2); every
    photon carries flux L_e / mean(L_e) * emitter_power / n (the power of the chosen emitter over

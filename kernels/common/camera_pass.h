@@ -7,11 +7,10 @@
 #ifndef PM_CAMERA_PASS_H
 #define PM_CAMERA_PASS_H
 
-#include "area_lights.h"
 #include "brdf.h"
-#include "environment_light.h"
 #include "kernel_globals.h"
 #include "pixel_order.h"
+#include "sampled_lights.h"
 #include "scene_traverse.h"
 #include "spot_light.h"
 
@@ -117,10 +116,9 @@ PM_DEVICE void kernel_camera_pass(const KernelGlobals* kg, const LaunchParams* p
 
     float offset = ray_offset_distance(ray.origin, hit.t, p->ray_epsilon);
     Vec3 direct = direct_light(kg, p, &m, pos, n, wo, offset);
-    direct = vec3_add(direct, area_light_direct(kg, p, &m, pos, n, wo, offset, p->area_light_samples, pixel,
-                                                depth * p->area_light_samples, 0u));
-    direct = vec3_add(direct, environment_direct(kg, p, &m, pos, n, wo, offset, p->area_light_samples, pixel,
-                                                 depth * p->area_light_samples, 0u));
+    for (uint kind = 0; kind < PM_SAMPLED_LIGHT_KINDS; ++kind)
+      direct = vec3_add(direct, sampled_light_direct(kg, p, kind, &m, pos, n, wo, offset, p->area_light_samples, pixel,
+                                                     depth * p->area_light_samples, 0u));
     radiance = vec3_add(radiance, vec3_mul(throughput, direct));
     kg->shade_position[record] = vec3_to_float4(pos, PM_AS_FLOAT(material_index));
     kg->shade_normal[record] = vec3_to_float4(n, PM_AS_FLOAT(hit.triangle)); /* radiosity interpolates on it */

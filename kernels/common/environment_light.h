@@ -15,6 +15,7 @@
 #ifndef PM_ENVIRONMENT_LIGHT_H
 #define PM_ENVIRONMENT_LIGHT_H
 
+#include "area_lights.h"
 #include "brdf.h"
 #include "environment_map.h"
 #include "kernel_globals.h"
@@ -78,12 +79,9 @@ PM_DEVICE EnvironmentSample environment_sample(const KernelGlobals* kg, const La
 
 /* One light sample seen from x (unit normal n on the side it is lit from; the shadow ray starts
    `offset` off the surface along n): wi, the irradiance estimate L cos_x / pdf (0 below x's
-   horizon or when the scene blocks the direction) and the density per solid angle. */
-typedef struct EnvironmentLightSample {
-  Vec3 wi;
-  Vec3 irradiance;
-  float pdf_solid_angle;
-} EnvironmentLightSample;
+   horizon or when the scene blocks the direction) and the density per solid angle, in the area
+   lights' sample type (area_lights.h), so that one next-event estimate serves both. */
+typedef AreaLightSample EnvironmentLightSample;
 
 PM_DEVICE EnvironmentLightSample environment_light_sample(const KernelGlobals* kg, const LaunchParams* p, Vec3 x, Vec3 n,
                                                           float offset, Uniform4 u)
@@ -99,23 +97,6 @@ PM_DEVICE EnvironmentLightSample environment_light_sample(const KernelGlobals* k
   if (scene_trace(kg, &shadow, 0.0f, 1e30f, 1).triangle >= 0) return out;
   out.irradiance = vec3_scale(s.radiance, cos_x / s.pdf);
   return out;
-}
-
-/* Radiance reflected towards wo from `samples` light samples of the environment, shadowed
-   (camera pass: no BSDF sampling to combine with). Random numbers keyed by (seed, frame),
-   counter (index, event + k, PM_STREAM_ENVIRONMENT, extra). */
-PM_DEVICE Vec3 environment_direct(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 x, Vec3 n,
-                                  Vec3 wo, float offset, uint samples, uint index, uint event, uint extra)
-{
-  Vec3 sum = vec3_splat(0.0f);
-  if (p->environment == PM_ENVIRONMENT_NONE || samples == 0u) return sum;
-  for (uint k = 0; k < samples; ++k) {
-    Uniform4 u = rng_uniform4_bits(rng_bits4(p->seed, p->frame, index, event + k, PM_STREAM_ENVIRONMENT, extra));
-    EnvironmentLightSample s = environment_light_sample(kg, p, x, n, offset, u);
-    if (vec3_max_component(s.irradiance) <= 0.0f) continue;
-    sum = vec3_add(sum, vec3_mul(brdf_eval(m, n, s.wi, wo), s.irradiance));
-  }
-  return vec3_scale(sum, 1.0f / (float)samples);
 }
 
 /* S1 from the environment (see above): u_dir1, u_dir2 draw the direction, u_disk1, u_disk2 the

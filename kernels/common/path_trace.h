@@ -29,14 +29,13 @@
 #ifndef PM_PATH_TRACE_H
 #define PM_PATH_TRACE_H
 
-#include "area_lights.h"
 #include "brdf.h"
 #include "camera_pass.h"
-#include "environment_light.h"
 #include "film.h"
 #include "kernel_globals.h"
 #include "pixel_order.h"
 #include "rng.h"
+#include "sampled_lights.h"
 #include "scene_traverse.h"
 
 #define PM_STREAM_PATH 0x50415448u /* "PATH" */
@@ -119,20 +118,11 @@ PM_DEVICE Vec3 path_radiance(const KernelGlobals* kg, const LaunchParams* p, con
 
     /* Next-event estimation: the paths whose last D event is this vertex. */
     radiance = vec3_add(radiance, vec3_mul(beta, direct_light(kg, p, &mv, pos, nv, wv, offset)));
-    if (p->emitter_count > 0u) {
-      Uniform4 ua = rng_uniform4_bits(rng_bits4(p->seed, p->path_frame, pixel, event_base + vertex, PM_STREAM_AREA, path));
-      AreaLightSample s = area_light_sample(kg, p, pos, nv, offset, ua);
-      if (vec3_max_component(s.irradiance) > 0.0f) {
-        float weight = 1.0f;
-        if (p->path_mis && may_continue)
-          weight = mis_power_weight(s.pdf_solid_angle, brdf_sample_pdf(&mv, nv, wv, s.wi, pd, pg));
-        radiance = vec3_add(radiance, vec3_scale(vec3_mul(beta, vec3_mul(brdf_eval(&mv, nv, s.wi, wv), s.irradiance)), weight));
-      }
-    }
-    if (p->environment != PM_ENVIRONMENT_NONE) {
-      Uniform4 ue = rng_uniform4_bits(
-          rng_bits4(p->seed, p->path_frame, pixel, event_base + vertex, PM_STREAM_ENVIRONMENT, path));
-      EnvironmentLightSample s = environment_light_sample(kg, p, pos, nv, offset, ue);
+    for (uint kind = 0; kind < PM_SAMPLED_LIGHT_KINDS; ++kind) {
+      if (!sampled_light_present(p, kind)) continue;
+      Uniform4 u = rng_uniform4_bits(
+          rng_bits4(p->seed, p->path_frame, pixel, event_base + vertex, sampled_light_stream(kind), path));
+      AreaLightSample s = sampled_light_sample(kg, p, kind, pos, nv, offset, u);
       if (vec3_max_component(s.irradiance) > 0.0f) {
         float weight = 1.0f;
         if (p->path_mis && may_continue)

@@ -59,21 +59,6 @@ void expect_backends_agree(const Scene& scene, const char* label) {
   }
 }
 
-// A 2 x 2 m floor and a 2 x 2 m wall on its back edge (albedo 0.6) open to the environment.
-Scene corner_under(const EnvironmentDesc& environment) {
-  Scene s;
-  s.name = "corner";
-  s.source = "test";
-  s.materials = {test::diffuse_material("white", {0.6f, 0.6f, 0.6f})};
-  test::add_quad(s, {0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0});
-  test::add_quad(s, {0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0});
-  s.environment = environment;
-  s.camera.position = {1.0f, 1.6f, 2.6f};
-  s.camera.look_at = {1.0f, 0.5f, 0.4f};
-  s.camera.vertical_fov_degrees = 60;
-  return s;
-}
-
 // A 16 x 8 map: a dim bluish sky with one bright warm patch above the horizon, turned 30 degrees.
 EnvironmentDesc sky_map() {
   EnvironmentDesc env;
@@ -97,10 +82,10 @@ TEST(CudaLights, ConstantSkyMatchesOpencl) {
   EnvironmentDesc sky;
   sky.type = EnvironmentType::constant;
   sky.radiance = {1.0f, 1.1f, 1.3f};
-  expect_backends_agree(corner_under(sky), "corner under a constant sky");
+  expect_backends_agree(test::floor_and_wall(0.6f, sky), "corner under a constant sky");
 }
 
-TEST(CudaLights, SkyMapMatchesOpencl) { expect_backends_agree(corner_under(sky_map()), "corner under a map"); }
+TEST(CudaLights, SkyMapMatchesOpencl) { expect_backends_agree(test::floor_and_wall(0.6f, sky_map()), "corner under a map"); }
 
 }  // namespace
 }  // namespace pm

@@ -21,6 +21,7 @@
 #include "scene_io/scene_file.h"
 #include "support/device_checks.h"
 #include "support/image_stats.h"
+#include "support/lit_boxes.h"
 #include "support/render_settings.h"
 #include "support/room_scenes.h"
 
@@ -48,21 +49,6 @@ Scene floor_under_sky(float rho, const EnvironmentDesc& env) {
   s.camera.position = {0, 1, 0};
   s.camera.look_at = {0, 0, 0};
   s.camera.up = {0, 0, 1};
-  s.camera.vertical_fov_degrees = 60;
-  return s;
-}
-
-// A 2 x 2 m floor and a 2 x 2 m wall standing on its back edge, both of albedo rho.
-Scene floor_and_wall(float rho, const EnvironmentDesc& env) {
-  Scene s;
-  s.name = "corner";
-  s.source = "test";
-  s.materials = {test::diffuse_material("white", {rho, rho, rho})};
-  test::add_quad(s, {0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0});
-  test::add_quad(s, {0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0});
-  s.environment = env;
-  s.camera.position = {1.0f, 1.6f, 2.6f};
-  s.camera.look_at = {1.0f, 0.5f, 0.4f};
   s.camera.vertical_fov_degrees = 60;
   return s;
 }
@@ -161,7 +147,7 @@ TEST_F(Environment, WhiteFurnaceReflectsTheSkyForEveryMethod) {
   ASSERT_NE(device_, nullptr);
   const float radiance = 1.5f;
   const int bounces = 10;  // leaves out at most 2^-10 of L
-  const Scene scene = floor_and_wall(1.0f, constant_environment(radiance));
+  const Scene scene = test::floor_and_wall(1.0f, constant_environment(radiance));
   const int size = 24;
   struct Run {
     const char* name;
@@ -243,7 +229,7 @@ TEST_F(Environment, MethodsAgreeUnderAMapAndMisAgreesWithLightSampling) {
   std::vector<float> rgb(size_t(width * height * 3));
   for (int t = 0; t < width * height; ++t)
     for (int c = 0; c < 3; ++c) rgb[size_t(3 * t + c)] = (t == 5 * width + 20) ? 300.0f : 0.3f + 0.1f * c;
-  Scene scene = floor_and_wall(0.6f, floor_with_map(rgb, width, height, 0.6f).environment);
+  Scene scene = test::floor_and_wall(0.6f, floor_with_map(rgb, width, height, 0.6f).environment);
   const FrameImage traced = render(scene, settings_for(path_method(2, 64), 16, 4));
   const FrameImage light_only = render(scene, settings_for(path_method(2, 64, false), 16, 4));
   const FrameImage mapped = render(scene, settings_for(photon_method(2, 262144), 16, 8));

@@ -1,6 +1,7 @@
-// Small closed boxes lit by a spot light and by an emitting ceiling panel, for the tests that
-// compare the methods (tests/opencl/lights_test.cpp) and the backends (tests/gpu/cuda_lights_test.cpp)
-// on the light types other than the point light.
+// Small scenes lit by the light types other than the point light: closed boxes lit by a spot light
+// and by an emitting ceiling panel, and a floor and wall open to an environment, for the tests that
+// compare the methods (tests/opencl/lights_test.cpp, environment_test.cpp) and the backends
+// (tests/gpu/cuda_lights_test.cpp).
 #pragma once
 
 #include <cmath>
@@ -44,6 +45,21 @@ inline Scene area_box() {
   lamp.emission = {6, 6, 6};
   s.materials.push_back(lamp);
   add_quad(s, {0.3f, 0.999f, 0.3f}, {0.7f, 0.999f, 0.3f}, {0.7f, 0.999f, 0.7f}, {0.3f, 0.999f, 0.7f}, 2);
+  return s;
+}
+
+// A 2 x 2 m floor and a 2 x 2 m wall standing on its back edge, both of albedo rho.
+inline Scene floor_and_wall(float rho, const EnvironmentDesc& env) {
+  Scene s;
+  s.name = "corner";
+  s.source = "test";
+  s.materials = {diffuse_material("white", {rho, rho, rho})};
+  add_quad(s, {0, 0, 0}, {0, 0, 2}, {2, 0, 2}, {2, 0, 0});
+  add_quad(s, {0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0});
+  s.environment = env;
+  s.camera.position = {1.0f, 1.6f, 2.6f};
+  s.camera.look_at = {1.0f, 0.5f, 0.4f};
+  s.camera.vertical_fov_degrees = 60;
   return s;
 }
 
