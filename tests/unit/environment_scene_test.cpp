@@ -18,6 +18,7 @@
 #include "render/scene_environment.h"
 #include "scene_io/scene_export.h"
 #include "scene_io/scene_file.h"
+#include "support/scene_load_error.h"
 
 namespace pm {
 namespace {
@@ -61,15 +62,7 @@ class EnvironmentScene : public ::testing::Test {
     file.setFrameBuffer(pixels, 1, 2);
     file.writePixels(1);
   }
-  std::string error_of(const std::string& path) {
-    try {
-      load_scene_file(path);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "loading " << path << " did not throw InputError";
-    return "";
-  }
+  static std::string error_of(const std::string& path) { return test::scene_load_error(path); }
   void expect_error(const std::string& environment, const std::string& expected) {
     const std::string message = error_of(scene_with(environment));
     EXPECT_EQ(message.rfind((dir_ / "scene.json").string() + ": ", 0), 0u) << message;

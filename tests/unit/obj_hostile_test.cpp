@@ -13,6 +13,7 @@
 #include "scene_io/obj_large_faces.h"
 #include "scene_io/obj_mesh.h"
 #include "scene_io/scene_file.h"
+#include "support/scene_load_error.h"
 #include "support/test_folder.h"
 
 namespace pm {
@@ -28,15 +29,7 @@ class ObjHostile : public test::FolderTest {
                                    R"( "lights": [{"position": [0, 2, 0], "power": [1, 1, 1]}],
       "camera": {"position": [0, 0.5, -5], "look_at": [0, 0, 0]}})");
   }
-  std::string error_of(const std::string& path) {
-    try {
-      load_scene_file(path);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << path << " loaded";
-    return "";
-  }
+  static std::string error_of(const std::string& path) { return test::scene_load_error(path); }
   // A polygon of n corners on the unit circle in the y = 0 plane; every other corner pulled in to
   // radius `inner` (1: convex).
   static std::string circle_face(size_t n, double inner = 1) {

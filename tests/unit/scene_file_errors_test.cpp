@@ -13,6 +13,7 @@
 
 #include "render/errors.h"
 #include "scene_io/scene_file.h"
+#include "support/scene_load_error.h"
 
 namespace pm {
 namespace {
@@ -49,16 +50,7 @@ class SceneJsonErrors : public ::testing::Test {
     return path.string();
   }
 
-  // The InputError message from loading path ("" and a test failure if it loads).
-  std::string error_of(const std::string& path) {
-    try {
-      load_scene_file(path);
-    } catch (const InputError& e) {
-      return e.what();
-    }
-    ADD_FAILURE() << "loading " << path << " did not throw InputError";
-    return "";
-  }
+  static std::string error_of(const std::string& path) { return test::scene_load_error(path); }
   std::string error_of_text(const std::string& text) { return error_of(write("scene.json", text)); }
   std::string error_of_scene(const json& scene) { return error_of_text(scene.dump(2)); }
 
