@@ -31,12 +31,15 @@ usage: multi_gpu_suite.sh [options]
   --resolution WxH   image size (default: 1920x1080)
   --photons N        photons per pass (default: 1048576)
   --pmrender PATH    the pmrender binary (default: build/pmrender, or the bundle's bin/pmrender)
+  --render-args ARGS more options for every render (e.g. "--control-paths 0": the frame's work
+                     then does not depend on its time, see docs/benchmarks.md "Several GPUs")
   -h, --help         this text
 USAGE
 }
 
 suite_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 backends=cuda devices=0,1 out="" scenes="sponza conference" seconds=10 passes=8 frames=48 parts=frame,sequence repeat=3 pmrender="" resolution=1920x1080 photons=1048576
+render_args=""
 while [ $# -gt 0 ]; do
   case $1 in
     --backend) backends=$2; shift 2 ;;
@@ -51,6 +54,7 @@ while [ $# -gt 0 ]; do
     --resolution) resolution=$2; shift 2 ;;
     --photons) photons=$2; shift 2 ;;
     --pmrender) pmrender=$2; shift 2 ;;
+    --render-args) render_args=$2; shift 2 ;;
     -h|--help) usage; exit 0 ;;
     *) echo "multi_gpu_suite.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
@@ -69,7 +73,7 @@ done
 
 [ -n "$out" ] || out=bench-results/multi-gpu-$(date -u +%Y%m%d-%H%M%S)
 mkdir -p "$out/scenes" "$out/images"
-suite_environment "$out" "backend=$backends devices=$devices scenes='$scenes' time=$seconds passes=$passes frames=$frames repeat=$repeat resolution=$resolution photons=$photons"
+suite_environment "$out" "backend=$backends devices=$devices scenes='$scenes' time=$seconds passes=$passes frames=$frames repeat=$repeat resolution=$resolution photons=$photons render_args='$render_args'"
 
 failed=0
 # run_median NAME WHAT ARGS...: the median over R `pmrender render` processes of WHAT: "wall" (the
@@ -102,6 +106,8 @@ for backend in ${backends//,/ }; do
     scene=$suite_dir/scenes/$s.json
     lit=$(suite_animated_scene "$s" light "$out/scenes" "$frames")
     common=(--backend "$backend" --resolution "$resolution" --photons "$photons")
+    # shellcheck disable=SC2206  # --render-args are words
+    common+=($render_args)
     one=- two=- diff=- seq_one=- seq_two=- split=-
     if [[ ,$parts, == *,frame,* ]]; then
       one=$(run_median "$backend-$s-frame-1" rate "$scene" "${common[@]}" --time "$seconds" --devices 0 \
@@ -136,6 +142,7 @@ done
   echo
   echo "Frame: passes per second of rendering under --time $seconds (median of $repeat processes). Sequence:"
   echo "wall seconds per process (median of $repeat), start-up, scene loading and EXR writing included."
+  [ -z "$render_args" ] || echo "Every render also had: $render_args"
   echo
   echo "| backend | scene | frame, passes/s, device 0 | devices $devices | speed-up | relmse of the two devices' image ($passes passes) | $frames-frame sequence, s, device 0 | devices $devices | speed-up | frames per device |"
   echo "|---|---|---|---|---|---|---|---|---|---|"

@@ -141,7 +141,7 @@ TEST_F(SequenceCli, ResumeAfterAKilledRunRendersOnlyTheMissingFrames) {
     dup2(null_out, 1);
     dup2(null_out, 2);
     execl(binary.c_str(), binary.c_str(), "render", scene.c_str(), "--backend", "opencl", "--resolution", "64x48",
-          "--photons", "60000", "--frames", "0-23", "-o", pattern.c_str(), (char*)nullptr);
+          "--photons", "60000", "--control-paths", "0", "--frames", "0-23", "-o", pattern.c_str(), (char*)nullptr);
     _exit(127);
   }
   auto complete_frames = [&] {
@@ -180,8 +180,8 @@ TEST_F(SequenceCli, ResumeAfterAKilledRunRendersOnlyTheMissingFrames) {
     mtimes[f] = fs::last_write_time(dir_ / "out" / name);
   }
 
-  const Process r = pmrender("render " + scene + " --backend opencl --resolution 64x48 --photons 60000 --frames 0-23 "
-                             "--resume -v -o " + pattern);
+  const Process r = pmrender("render " + scene + " --backend opencl --resolution 64x48 --photons 60000 --control-paths 0 "
+                             "--frames 0-23 --resume -v -o " + pattern);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::set<int> expected;
   for (int f = 0; f < 24; ++f)

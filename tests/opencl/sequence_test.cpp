@@ -39,6 +39,7 @@ RenderSettings small_settings(int width = 48, int height = 36, uint64_t photons 
   RenderSettings settings = test::photon_render_settings(photon, passes);
   settings.width = width;
   settings.height = height;
+  settings.control_paths = 0;  // these tests read images and photons, not the error estimate
   return settings;
 }
 
