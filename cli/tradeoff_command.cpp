@@ -184,11 +184,21 @@ int run_tradeoff(const TradeoffOptions& o) {
     std::string what = "[" + std::to_string(i + 1) + "/" + std::to_string(grid.size());
     if (i > 0) what += ", ETA " + seconds_text(elapsed / double(i) * double(grid.size() - i));
     what += "] " + grid[i].label();
-    Renderer renderer(*device, scene, settings[i]);
-    StageTimer timer(*device);
+    // Every measured frame on a renderer of its own, after the warmup frames on another: a still
+    // image's cost from the scene on the device, with nothing kept from an earlier frame (a
+    // method may keep work between frames of a still scene: radiosity its links and solution).
     // The error is the last measured frame's: what one frame at this setting looks like.
-    const Measurement m = measure(renderer, timer, plan, what);
-    rows.push_back(TradeoffRow{grid[i], m.total(), m.wall(), tradeoff_errors(reference, renderer.read_image()), false});
+    if (!plan.warmup.empty()) measure_with(*device, scene, settings[i], FramePlan{plan.warmup, {}}, what);
+    Measurement m;
+    std::unique_ptr<Renderer> renderer;
+    for (int frame : plan.measured) {
+      renderer = std::make_unique<Renderer>(*device, scene, settings[i]);
+      StageTimer timer(*device);
+      const Measurement one = measure(*renderer, timer, FramePlan{{}, {frame}}, what);
+      m.stages_total_ms.insert(m.stages_total_ms.end(), one.stages_total_ms.begin(), one.stages_total_ms.end());
+      m.wall_ms.insert(m.wall_ms.end(), one.wall_ms.begin(), one.wall_ms.end());
+    }
+    rows.push_back(TradeoffRow{grid[i], m.total(), m.wall(), tradeoff_errors(reference, renderer->read_image()), false});
   }
   mark_pareto_front(rows, o.metric);
 
@@ -211,6 +221,7 @@ int run_tradeoff(const TradeoffOptions& o) {
   j["metric"] = o.metric;
   j["settings"] = tradeoff_json_rows(rows);
   j["time_to_error"] = time_to_error_json(rows, o.metric, levels, floor);
+  j["fastest"] = fastest_per_level_json(rows, o.metric, levels);
   std::vector<TradeoffPoint> points;
   for (const TradeoffRow& r : rows) points.push_back({r.device_ms.median, r.error(o.metric)});
   std::string picks;
@@ -257,7 +268,8 @@ Run add_tradeoff_command(CLI::App& app) {
   cmd->add_option("--rmax", o->rmax, "Largest footprint semiaxis and k-NN search radius of every photon setting, "
                                      "metres (default: 10% of the scene diagonal)");
   const std::string grid = "Grid (comma-separated lists)";
-  cmd->add_option("--estimators", o->grid.estimators, "pd, knn, radius (photon mapping) and path (path tracer)")
+  cmd->add_option("--estimators", o->grid.estimators, "pd, knn, radius (photon mapping), path (path tracer) and "
+                                                      "radiosity (vertex link radiosity)")
       ->capture_default_str()->group(grid);
   cmd->add_option("--photons", o->grid.photons, "Photons per pass")->capture_default_str()->group(grid);
   cmd->add_option("--passes", o->grid.passes, "Passes per frame, every estimator")->capture_default_str()->group(grid);
@@ -271,6 +283,10 @@ Run add_tradeoff_command(CLI::App& app) {
   cmd->add_option("--alpha", o->grid.alpha, "Shrink's alpha, 0 < alpha < 1 (docs/progressive.md)")
       ->transform(finite_float())->capture_default_str()->group(grid);
   cmd->add_option("--spp", o->grid.spp, "Paths per pixel and pass of the path tracer")->capture_default_str()->group(grid);
+  cmd->add_option("--max-edge", o->grid.max_edge, "Radiosity's longest element edges, metres (0: the scene diagonal / 50)")
+      ->capture_default_str()->group(grid);
+  cmd->add_option("--directions", o->grid.directions, "Radiosity's link directions per element (nC)")
+      ->capture_default_str()->group(grid);
   cmd->add_option("--warmup", o->warmup, "Frames rendered first and not timed, per setting")->capture_default_str();
   cmd->add_option("--repeat", o->repeat, "Timed frames per setting (medians)")->capture_default_str();
   cmd->add_option("--metric", o->metric, "Error for the front and the picks: relmae, relmse or flip")

@@ -9,6 +9,7 @@
 #include "render/errors.h"
 #include "render/path/path_settings.h"
 #include "render/photon/photon_settings.h"
+#include "render/radiosity/radiosity_settings.h"
 
 namespace pm::cli {
 
@@ -58,6 +59,8 @@ std::vector<double> parse_number_list(const std::string& text, const std::string
 
 std::string TradeoffSetting::label() const {
   std::string text = estimator;
+  if (estimator == "radiosity")
+    return text + (parameter > 0 ? " edge=" + number_text(parameter) : " edge=auto") + " nC=" + std::to_string(directions);
   if (estimator == "path") text += " spp=" + number_text(parameter);
   else text += " " + std::to_string(photons);
   if (estimator == "pd") text += " s=" + number_text(parameter);
@@ -69,6 +72,7 @@ std::string TradeoffSetting::label() const {
 
 std::string TradeoffSetting::series() const {
   if (estimator == "path") return "path tracer";
+  if (estimator == "radiosity") return "radiosity";
   return "photon " + estimator + (progressive == "shrink" ? " shrink" : "");
 }
 
@@ -80,6 +84,12 @@ RenderSettings TradeoffSetting::render_settings(const RenderSettings& base, int 
     path->samples = uint32_t(parameter);
     path->bounces = bounces;
     s.method = path;
+  } else if (estimator == "radiosity") {
+    auto radiosity = std::make_shared<RadiositySettings>();
+    radiosity->max_edge = float(parameter);
+    radiosity->directions = directions;
+    radiosity->bounces = bounces;
+    s.method = radiosity;
   } else {
     auto photon = std::make_shared<PhotonSettings>();
     photon->photons = photons;
@@ -104,6 +114,8 @@ std::vector<TradeoffSetting> expand_tradeoff_grid(const TradeoffGridLists& lists
   const std::vector<uint64_t> k = whole_numbers(lists.k, "--k", 256);
   const std::vector<double> smoothing = parse_number_list(lists.smoothing, "--smoothing");
   const std::vector<double> radius = parse_number_list(lists.radius, "--radius", true);
+  const std::vector<double> max_edge = parse_number_list(lists.max_edge, "--max-edge", true);
+  const std::vector<uint64_t> directions = whole_numbers(lists.directions, "--directions", 65536);
   const std::vector<std::string> modes = split(lists.progressive);
   for (const std::string& mode : modes) {
     int unused = 0;
@@ -114,12 +126,17 @@ std::vector<TradeoffSetting> expand_tradeoff_grid(const TradeoffGridLists& lists
     throw InputError("--alpha: expected a number between 0 and 1 (exclusive), got " + number_text(lists.alpha));
   std::vector<TradeoffSetting> grid;
   for (const std::string& estimator : split(lists.estimators)) {
+    if (estimator == "radiosity") {
+      for (double edge : max_edge)
+        for (uint64_t n : directions) grid.push_back(TradeoffSetting{estimator, 0, 1, edge, "average", lists.alpha, uint32_t(n)});
+      continue;
+    }
     std::vector<double> parameters;
     if (estimator == "path") for (uint64_t v : spp) parameters.push_back(double(v));
     else if (estimator == "pd") parameters = smoothing;
     else if (estimator == "knn") for (uint64_t v : k) parameters.push_back(double(v));
     else if (estimator == "radius") parameters = radius;
-    else throw InputError("--estimators: expected pd, knn, radius or path, got '" + estimator + "'");
+    else throw InputError("--estimators: expected pd, knn, radius, path or radiosity, got '" + estimator + "'");
     const bool photon_mapping = estimator != "path";
     const std::vector<uint64_t> counts = photon_mapping ? photons : std::vector<uint64_t>{0};
     for (uint64_t count : counts)

@@ -1,6 +1,7 @@
 // The grid of settings `pmrender tradeoff` sweeps: which estimators, photon counts, smoothing /
-// k / radius values, passes, progressive modes and path-tracer samples, parsed from comma-separated lists, expanded
-// into one RenderSettings per point, each with a short label for tables and plots.
+// k / radius values, passes, progressive modes, path-tracer samples and radiosity's element sizes
+// and link directions, parsed from comma-separated lists, expanded into one RenderSettings per
+// point, each with a short label for tables and plots.
 #pragma once
 
 #include <cstdint>
@@ -12,15 +13,19 @@
 namespace pm::cli {
 
 struct TradeoffSetting {
-  std::string estimator;  // pd, knn, radius (photon mapping) or path
+  std::string estimator;  // pd, knn, radius (photon mapping), path or radiosity
   uint64_t photons = 0;   // photons per pass (photon mapping)
   uint32_t passes = 1;
-  double parameter = 0;   // pd: smoothing s; knn: k; radius: metres (0: the scene default); path: spp
+  // pd: smoothing s; knn: k; radius: metres (0: the scene default); path: spp; radiosity: the
+  // longest element edge, metres (0: the scene default)
+  double parameter = 0;
   std::string progressive = "average";  // how a photon estimator's passes combine: average or shrink
   float alpha = 2.0f / 3.0f;            // shrink's alpha
+  uint32_t directions = 0;              // radiosity: link directions per element (nC)
 
-  std::string label() const;   // "pd 262144 s=8 x4", "pd 262144 s=8 x4 shrink", "path spp=16 x4"
-  std::string series() const;  // the plot's colour: "photon pd", "photon pd shrink", "path tracer", ...
+  // "pd 262144 s=8 x4", "pd 262144 s=8 x4 shrink", "path spp=16 x4", "radiosity edge=auto nC=256"
+  std::string label() const;
+  std::string series() const;  // the plot's colour: "photon pd", "photon pd shrink", "path tracer", "radiosity"
   // base (scene, resolution, seed, mirror depth) with this point's method and passes.
   // rmax: footprint clamp and k-NN search radius of the photon estimators, metres (0: default).
   RenderSettings render_settings(const RenderSettings& base, int bounces, float rmax) const;
@@ -28,19 +33,22 @@ struct TradeoffSetting {
 
 // The lists as given on the command line.
 struct TradeoffGridLists {
-  std::string estimators = "pd,knn,radius,path";
+  std::string estimators = "pd,knn,radius,path,radiosity";
   std::string photons = "65536,262144,1048576";
   std::string passes = "1,4";
   std::string smoothing = "8";
   std::string k = "64";
   std::string radius = "0";
   std::string spp = "1,4,16";
+  std::string max_edge = "0";      // radiosity's element sizes, metres (0: the scene default)
+  std::string directions = "256";  // radiosity's link directions per element
   std::string progressive = "average";  // average, shrink or both; shrink only where passes > 1
   float alpha = 2.0f / 3.0f;
 };
 
-// Every combination, estimator by estimator in the order given. InputError naming the option
-// ("--photons: ...") for an empty list, a bad number or an unknown estimator.
+// Every combination, estimator by estimator in the order given; radiosity, deterministic, gets one
+// pass whatever --passes says. InputError naming the option ("--photons: ...") for an empty list,
+// a bad number or an unknown estimator.
 std::vector<TradeoffSetting> expand_tradeoff_grid(const TradeoffGridLists& lists);
 
 // "1,4,16" -> {1, 4, 16}: finite numbers, each > 0 (>= 0 where zero_allowed); InputError naming

@@ -84,7 +84,10 @@ namespace {
 std::vector<std::string> mode_series(const std::vector<TradeoffRow>& rows, std::vector<std::string>* of_row) {
   std::vector<std::string> names;
   for (const TradeoffRow& r : rows) {
-    const std::string name = r.setting.estimator + (r.setting.passes > 1 ? " (passes > 1)" : " (1 pass)");
+    // Radiosity is deterministic: one pass, nothing to tell apart.
+    const std::string name = r.setting.estimator == "radiosity"
+                                 ? r.setting.estimator
+                                 : r.setting.estimator + (r.setting.passes > 1 ? " (passes > 1)" : " (1 pass)");
     of_row->push_back(name);
     if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
   }
@@ -97,6 +100,13 @@ int fastest_reaching(const std::vector<TradeoffRow>& rows, const std::vector<std
   std::vector<TradeoffPoint> points;
   for (size_t i = 0; i < rows.size(); ++i)
     points.push_back({rows[i].device_ms.median, of_row[i] == series ? rows[i].error(metric) : INFINITY});
+  return fastest_within_error(points, level);
+}
+
+// Index of the fastest row of any series reaching level, or -1: the method to pick for it.
+int fastest_overall(const std::vector<TradeoffRow>& rows, const std::string& metric, double level) {
+  std::vector<TradeoffPoint> points;
+  for (const TradeoffRow& r : rows) points.push_back({r.device_ms.median, r.error(metric)});
   return fastest_within_error(points, level);
 }
 
@@ -140,6 +150,19 @@ std::string time_to_error_table(const std::vector<TradeoffRow>& rows, const std:
     }
     s << "\n";
   }
+  s << "fastest to each level:";
+  for (size_t l = 0; l < levels.size(); ++l) {
+    const int i = fastest_overall(rows, metric, levels[l]);
+    s << (l ? "; " : " ") << number_percent(levels[l]) << " ";
+    if (i < 0) {
+      s << "none";
+      continue;
+    }
+    std::snprintf(cell, sizeof(cell), "%s, %s (%.3f ms)", of_row[size_t(i)].c_str(), rows[size_t(i)].setting.label().c_str(),
+                  rows[size_t(i)].device_ms.median);
+    s << cell;
+  }
+  s << "\n";
   if (floor > 0) s << "(noise): at or under twice the reference's own noise, " << number_percent(floor / 2) << "\n";
   return s.str();
 }
@@ -166,19 +189,42 @@ nlohmann::ordered_json time_to_error_json(const std::vector<TradeoffRow>& rows, 
   return out;
 }
 
+nlohmann::ordered_json fastest_per_level_json(const std::vector<TradeoffRow>& rows, const std::string& metric,
+                                              const std::vector<double>& levels) {
+  std::vector<std::string> of_row;
+  mode_series(rows, &of_row);
+  nlohmann::ordered_json out = nlohmann::ordered_json::array();
+  for (double level : levels) {
+    const int i = fastest_overall(rows, metric, level);
+    if (i < 0) {
+      out.push_back({{"error", level}, {"series", nullptr}, {"setting", nullptr}, {"device_ms", nullptr}});
+      continue;
+    }
+    const TradeoffRow& r = rows[size_t(i)];
+    out.push_back({{"error", level}, {"series", of_row[size_t(i)]}, {"setting", r.setting.label()},
+                   {"device_ms", r.device_ms.median}});
+  }
+  return out;
+}
+
 nlohmann::ordered_json tradeoff_json_rows(const std::vector<TradeoffRow>& rows) {
   nlohmann::ordered_json list = nlohmann::ordered_json::array();
   for (const TradeoffRow& r : rows) {
     nlohmann::ordered_json j;
     j["label"] = r.setting.label();
     j["estimator"] = r.setting.estimator;
+    const bool photon_mapping = r.setting.estimator != "path" && r.setting.estimator != "radiosity";
     if (r.setting.estimator == "path") j["spp"] = r.setting.parameter;
-    else j["photons"] = r.setting.photons;
+    if (r.setting.estimator == "radiosity") {
+      j["max_edge"] = r.setting.parameter;
+      j["directions"] = r.setting.directions;
+    }
+    if (photon_mapping) j["photons"] = r.setting.photons;
     if (r.setting.estimator == "pd") j["smoothing"] = r.setting.parameter;
     if (r.setting.estimator == "knn") j["k"] = r.setting.parameter;
     if (r.setting.estimator == "radius") j["radius"] = r.setting.parameter;
     j["passes"] = r.setting.passes;
-    if (r.setting.estimator != "path") j["progressive"] = r.setting.progressive;
+    if (photon_mapping) j["progressive"] = r.setting.progressive;
     if (r.setting.progressive == "shrink") j["alpha"] = r.setting.alpha;
     j["device_ms"] = {{"median", r.device_ms.median}, {"min", r.device_ms.min}, {"max", r.device_ms.max}};
     j["wall_ms"] = {{"median", r.wall_ms.median}, {"min", r.wall_ms.min}, {"max", r.wall_ms.max}};

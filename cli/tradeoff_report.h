@@ -41,11 +41,14 @@ std::string tradeoff_table(const std::vector<TradeoffRow>& rows, const std::stri
 // Per series (estimator, one pass or several): the fastest setting reaching each error level and
 // the smallest error reached (where its bias, or the grid, stops it). Levels at or below
 // `floor` (twice the reference's own noise; 0: unknown) cannot be told from that noise and are
-// reported as such.
+// reported as such. A last line names, per level, the series of the fastest setting of all.
 std::string time_to_error_table(const std::vector<TradeoffRow>& rows, const std::string& metric,
                                 const std::vector<double>& levels, double floor);
 nlohmann::ordered_json time_to_error_json(const std::vector<TradeoffRow>& rows, const std::string& metric,
                                           const std::vector<double>& levels, double floor);
+// Per error level, the fastest setting of any method that reaches it (null where none does).
+nlohmann::ordered_json fastest_per_level_json(const std::vector<TradeoffRow>& rows, const std::string& metric,
+                                              const std::vector<double>& levels);
 nlohmann::ordered_json tradeoff_json_rows(const std::vector<TradeoffRow>& rows);
 std::string tradeoff_svg(const std::vector<TradeoffRow>& rows, const std::string& metric, const std::string& title);
 

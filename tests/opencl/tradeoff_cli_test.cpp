@@ -1,6 +1,7 @@
 // `pmrender tradeoff` end to end on PoCL with a tiny grid: the reference is rendered and written,
 // every setting gets a row with positive times and finite errors, the JSON's Pareto flags are the
-// front of its own numbers, the SVG is well-formed XML (python3's parser), the picks print, a
+// front of its own numbers, radiosity is swept beside the photon estimators and the report names
+// the fastest method of each error level, the SVG is well-formed XML (python3's parser), the picks print, a
 // reference read back from file gives the same errors' scale, and bad input exits 2 before any
 // rendering with nothing written.
 #include <gtest/gtest.h>
@@ -81,12 +82,58 @@ TEST_F(TradeoffCli, ProgressiveModesAreAGridDimension) {
   EXPECT_NE(test::read_text(out / "tradeoff.svg").find("photon pd shrink"), std::string::npos);
 }
 
+// Radiosity is a method of the grid: its element sizes and link directions are grid dimensions,
+// one pass each, a series of its own. Per error level the report names the fastest setting of
+// all that reaches it: the fastest row of the JSON's own numbers with at most that error.
+TEST_F(TradeoffCli, RadiosityIsSweptAndTheFastestMethodOfEachLevelIsNamed) {
+  const fs::path out = dir_ / "methods";
+  const std::vector<double> levels = {10, 0.5, 0.3, 1e-4};
+  const test::ProcessResult r = pmrender(
+      "tradeoff --backend opencl --resolution 16x16 --reference-spp 16 --reference-passes 2 --estimators pd,radiosity "
+      "--photons 4096 --passes 1,2 --max-edge 0.2,0.1 --directions 16,32 --warmup 0 --repeat 1 "
+      "--error-levels 10,0.5,0.3,0.0001 -q -o " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const nlohmann::json j = nlohmann::json::parse(test::read_text(out / "tradeoff.json"));
+  ASSERT_EQ(j["settings"].size(), 6u) << "pd: 2 pass counts; radiosity: 2 edges x 2 direction counts, one pass";
+  const nlohmann::json& first = j["settings"][2];
+  EXPECT_EQ(first["label"], "radiosity edge=0.2 nC=16");
+  EXPECT_EQ(first["estimator"], "radiosity");
+  EXPECT_EQ(first["passes"], 1);
+  EXPECT_EQ(first["directions"], 16);
+  EXPECT_NEAR(first["max_edge"].get<double>(), 0.2, 1e-6);
+  EXPECT_FALSE(first.contains("photons"));
+  EXPECT_FALSE(first.contains("progressive"));
+  EXPECT_EQ(j["settings"][5]["label"], "radiosity edge=0.1 nC=32");
+  for (const auto& s : j["settings"]) EXPECT_TRUE(std::isfinite(s["relmae"].get<double>())) << s["label"];
+
+  ASSERT_EQ(j["fastest"].size(), levels.size());
+  for (size_t l = 0; l < levels.size(); ++l) {
+    std::string expected;
+    double fastest_ms = INFINITY;
+    for (const auto& s : j["settings"]) {
+      const double ms = s["device_ms"]["median"].get<double>();
+      if (s["relmae"].get<double>() <= levels[l] && ms < fastest_ms) fastest_ms = ms, expected = s["label"];
+    }
+    const nlohmann::json& pick = j["fastest"][l];
+    EXPECT_EQ(pick["error"].get<double>(), levels[l]);
+    if (expected.empty()) EXPECT_TRUE(pick["setting"].is_null()) << pick.dump();
+    else EXPECT_EQ(pick["setting"], expected) << "level " << levels[l];
+  }
+  EXPECT_FALSE(j["fastest"][0]["setting"].is_null()) << "every setting is within 1000 %";
+  EXPECT_TRUE(j["fastest"][3]["setting"].is_null()) << "none within 0.01 % of a 32-path reference";
+  EXPECT_NE(test::read_text(out / "tradeoff.txt").find("fastest to each level: 1000% "), std::string::npos);
+  EXPECT_NE(test::read_text(out / "tradeoff.svg").find("radiosity"), std::string::npos);
+}
+
 TEST_F(TradeoffCli, BadInputExitsTwoBeforeRendering) {
   const struct {
     std::string args, message;
   } cases[] = {
       {"--estimators pd", "--reference or --reference-spp: give exactly one"},
-      {"--reference-spp 4 --estimators pd,photon", "--estimators: expected pd, knn, radius or path, got 'photon'"},
+      {"--reference-spp 4 --estimators pd,photon",
+       "--estimators: expected pd, knn, radius, path or radiosity, got 'photon'"},
+      {"--reference-spp 4 --directions 0", "--directions: expected a comma-separated list of positive numbers"},
+      {"--reference-spp 4 --max-edge 0.1,-1", "--max-edge: expected a comma-separated list of numbers >= 0"},
       {"--reference-spp 4 --photons 100,x", "--photons: expected a comma-separated list"},
       {"--reference-spp 4 --passes 1.5", "--passes: expected whole numbers"},
       {"--reference-spp 4 --metric rmse", "--metric: expected relmae, relmse or flip"},
