@@ -12,11 +12,13 @@
 
 namespace pm::cli {
 
-// A method's options as parsed; settings() turns them into validated MethodSettings.
+// A method's options as parsed; settings() turns them into validated MethodSettings. budgeted:
+// the frame's passes run until --time or --target-error stops them, so a method whose passes may
+// or may not converge chooses by default the way that converges.
 class MethodOptions {
  public:
   virtual ~MethodOptions() = default;
-  virtual std::shared_ptr<const MethodSettings> settings() const = 0;
+  virtual std::shared_ptr<const MethodSettings> settings(bool budgeted) const = 0;
 };
 
 struct MethodEntry {

@@ -17,7 +17,7 @@ class PathOptions final : public MethodOptions {
   CLI::Option* bounces = nullptr;  // shared with photon mapping
   std::string mis = "on";
 
-  std::shared_ptr<const MethodSettings> settings() const override {
+  std::shared_ptr<const MethodSettings> settings(bool /*budgeted*/) const override {
     auto s = std::make_shared<PathSettings>(settings_);
     if (bounces && bounces->count() > 0) s->bounces = bounces->as<int>();
     s->mis = mis == "on";

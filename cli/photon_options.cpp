@@ -3,6 +3,8 @@
 // PhotonSettings::validate (one layer); names come from the library's name tables.
 #include <cmath>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "cli/method_options.h"
 #include "cli/number_parsing.h"
@@ -14,6 +16,11 @@ namespace pm::cli {
 
 namespace {
 
+std::vector<std::string> with_auto(std::vector<std::string> names) {
+  names.push_back("auto");
+  return names;
+}
+
 class PhotonOptions final : public MethodOptions {
  public:
   PhotonSettings settings_;
@@ -23,17 +30,19 @@ class PhotonOptions final : public MethodOptions {
   std::string smoothing = "auto";
   std::string photon_bvh = "lbvh";
   std::string sequence = "random";
-  std::string progressive = "average";
+  // auto: shrink under a budget (it converges where average keeps its bias), else average.
+  std::string progressive = "auto";
   std::string footprint_clip = "on";
   std::string footprint_coverage = "on";
 
-  std::shared_ptr<const MethodSettings> settings() const override {
+  std::shared_ptr<const MethodSettings> settings(bool budgeted) const override {
     auto s = std::make_shared<PhotonSettings>(settings_);
     value_of(kEstimatorNames, estimator, &s->estimator);
     value_of(kKernelShapeNames, kernel, &s->kernel_shape);
     value_of(kPhotonMapBuilderNames, photon_bvh, &s->builder);
     value_of(kPhotonSequenceNames, sequence, &s->sequence);
-    value_of(kProgressiveNames, progressive, &s->progressive);
+    if (progressive == "auto") s->progressive = budgeted ? kProgressiveShrink : kProgressiveAverage;
+    else value_of(kProgressiveNames, progressive, &s->progressive);
     int clip = 1;
     value_of(kFootprintClipNames, footprint_clip, &clip);
     s->footprint_clip = clip != 0;
@@ -120,10 +129,10 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
                   "the whole (clipped) ellipse")
       ->capture_default_str()->check(CLI::IsMember(names_of(kFootprintClipNames)))->group(group);
   cmd->add_option("--progressive", o->progressive,
-                  "How passes combine: average (the same footprints every pass; noise falls, bias stays) or "
+                  "How passes combine: average (the same footprints every pass; noise falls, bias stays), "
                   "shrink (footprints and radii shrink from pass to pass: bias and noise both vanish; "
-                  "docs/progressive.md)")
-      ->capture_default_str()->check(CLI::IsMember(names_of(kProgressiveNames)))->group(group);
+                  "docs/progressive.md) or auto: shrink under --time or --target-error, else average")
+      ->capture_default_str()->check(CLI::IsMember(with_auto(names_of(kProgressiveNames))))->group(group);
   cmd->add_option("--alpha", ph.alpha, "shrink: r_i^2 = r_(i-1)^2 (i + alpha) / (i + 1), 0 < alpha < 1")->transform(finite_float())
       ->capture_default_str()->group(group);
   return o;

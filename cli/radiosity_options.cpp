@@ -20,7 +20,7 @@ class RadiosityOptions final : public MethodOptions {
   std::string link_origins = "one-ring";
   CLI::Option* bounces = nullptr;  // --bounces, whoever registered it
 
-  std::shared_ptr<const MethodSettings> settings() const override {
+  std::shared_ptr<const MethodSettings> settings(bool /*budgeted*/) const override {
     auto s = std::make_shared<RadiositySettings>(settings_);
     value_of(kRadiositySidesNames, sides, &s->sides);
     value_of(kRadiosityLightSamplesNames, light_samples, &s->light_samples);

@@ -129,7 +129,7 @@ int run_render(const RenderCommandOptions& o) {
   SceneLoadReport report;
   Scene scene = load_scene(o.render, &report);
   startup.mark("scene load", scene.source);
-  RenderSettings settings = render_settings(o.render);
+  RenderSettings settings = render_settings(o.render, o.seconds > 0 || o.target_error > 0);
   settings.layers = parse_film_layers(o.layers);
   const std::string pattern = o.output.empty() ? default_output_pattern(scene.name) : o.output;
 

@@ -106,7 +106,7 @@ Scene load_scene(const RenderOptions& o, SceneLoadReport* report) {
   return scene;
 }
 
-RenderSettings render_settings(const RenderOptions& o) {
+RenderSettings render_settings(const RenderOptions& o, bool budgeted) {
   RenderSettings settings;
   settings.mirror_depth = o.mirror_depth;
   settings.seed = o.seed;
@@ -115,7 +115,7 @@ RenderSettings render_settings(const RenderOptions& o) {
   settings.area_light_samples = o.area_light_samples;
   settings.reuse_lighting = !o.no_reuse;
   if (!o.resolution.empty()) parse_resolution(o.resolution, &settings.width, &settings.height);
-  settings.method = o.method_options.at(o.method)->settings();
+  settings.method = o.method_options.at(o.method)->settings(budgeted);
   settings.validate();
   return settings;
 }

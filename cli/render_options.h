@@ -41,8 +41,9 @@ struct RenderOptions {
 void add_render_options(CLI::App* cmd, RenderOptions& options);
 
 // The scene the options name (with --environment's environment, if given), and the settings they
-// describe; SettingError/InputError on bad values. report as for load_scene_file.
+// describe; SettingError/InputError on bad values. report as for load_scene_file. budgeted: a
+// --time or --target-error budget stops the passes (MethodOptions::settings).
 Scene load_scene(const RenderOptions& options, SceneLoadReport* report = nullptr);
-RenderSettings render_settings(const RenderOptions& options);
+RenderSettings render_settings(const RenderOptions& options, bool budgeted = false);
 
 }  // namespace pm::cli

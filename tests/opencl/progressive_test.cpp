@@ -288,6 +288,29 @@ TEST(Progressive, DeviceMemoryDoesNotGrowWithPasses) {
 // A checkpointed frame killed with SIGKILL and resumed ends bit for bit as an uninterrupted run.
 class ProgressiveCli : public test::PmrenderProcessTest {};
 
+// Under a budget (--time, --target-error) photon passes shrink unless --progressive says
+// otherwise: a budget asks for as much accuracy as the time buys, and averaged passes keep their
+// bias however many there are. A fixed --passes keeps averaging.
+TEST_F(ProgressiveCli, ABudgetMakesPhotonPassesShrinkUnlessToldOtherwise) {
+  auto progressive_of = [&](const std::string& args) {
+    const std::string file = (dir_ / "budget.exr").string();
+    const test::ProcessResult r =
+        pmrender("render --backend opencl --resolution 16x16 --photons 2000 --control-paths 0 " + args + " -o " + file);
+    EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.err;
+    for (const auto& [name, value] : read_exr(file).attributes) {
+      if (name != "pmrender/settings") continue;
+      const size_t at = value.find("progressive=");
+      return at == std::string::npos ? value : value.substr(at, value.find(' ', at) - at);
+    }
+    return std::string("no settings attribute");
+  };
+  EXPECT_EQ(progressive_of("--time 0.05"), "progressive=shrink");
+  EXPECT_EQ(progressive_of("--target-error 0.9"), "progressive=shrink");
+  EXPECT_EQ(progressive_of("--passes 2"), "progressive=average");
+  EXPECT_EQ(progressive_of("--time 0.05 --progressive average"), "progressive=average");
+  EXPECT_EQ(progressive_of("--passes 2 --progressive shrink"), "progressive=shrink");
+}
+
 TEST_F(ProgressiveCli, KilledCheckpointedFrameResumesToTheSameImage) {
   const std::string common = "render --backend opencl --resolution 32x32 --photons 4000 --passes 40 "
                              "--progressive shrink --float --checkpoint-every 4 -o ";
