@@ -16,6 +16,7 @@
   K(photon_map_area)      /* S3: per-tile footprint area of the sorted hits (T_auto) */       \
   K(gather)            /* S6: indirect and caustic radiance at every shading point */        \
   K(knn_gather)        /* S6 for knn: the k nearest photons over their region's covered area */ \
+  K(final_gather)      /* S6 with final gathering: rays from every shading point, the map at their hits */ \
   K(path_trace)        /* path tracer: paths from every shading point into film_indirect_sum */ \
   K(film_resolve)      /* S7: sums / passes; combined = direct + indirect + caustic, NaN guard */\
   K(film_layers)       /* S7: albedo, normal, depth, position, ids from the shading points */  \

@@ -9,6 +9,7 @@
 #include "film.h"
 #include "film_layers.h"
 #include "gather.h"
+#include "final_gather.h"
 #include "path_trace.h"
 #include "bias_control.h"
 #include "photon_footprint.h"

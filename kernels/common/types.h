@@ -160,6 +160,7 @@ typedef struct LaunchParams {
 
   float link_hidden_distance; /* radiosity: a link ray meeting a back face nearer than this started inside
                                  geometry (radiosity_links.h); 0: no origin is hidden */
+  uint final_gather_rays;     /* photon mapping: gather rays per shading point and pass (final_gather.h); 0: off */
 } LaunchParams;
 
 /* Environment lights (environment_light.h): none, one radiance from every direction, or an

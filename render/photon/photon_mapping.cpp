@@ -76,7 +76,8 @@ std::vector<StageInfo> PhotonMapping::stages(const FrameContext& frame) const {
   std::vector<StageInfo> list;
   for (const char* stage : {"photon trace", "map: morton", "map: sort", "footprints", "map: tree"})
     list.push_back({stage, photons, "photons/s", emitted});
-  list.push_back({"gather", stats_.get("shading_points", double(shading_points_)), "shading points/s",
+  list.push_back({settings_.final_gather > 0 ? "final gather" : "gather",
+                  stats_.get("shading_points", double(shading_points_)), "shading points/s",
                   "shading points gathered per pass"});
   return list;
 }
@@ -91,7 +92,10 @@ LaunchParams PhotonMapping::pass_params(const FrameContext& frame, uint32_t pass
   params.footprint_scale = float(settings_.footprint_scale(pass));
   params.photon_frame = uint32_t(photon_frame_);
   params.hit_slots_per_photon = slots_per_photon_;
-  params.max_bounces = uint32_t(settings_.bounces);
+  // Final gathering reads the map one bounce from the shading point: its photons carry one bounce
+  // fewer (final_gather.h).
+  params.max_bounces = uint32_t(settings_.bounces) - (settings_.final_gather > 0 ? 1u : 0u);
+  params.final_gather_rays = settings_.final_gather;
   params.smoothing = settings_.smoothing;
   // k-NN has no footprints: the shrink bounds its search radius instead.
   params.rmax = settings_.estimator == PM_ESTIMATOR_KNN ? float(settings_.rmax * params.footprint_scale) : settings_.rmax;
@@ -138,13 +142,14 @@ void PhotonMapping::run_pass(const FrameContext& frame, uint32_t pass) {
     params.hit_count = map_params_.hit_count;
     params.leaf_threshold = map_params_.leaf_threshold;
     map_intact_ = false;  // until this gather has gone through
-    if (params.hit_count > 0) gather(params, frame.timer);
+    if (params.hit_count > 0 || settings_.final_gather > 0) gather(params, frame.timer);
     map_intact_ = true;
     stats_.set("photons_reused", 1);
   } else {
     map_intact_ = false;
     trace_and_build(params, frame.timer);
-    if (map_params_.hit_count > 0) gather(map_params_, frame.timer);
+    // A final gather reads the direct light at its rays' hits even where the map is empty.
+    if (map_params_.hit_count > 0 || settings_.final_gather > 0) gather(map_params_, frame.timer);
     map_intact_ = true;
     map_photon_frame_ = photon_frame_;
     map_pass_ = pass;
@@ -162,8 +167,9 @@ void PhotonMapping::run_pass(const FrameContext& frame, uint32_t pass) {
 }
 
 void PhotonMapping::gather(const LaunchParams& params, StageTimer* timer) {
-  StageScope scope(timer, "gather");
-  const KernelId gather = settings_.estimator == PM_ESTIMATOR_KNN ? KernelId::knn_gather : KernelId::gather;
+  StageScope scope(timer, settings_.final_gather > 0 ? "final gather" : "gather");
+  KernelId gather = settings_.estimator == PM_ESTIMATOR_KNN ? KernelId::knn_gather : KernelId::gather;
+  if (settings_.final_gather > 0) gather = KernelId::final_gather;
   device_.launch(gather, pixel_work_items(params.width, params.height), params);
 }
 

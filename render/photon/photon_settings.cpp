@@ -47,6 +47,10 @@ void PhotonSettings::validate() const {
   require_named(kPhotonMapBuilderNames, builder, "photon-bvh");
   require_named(kPhotonSequenceNames, sequence, "photon-sequence");
   require_named(kProgressiveNames, progressive, "progressive");
+  if (final_gather > 65536) throw SettingError("final-gather", "expected 0 to 65536 rays, got " + std::to_string(final_gather));
+  if (final_gather > 0 && estimator == PM_ESTIMATOR_KNN)
+    throw SettingError("final-gather", "reads the footprints of --estimator pd or radius, not knn");
+  if (final_gather > 0 && bounces < 1) throw SettingError("final-gather", "needs --bounces 1 or more");
   if (!(alpha > 0 && alpha < 1)) throw SettingError("alpha", "expected a number between 0 and 1 (exclusive), got " + std::to_string(alpha));
   if (photons * hit_slots_per_photon() > kMaxHitSlots)
     throw SettingError("photons", std::to_string(photons) + " photons per pass need more than 2^29 hit records; "
@@ -69,6 +73,7 @@ std::string PhotonSettings::describe() const {
   s << " rmax=" << rmax;
   if (estimator == PM_ESTIMATOR_RADIUS) s << " radius=" << radius;
   if (estimator == PM_ESTIMATOR_KNN) s << " k=" << knn_k;
+  if (final_gather > 0) s << " final_gather=" << final_gather;
   s << " photon_bvh=" << name_of(kPhotonMapBuilderNames, builder)
     << " leaf=" << (leaf_threshold > 0 ? std::to_string(leaf_threshold) : "auto")
     << " photon_sequence=" << name_of(kPhotonSequenceNames, sequence)

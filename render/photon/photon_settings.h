@@ -54,6 +54,9 @@ class PhotonSettings final : public MethodSettings {
   float footprint_thickness = PM_FOOTPRINT_NORMAL_RATIO;
   int progressive = kProgressiveAverage;
   float alpha = 2.0f / 3.0f;  // shrink: r_i^2 = r_{i-1}^2 (i + alpha) / (i + 1) (Knaus & Zwicker 2011)
+  // Final gathering (kernels/common/final_gather.h): gather rays per shading point and pass, the
+  // map read at their hits and traced with one bounce fewer; 0: the map read at the shading point.
+  uint32_t final_gather = 0;
 
   const char* method_name() const override { return "photon"; }
   void validate() const override;

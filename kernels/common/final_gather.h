@@ -1,0 +1,130 @@
+/* Final gathering over the photon map (photon mapping with --final-gather N; docs/final-gathering.md;
+   Jensen 1996, "Global illumination using photon maps", section 3.3): instead of reading the
+   photon map at the camera's shading point x, where its footprints' blur shows, N rays leave x
+   by its own diffuse and glossy lobes, and the map is read only at their hits y, where that blur
+   is averaged over x's hemisphere.
+
+   The light reflected at x then splits by the event at y:
+   - the direct light at y, exactly: a shadow ray to every point and spot light (direct_light) and
+     next-event estimates of the area lights and the environment (sampled_light_sample);
+   - the light that reached y after further bounces, from the photon map: the photon method's map
+     traced with one bounce fewer (max_bounces - 1, photon_mapping.cpp), so that paths x <- y <- ...
+     keep the method's count of diffuse and glossy events. Its caustic photons (light that reached
+     y through mirrors only) count at y as well, as the photon method counts them one bounce later.
+   A gather ray that meets a mirror follows it (up to PM_PHOTON_MAX_SPECULAR times), weighted by the
+   mirror's reflectance, to the first surface that reflects diffusely. The emitters and the
+   environment a gather ray sees directly are not counted: they are x's direct light (the camera
+   pass) or, through mirrors, x's caustic light, which x still reads from the photon map as the
+   photon method does.
+
+   Directions: the lobe (diffuse or glossy) in proportion to the reflectances, as the path tracer's
+   first vertex (path_trace.h). The N rays of a pass are stratified: the first number is jittered
+   in N strata, the second a rotated golden-ratio lattice, so that the rays spread over the
+   hemisphere rather than clump. Random numbers: Philox keyed by (seed, photon_frame), counter
+   (pixel, mirror depth and vertex, "FGAT", ray index within the frame: pass * N + ray). */
+#ifndef PM_FINAL_GATHER_H
+#define PM_FINAL_GATHER_H
+
+#include "gather.h"
+#include "path_trace.h"
+#include "sampled_lights.h"
+
+#define PM_STREAM_FINAL_GATHER 0x46474154u /* "FGAT" */
+
+/* Radiance leaving y towards wy (ny facing wy) by one diffuse or glossy reflection at y: the direct
+   light, exactly, and the photon map's light arriving after further bounces. */
+PM_DEVICE Vec3 final_gather_at_hit(const KernelGlobals* kg, const LaunchParams* p, const Material* my, Vec3 y, Vec3 ny,
+                                   Vec3 wy, float offset, uint pixel, uint event, uint ray)
+{
+  Vec3 radiance = direct_light(kg, p, my, y, ny, wy, offset);
+  for (uint kind = 0; kind < PM_SAMPLED_LIGHT_KINDS; ++kind) {
+    if (!sampled_light_present(p, kind)) continue;
+    Uniform4 u = rng_uniform4_bits(rng_bits4(p->seed, p->photon_frame, pixel, event, sampled_light_stream(kind), ray));
+    AreaLightSample s = sampled_light_sample(kg, p, kind, y, ny, offset, u);
+    if (vec3_max_component(s.irradiance) > 0.0f)
+      radiance = vec3_add(radiance, vec3_mul(brdf_eval(my, ny, s.wi, wy), s.irradiance));
+  }
+  if (p->hit_count > 0u) {
+    Vec3 indirect = vec3_splat(0.0f), caustic = vec3_splat(0.0f);
+    uint accepted = 0;
+    gather_at(kg, p, my, y, ny, wy, &indirect, &caustic, &accepted);
+    radiance = vec3_add(radiance, vec3_add(indirect, caustic));
+  }
+  return radiance;
+}
+
+/* The radiance a gather ray from origin along dir brings back: at each surface it meets, through
+   mirrors, what that surface reflects diffusely towards the ray. */
+PM_DEVICE Vec3 final_gather_ray(const KernelGlobals* kg, const LaunchParams* p, Vec3 origin, Vec3 dir, uint pixel,
+                                uint event_base, uint ray)
+{
+  Vec3 radiance = vec3_splat(0.0f), throughput = vec3_splat(1.0f);
+  for (uint vertex = 1; vertex <= PM_PHOTON_MAX_SPECULAR + 1u; ++vertex) {
+    Ray r = ray_make(origin, dir);
+    SceneHit hit = scene_trace(kg, &r, 0.0f, 1e30f, 0);
+    if (hit.triangle < 0) break;
+    Vec3 pos = vec3_madd(origin, dir, hit.t);
+    Vec3 n = scene_triangle_normal(kg->triangles, hit.triangle);
+    if (vec3_dot(n, dir) > 0.0f) n = vec3_neg(n); /* the side the ray arrived on */
+    Vec3 wo = vec3_neg(dir);
+    Material m = surface_material(kg, scene_triangle_material(kg->triangles, hit.triangle), hit.triangle, pos);
+    float offset = ray_offset_distance(origin, hit.t, p->ray_epsilon);
+    if (channel_mean(material_diffuse(&m)) + channel_mean(material_glossy(&m)) > 0.0f)
+      radiance = vec3_add(radiance, vec3_mul(throughput, final_gather_at_hit(kg, p, &m, pos, n, wo, offset, pixel,
+                                                                              event_base + vertex, ray)));
+    Vec3 mirror = material_mirror(&m);
+    if (vec3_max_component(mirror) <= 0.0f) break;
+    throughput = vec3_mul(throughput, mirror);
+    dir = vec3_reflect(dir, n);
+    origin = offset_ray_origin(pos, n, offset);
+  }
+  return radiance;
+}
+
+/* Work item = pixel in tile order (pixel_order.h): at each shading point of the mirror chain, the
+   mean of the pass's gather rays into the indirect sum and the photon map's caustic light there
+   into the caustic sum. */
+PM_DEVICE void kernel_final_gather(const KernelGlobals* kg, const LaunchParams* p, uint item)
+{
+  uint pixel;
+  if (!pixel_of_work_item(item, p->width, p->height, &pixel)) return;
+  uint pixels = p->width * p->height;
+  uint rays = p->final_gather_rays > 0u ? p->final_gather_rays : 1u;
+  Vec3 indirect = vec3_splat(0.0f), caustic = vec3_splat(0.0f);
+  for (uint depth = 0; depth <= p->mirror_depth; ++depth) {
+    ShadingPoint sp;
+    if (!shading_point_load(kg, depth * pixels + pixel, &sp)) break;
+    const Material* m = &sp.material;
+    float p_diffuse = channel_mean(material_diffuse(m)), p_glossy = channel_mean(material_glossy(m));
+    if (p_diffuse + p_glossy <= 0.0f) continue;
+    if (p->hit_count > 0u) {
+      Vec3 unused = vec3_splat(0.0f), point_caustic = vec3_splat(0.0f);
+      uint accepted = 0;
+      gather_at(kg, p, m, sp.position, sp.normal, sp.outgoing, &unused, &point_caustic, &accepted);
+      caustic = vec3_add(caustic, vec3_mul(sp.weight, point_caustic));
+    }
+    uint event_base = depth << 8; /* at most PM_PHOTON_MAX_SPECULAR + 2 vertices below x */
+    Uniform4 lattice = rng_uniform4_bits(
+        rng_bits4(p->seed, p->photon_frame, pixel, event_base, PM_STREAM_FINAL_GATHER, 0xffffffffu - p->pass_index));
+    Vec3 origin = offset_ray_origin(sp.position, sp.normal, ray_offset_distance(sp.position, 0.0f, p->ray_epsilon));
+    float p_lobe_diffuse = p_diffuse / (p_diffuse + p_glossy);
+    Vec3 sum = vec3_splat(0.0f);
+    for (uint s = 0; s < rays; ++s) {
+      uint ray = p->pass_index * rays + s;
+      Uniform4 u = rng_uniform4_bits(rng_bits4(p->seed, p->photon_frame, pixel, event_base, PM_STREAM_FINAL_GATHER, ray));
+      float u0 = ((float)s + u.u0) / (float)rays;
+      float u1 = lattice.u1 + (float)s * 0.6180339887f;
+      u1 -= pm_floorf(u1);
+      int glossy = u.u2 >= p_lobe_diffuse;
+      Vec3 dir;
+      Vec3 beta = path_sample_lobe(m, glossy, sp.normal, sp.outgoing, u0, u1, &dir);
+      beta = vec3_scale(beta, 1.0f / (glossy ? 1.0f - p_lobe_diffuse : p_lobe_diffuse));
+      if (vec3_max_component(beta) <= 0.0f) continue;
+      sum = vec3_add(sum, vec3_mul(beta, final_gather_ray(kg, p, origin, dir, pixel, event_base, ray)));
+    }
+    indirect = vec3_add(indirect, vec3_mul(sp.weight, vec3_scale(sum, 1.0f / (float)rays)));
+  }
+  film_add(kg, p, pixel, indirect, caustic);
+}
+
+#endif
