@@ -2,7 +2,9 @@
 // surface after b diffuse bounces carries rho^b of the power, and the closed surface receives all
 // of it, so the area-averaged indirect irradiance of B bounces is Phi / A * (rho + ... + rho^B)
 // and the indirect radiance rho / pi times that: closed form for any closed polyhedron. Each
-// estimator must reproduce it; a lost bounce (-33 % here) or a factor of pi cannot pass. Vertex
+// estimator must reproduce it, and so must final gathering (the direct light at its rays' hits,
+// the map traced one bounce fewer beyond them); a lost bounce (-33 % here) or a factor of pi
+// cannot pass. Vertex
 // link radiosity must reproduce it within 2 %: its light links see the sphere's true (flat)
 // triangles, and in a closed sphere every link ray hits, so its links' weights sum to one.
 #include <gtest/gtest.h>
@@ -24,7 +26,8 @@ namespace {
 struct Case {
   const char* name;
   int estimator;
-  double tolerance;  // relative, on the image mean
+  double tolerance;           // relative, on the image mean
+  uint32_t final_gather = 0;  // gather rays per shading point (the map read at their hits)
 };
 
 class AnalyticSphere : public ::testing::TestWithParam<Case> {};
@@ -48,6 +51,7 @@ TEST_P(AnalyticSphere, IndirectRadianceMatchesClosedForm) {
   // The paper's fixed s = 8: the pd footprints' curvature bias grows with their size (-0.44 % at
   // s = 8 here; docs/progressive.md).
   photons.smoothing = 8;
+  photons.final_gather = c.final_gather;
   Renderer renderer(*device, scene, test::photon_render_settings(photons));
   FrameStats stats;
   FrameImage image = renderer.render_frame(0, &stats);
@@ -118,7 +122,8 @@ TEST(AnalyticSphereRadiosity, IndirectRadianceMatchesClosedFormAndLinksCoverTheH
 
 INSTANTIATE_TEST_SUITE_P(Estimators, AnalyticSphere,
                          ::testing::Values(Case{"pd", PM_ESTIMATOR_PD, 0.015}, Case{"radius", PM_ESTIMATOR_RADIUS, 0.03},
-                                           Case{"knn", PM_ESTIMATOR_KNN, 0.03}),
+                                           Case{"knn", PM_ESTIMATOR_KNN, 0.03},
+                                           Case{"pd_final_gather", PM_ESTIMATOR_PD, 0.01, 16}),
                          [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace

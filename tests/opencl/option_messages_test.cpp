@@ -38,6 +38,9 @@ TEST_F(OptionMessages, UnsignedOptionsRefuseSignsHexOctalJunkAndOutOfRange) {
   expect_refused("render --seed -3", "--seed: expected a whole number from 0 to 4294967295");
   expect_refused("render --bounces 17", "--bounces: expected 0 to 16, got 17");
   expect_refused("render --k 0", "--k: expected 1 to 256, got 0");
+  expect_refused("render --final-gather 70000", "--final-gather: expected 0 to 65536 rays, got 70000");
+  expect_refused("render --final-gather 4 --estimator knn", "--final-gather: reads the footprints of --estimator pd");
+  expect_refused("render --final-gather 4 --bounces 0", "--final-gather: needs --bounces 1 or more");
   expect_refused("render --mirror-depth ' 3'", "--mirror-depth");
   expect_refused("render --device -1", "--device: expected a whole number");
   expect_refused("render --frame -2", "--frame: expected a whole number from 0 to 999999999");
