@@ -76,7 +76,7 @@ sys.path.insert(0, HERE)
 import light_scenes  # noqa: E402
 import pm_mitsuba  # noqa: E402
 
-LIGHT_CASES = ("spot-box", "area-box", "textured-box")
+LIGHT_CASES = ("spot-box", "area-box", "textured-box", "env-corner")
 
 
 def read_exr_layers(path):
