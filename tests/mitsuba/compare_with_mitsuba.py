@@ -47,7 +47,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 # light and texture cases' Mitsuba samples keep its noise in their indirect light at 0.2-0.4 %
 # (standard error of the image mean), so that pd's and radiosity's 1.5 % target means something.
 SAMPLE_SCALE = {"cornell-box": (4, 6), "glossy": (1, 0.5),
-                "spot-box": (1, 4), "area-box": (1, 2), "textured-box": (1, 4)}
+                "spot-box": (1, 4), "area-box": (1, 2), "textured-box": (1, 4), "env-corner": (8, 2)}
 ROOT = os.path.dirname(os.path.dirname(HERE))
 # The light and texture cases (light_scenes.py) also check photon mapping (pd) and radiosity at
 # their defaults against Mitsuba: their indirect light's bias, the direct light matched, within
@@ -55,6 +55,21 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 # estimate's control paths are left out (they change the estimate, not the image).
 METHODS = {"pd": ["--method", "photon", "--estimator", "pd", "--control-paths", "0"],
            "radiosity": ["--method", "radiosity", "--control-paths", "0"]}
+# pmrender options of a case, by method. env-corner: 256 environment samples per pixel in the
+# direct light (the camera pass), not 16, for the path tracer and pd: at 16 the standard error of
+# pmrender's direct image mean (0.44 % per seed) alone kept pd's indirect light 5 % too high or
+# too low from being caught. Radiosity keeps its default 16: the option also sets its light
+# links' environment samples per element, and at 256 its two renders took 17.9 s.
+CASE_OPTIONS = {"env-corner": {"path": ["--area-light-samples", "256"], "pd": ["--area-light-samples", "256"]}}
+# Mitsuba's sampler by case (default `independent`). Its indirect light is the difference of its
+# full render and its max_depth 2 render with the same seed, but `independent` draws one
+# sequential stream per pixel, so the two renders share no random numbers after their first
+# sample and the difference carries the direct light's noise: on env-corner (256 samples per
+# seed) the standard error of Mitsuba's indirect image mean was 0.98 %, as much in absolute terms
+# as that of its direct light alone. `multijitter` (stratified, a permutation per dimension
+# keyed by the sample index) gave 0.21 % at the same samples, and its means matched
+# `independent`'s at 4096 samples (direct -0.1 %, indirect -0.06 %).
+MI_SAMPLER = {"env-corner": "multijitter"}
 # The bias allowed beyond the noise: ctest accuracy's target for pd and radiosity; none for the
 # path tracer, which is unbiased.
 INDIRECT_TOLERANCE = {"path": 0.0, "pd": 0.015, "radiosity": 0.015}
@@ -77,6 +92,8 @@ import light_scenes  # noqa: E402
 import pm_mitsuba  # noqa: E402
 
 LIGHT_CASES = ("spot-box", "area-box", "textured-box", "env-corner")
+# The cases lit by an environment.
+ENVIRONMENT_CASES = ("env-corner",)
 
 
 def read_exr_layers(path):
@@ -120,17 +137,19 @@ class Verdict:
         return float(z), mad, bool(abs(z) <= 4.0 and mad <= self.bound)
 
 
-def pmrender_render(args, scene, out, seed, bounces, mirror_depth, method):
-    """pmrender's layers (combined, direct, ...) of the scene rendered with the method's options."""
+def pmrender_render(args, scene, out, seed, bounces, mirror_depth, method, options=()):
+    """pmrender's layers (combined, direct, ...) of the scene rendered with the method's options
+    and the case's (CASE_OPTIONS)."""
     cmd = [args.pmrender, "render"] + ([scene] if scene else []) + [
         "--backend", args.backend, "--bounces", str(bounces), "--mirror-depth", str(mirror_depth),
         "--resolution", "%dx%d" % (args.size, args.size), "--seed", str(seed), "--float", "-q", "-o", out] + method
-    subprocess.run(cmd, check=True)
+    subprocess.run(cmd + list(options), check=True)
     return read_exr_layers(out)
 
 
-def pmrender_path(args, scene, out, seed, bounces, mirror_depth, spp, layers=False):
-    image = pmrender_render(args, scene, out, seed, bounces, mirror_depth, ["--method", "path", "--spp", str(spp)])
+def pmrender_path(args, scene, out, seed, bounces, mirror_depth, spp, layers=False, options=()):
+    image = pmrender_render(args, scene, out, seed, bounces, mirror_depth, ["--method", "path", "--spp", str(spp)],
+                            options)
     return image if layers else image["combined"]
 
 
@@ -180,12 +199,14 @@ def compare_scene(args, name, scene, export_from=None, textures=None, methods=()
     pm_scale, mi_scale = SAMPLE_SCALE.get(name, (1, 1))
     pm_spp, mi_spp = int(args.pm_spp * pm_scale), int(args.mi_spp * mi_scale)
     start = time.time()
+    options = CASE_OPTIONS.get(name, {}).get("path", ())
     pm_layers = [pmrender_path(args, scene, os.path.join(work, "pm%d.exr" % s), s, bounces, mirror_depth, pm_spp,
-                               layers=True) for s in (1, 2)]
+                               layers=True, options=options) for s in (1, 2)]
     pm = [p["combined"] for p in pm_layers]
     pm_seconds = time.time() - start
     start = time.time()
-    mi_scene = mitsuba.load_dict(pm_mitsuba.scene_dict(exported, max_depth, args.size, args.size, textures))
+    sampler = MI_SAMPLER.get(name, "independent")
+    mi_scene = mitsuba.load_dict(pm_mitsuba.scene_dict(exported, max_depth, args.size, args.size, textures, sampler))
     mi = [pm_mitsuba.render(mi_scene, mi_spp, seed=s) for s in (1, 2)]
     mi_seconds = time.time() - start
 
@@ -203,7 +224,7 @@ def compare_scene(args, name, scene, export_from=None, textures=None, methods=()
     detected = not ok_flux
     if not mirrors:
         fewer = pmrender_path(args, scene, os.path.join(work, "pm_fewer.exr"), 3, bounces - 1, mirror_depth,
-                              2 * pm_spp)
+                              2 * pm_spp, options=options)
         z_fewer, _, ok_fewer = v.judge(region_means(fewer, args.block))
         row["z_fewer"] = z_fewer
         detected = detected and not ok_fewer
@@ -211,7 +232,8 @@ def compare_scene(args, name, scene, export_from=None, textures=None, methods=()
     row["pass"] = ok and detected
     if methods:
         start = time.time()
-        mi_direct_scene = mitsuba.load_dict(pm_mitsuba.scene_dict(exported, 2, args.size, args.size, textures))
+        mi_direct_scene = mitsuba.load_dict(pm_mitsuba.scene_dict(exported, 2, args.size, args.size, textures,
+                                                                  sampler))
         mi_direct = [pm_mitsuba.render(mi_direct_scene, mi_spp, seed=s) for s in (1, 2)]
         row["mi_seconds"] += time.time() - start
         row["path"] = indirect_bias(pm_layers, mi, mi_direct, args.block, INDIRECT_TOLERANCE["path"])
@@ -220,10 +242,12 @@ def compare_scene(args, name, scene, export_from=None, textures=None, methods=()
             start = time.time()
             # Radiosity renders once: with point and spot lights its image does not depend on the
             # seed, and on area-box three seeds' indirect and direct means were within 0.06 % of
-            # each other, far below Mitsuba's noise (its variance is taken as none).
-            seeds = (1,) if method == "radiosity" else (1, 2)
+            # each other, far below Mitsuba's noise (its variance is taken as none). Under the
+            # environment it renders twice: there its direct light (the camera pass's environment
+            # samples) and its light links' environment samples follow the seed.
+            seeds = (1,) if method == "radiosity" and name not in ENVIRONMENT_CASES else (1, 2)
             layers = [pmrender_render(args, scene, os.path.join(work, "%s%d.exr" % (method, s)), s, bounces, 1,
-                                      METHODS[method]) for s in seeds]
+                                      METHODS[method], CASE_OPTIONS.get(name, {}).get(method, ())) for s in seeds]
             if len(layers) == 1:
                 layers = layers * 2  # one render: no noise of its own in the standard error
             r = indirect_bias(layers, mi, mi_direct, args.block, INDIRECT_TOLERANCE[method])

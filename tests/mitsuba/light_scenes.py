@@ -46,7 +46,10 @@ TEXELS = 16
 CORNER_MATERIALS = {"floor": [0.5, 0.5, 0.5], "back": [0.7, 0.6, 0.45], "side": [0.35, 0.55, 0.7],
                     "block": [0.75, 0.75, 0.75]}
 BLOCK = {"x": (1.1, 1.6), "y": (0.0, 0.5), "z": (0.6, 1.1)}
-CORNER_CAMERA = {"position": [2.3, 1.7, 3.1], "look_at": [0.9, 0.35, 0.75], "up": [0.0, 1.0, 0.0],
+# The camera sees the sky above the walls; its horizon falls on the boundary between the first and
+# the second pixel row at 32 x 32 (26.0 degrees down, half the field of view 27.5), so no pixel
+# centre lies where the converted map blends the sky into the ground (pm_mitsuba.ENV_MAP_UPSAMPLE).
+CORNER_CAMERA = {"position": [2.3, 1.7, 3.1], "look_at": [0.9, 0.365, 0.75], "up": [0.0, 1.0, 0.0],
                  "vertical_fov": 55.0, "resolution": [32, 32]}
 # The sky: SKY_W x SKY_H texels (5.6 degrees each), the sun SUN_TEXELS x SUN_TEXELS texels of
 # radiance SUN around the direction SUN_DIRECTION (world, after the map's turn of SKY_ROTATION

@@ -37,7 +37,7 @@ Conversions (docs/tradeoff.md, "Validation against Mitsuba 3"):
   turn takes -z to -x in both). pmrender's texels are piecewise constant cells, Mitsuba's map
   values are points interpolated bilinearly, at u = (i + 0.5) / W and v = j / (H - 1) (its top
   and bottom rows lie on the poles), so the same file means different skies in the two: the
-  converter gives Mitsuba pmrender's map sampled 8 times finer, each sample the mean of
+  converter gives Mitsuba pmrender's map sampled 16 times finer, each sample the mean of
   pmrender's map over the sample's cell;
 - camera: `perspective`, fov_axis y, the vertical field of view, to_world = look_at;
 - bounces: pmrender's direct light + B diffuse/glossy bounces is Mitsuba's max_depth = B + 2
@@ -180,8 +180,12 @@ def spot_emitter(light):
 
 
 # Mitsuba samples per pmrender texel, along each axis, of a converted environment map: the
-# bilinear blend between neighbouring texels then spans 1/8 of a texel at each edge.
-ENV_MAP_UPSAMPLE = 8
+# bilinear blend between neighbouring texels then spans 1/32 of a texel on either side of a
+# column boundary and 1/16 of a row boundary. Where a pixel centre sees the map inside such a
+# band the two renderers' skies differ: with 8 samples the horizon (sky above, ground below)
+# seen 0.35 degrees above it by the env-corner's top pixel row made Mitsuba's direct light there
+# 0.1 darker (the image mean 1 % darker).
+ENV_MAP_UPSAMPLE = 16
 
 
 def environment_map_table(texels, upsample=ENV_MAP_UPSAMPLE):
@@ -253,8 +257,9 @@ def material_bsdf(m):
     return {"type": "blendbsdf", "weight": w, "bsdf_0": base, "bsdf_1": mirror}
 
 
-def scene_dict(exported_json, max_depth, width=None, height=None, textures=None):
-    """Mitsuba scene dict of a `pmrender export-scene` file; width/height override the camera's.
+def scene_dict(exported_json, max_depth, width=None, height=None, textures=None, sampler="independent"):
+    """Mitsuba scene dict of a `pmrender export-scene` file; width/height override the camera's;
+    sampler: the Mitsuba sampler plugin.
     textures: {exported material name: {"obj": OBJ with texture coordinates, "image": file}} for
     materials whose diffuse reflectance is a base-colour texture (times the material's diffuse,
     which must then be 1: Mitsuba's bitmap has no factor); that OBJ replaces the exported one."""
@@ -270,7 +275,7 @@ def scene_dict(exported_json, max_depth, width=None, height=None, textures=None)
     d = {"type": "scene",
          # Emitters stay visible: pmrender's direct layer shows the emitting triangles' radiance.
          "integrator": {"type": "path", "max_depth": int(max_depth), "hide_emitters": False},
-         "sensor": {"type": "pixel_centres", "inner": camera, "film": film, "sampler": {"type": "independent"}}}
+         "sensor": {"type": "pixel_centres", "inner": camera, "film": film, "sampler": {"type": sampler}}}
     textures = textures or {}
     for i, mesh in enumerate(s["meshes"]):
         material = s["materials"][mesh["material"]]
