@@ -44,13 +44,14 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 # 1 cm under the ceiling: the bright spot it makes there reaches the rest of the room through few
 # paths, so this scene needs the most samples for the same noise. The glossy scene's Mitsuba BSDF
 # is Python (pm_mitsuba.py), the slowest per sample, and needs fewer for the noise wanted. The
-# light and texture cases' Mitsuba samples keep its noise in their indirect light at 0.2-0.4 %
-# (standard error of the image mean), so that pd's and radiosity's 1.5 % target means something;
-# env-corner's with Mitsuba's multijitter sampler (MI_SAMPLER) need fewer; pmrender's path tracer
-# takes 8 times its paths there, cheaply (both seeds in 1.6 to 3.2 s; its indirect mean's
+# light and texture cases' Mitsuba samples (with its multijitter sampler, MI_SAMPLER) keep its
+# noise in their indirect light at 0.17-0.27 % (standard error of the image mean), so that pd's
+# and radiosity's 1.5 % target means something; area-box's 144 = 12 x 12 (multijitter rounds a
+# count up to a product of two near-equal integers: 128 would be 132). On env-corner pmrender's
+# path tracer takes 8 times its paths, cheaply (both seeds in 1.6 to 3.2 s; its indirect mean's
 # standard error 0.08 %), to keep the path tracer's limit, 4 standard errors, small.
 SAMPLE_SCALE = {"cornell-box": (4, 6), "glossy": (1, 0.5),
-                "spot-box": (1, 4), "area-box": (1, 2), "textured-box": (1, 4), "env-corner": (8, 2)}
+                "spot-box": (1, 2), "area-box": (1, 1.125), "textured-box": (1, 2), "env-corner": (8, 2)}
 ROOT = os.path.dirname(os.path.dirname(HERE))
 # The light and texture cases (light_scenes.py) also check photon mapping (pd) and radiosity at
 # their defaults against Mitsuba: their indirect light's bias, the direct light matched, within
@@ -64,15 +65,17 @@ METHODS = {"pd": ["--method", "photon", "--estimator", "pd", "--control-paths", 
 # too low from being caught. Radiosity keeps its default 16: the option also sets its light
 # links' environment samples per element, and at 256 its two renders took 17.9 s.
 CASE_OPTIONS = {"env-corner": {"path": ["--area-light-samples", "256"], "pd": ["--area-light-samples", "256"]}}
-# Mitsuba's sampler by case (default `independent`). Its indirect light is the difference of its
-# full render and its max_depth 2 render with the same seed, but `independent` draws one
-# sequential stream per pixel, so the two renders share no random numbers after their first
-# sample and the difference carries the direct light's noise: on env-corner (256 samples per
-# seed) the standard error of Mitsuba's indirect image mean was 0.98 %, as much in absolute terms
-# as that of its direct light alone. `multijitter` (stratified, a permutation per dimension
-# keyed by the sample index) gave 0.21 % at the same samples, and its means matched
-# `independent`'s at 4096 samples (direct -0.1 %, indirect -0.06 %).
-MI_SAMPLER = {"env-corner": "multijitter"}
+# Mitsuba's sampler by case (default `independent`). A light case's indirect light is the
+# difference of Mitsuba's full render and its max_depth 2 render with the same seed, but
+# `independent` draws one sequential stream per pixel, so the two renders share no random numbers
+# after a pixel's first sample and the difference carries the direct light's noise: on env-corner
+# (256 samples per seed) the standard error of Mitsuba's indirect image mean was 0.98 %, as much
+# in absolute terms as that of its direct light alone. `multijitter` (stratified, a permutation
+# per dimension keyed by the sample index) gave 0.21 % at the same samples, and its means matched
+# `independent`'s at 4096 samples (direct -0.1 %, indirect -0.06 %). On the other light cases it
+# gave lower standard errors at half the samples or fewer (tests/mitsuba/README.md).
+MI_SAMPLER = {"spot-box": "multijitter", "area-box": "multijitter", "textured-box": "multijitter",
+              "env-corner": "multijitter"}
 # The bias allowed beyond the noise: ctest accuracy's target for pd and radiosity; none for the
 # path tracer, which is unbiased.
 INDIRECT_TOLERANCE = {"path": 0.0, "pd": 0.015, "radiosity": 0.015}
