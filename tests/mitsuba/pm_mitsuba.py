@@ -182,9 +182,9 @@ def spot_emitter(light):
 # Mitsuba samples per pmrender texel, along each axis, of a converted environment map: the
 # bilinear blend between neighbouring texels then spans 1/32 of a texel on either side of a
 # column boundary and 1/16 of a row boundary. Where a pixel centre sees the map inside such a
-# band the two renderers' skies differ: with 8 samples the horizon (sky above, ground below)
-# seen 0.35 degrees above it by the env-corner's top pixel row made Mitsuba's direct light there
-# 0.1 darker (the image mean 1 % darker).
+# band the two renderers' skies differ: with 8 samples, where the top pixel row of an earlier
+# env-corner camera saw the sky 0.35 degrees above the horizon (sky above, dim ground below),
+# Mitsuba's direct light was 0.1 darker in that row (the image mean 1 % darker).
 ENV_MAP_UPSAMPLE = 16
 
 
