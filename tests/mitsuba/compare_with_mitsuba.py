@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """pmrender's path tracer against Mitsuba 3 on every golden scene, the built-in Cornell box and
 the light and texture cases of light_scenes.py (a spot light, an emitting panel, a textured
-floor), where photon mapping (pd) and radiosity are checked against the same reference too
+floor, an open corner under an environment map), where photon mapping (pd) and radiosity are checked against the same reference too
 (ctest `mitsuba`; tests/mitsuba/README.md says how to run it and why the tolerances are what
 they are). Exit code 0 when every scene agrees within the noise of both renderers and every
 injected bias is detected, 1 otherwise (also when Mitsuba is missing), 2 on bad arguments.
@@ -44,10 +44,14 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 # 1 cm under the ceiling: the bright spot it makes there reaches the rest of the room through few
 # paths, so this scene needs the most samples for the same noise. The glossy scene's Mitsuba BSDF
 # is Python (pm_mitsuba.py), the slowest per sample, and needs fewer for the noise wanted. The
-# light and texture cases' Mitsuba samples keep its noise in their indirect light at 0.2-0.4 %
-# (standard error of the image mean), so that pd's and radiosity's 1.5 % target means something.
+# light and texture cases' Mitsuba samples (with its multijitter sampler, MI_SAMPLER) keep its
+# noise in their indirect light at 0.17-0.27 % (standard error of the image mean), so that pd's
+# and radiosity's 1.5 % target means something; area-box's 144 = 12 x 12 (multijitter rounds a
+# count up to a product of two near-equal integers: 128 would be 132). On env-corner pmrender's
+# path tracer takes 8 times its paths, cheaply (both seeds in 1.6 to 3.2 s; its indirect mean's
+# standard error 0.08 %), to keep the path tracer's limit, 4 standard errors, small.
 SAMPLE_SCALE = {"cornell-box": (4, 6), "glossy": (1, 0.5),
-                "spot-box": (1, 4), "area-box": (1, 2), "textured-box": (1, 4)}
+                "spot-box": (1, 2), "area-box": (1, 1.125), "textured-box": (1, 2), "env-corner": (8, 2)}
 ROOT = os.path.dirname(os.path.dirname(HERE))
 # The light and texture cases (light_scenes.py) also check photon mapping (pd) and radiosity at
 # their defaults against Mitsuba: their indirect light's bias, the direct light matched, within
@@ -55,6 +59,27 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 # estimate's control paths are left out (they change the estimate, not the image).
 METHODS = {"pd": ["--method", "photon", "--estimator", "pd", "--control-paths", "0"],
            "radiosity": ["--method", "radiosity", "--control-paths", "0"]}
+# pmrender options of a case, by method. env-corner: 256 environment samples per pixel in the
+# direct light (the camera pass), not 16, for the path tracer and pd: at 16 the standard error of
+# pmrender's direct image mean (0.44 % per seed) alone kept pd's indirect light 5 % too high or
+# too low from being caught. Radiosity keeps its default 16: the option also sets its light
+# links' environment samples per element, and at 256 its two renders took 17.9 s. pd averages
+# two of its default passes (262,144 photons each) per seed: with one, the standard error of its
+# indirect mean was 0.44 % against 0.28 % with two, and its limit 3.56 % against 3.04 %, close
+# to where an indirect light 5 % off would pass.
+CASE_OPTIONS = {"env-corner": {"path": ["--area-light-samples", "256"],
+                              "pd": ["--area-light-samples", "256", "--passes", "2"]}}
+# Mitsuba's sampler by case (default `independent`). A light case's indirect light is the
+# difference of Mitsuba's full render and its max_depth 2 render with the same seed, but
+# `independent` draws one sequential stream per pixel, so the two renders share no random numbers
+# after a pixel's first sample and the difference carries the direct light's noise: on env-corner
+# (256 samples per seed) the standard error of Mitsuba's indirect image mean was 0.98 %, as much
+# in absolute terms as that of its direct light alone. `multijitter` (stratified, a permutation
+# per dimension keyed by the sample index) gave 0.21 % at the same samples, and its means matched
+# `independent`'s at 4096 samples (direct -0.1 %, indirect -0.06 %). On the other light cases it
+# gave lower standard errors at half the samples or fewer (tests/mitsuba/README.md).
+MI_SAMPLER = {"spot-box": "multijitter", "area-box": "multijitter", "textured-box": "multijitter",
+              "env-corner": "multijitter"}
 # The bias allowed beyond the noise: ctest accuracy's target for pd and radiosity; none for the
 # path tracer, which is unbiased.
 INDIRECT_TOLERANCE = {"path": 0.0, "pd": 0.015, "radiosity": 0.015}
@@ -76,7 +101,9 @@ sys.path.insert(0, HERE)
 import light_scenes  # noqa: E402
 import pm_mitsuba  # noqa: E402
 
-LIGHT_CASES = ("spot-box", "area-box", "textured-box")
+LIGHT_CASES = ("spot-box", "area-box", "textured-box", "env-corner")
+# The cases lit by an environment.
+ENVIRONMENT_CASES = ("env-corner",)
 
 
 def read_exr_layers(path):
@@ -120,17 +147,19 @@ class Verdict:
         return float(z), mad, bool(abs(z) <= 4.0 and mad <= self.bound)
 
 
-def pmrender_render(args, scene, out, seed, bounces, mirror_depth, method):
-    """pmrender's layers (combined, direct, ...) of the scene rendered with the method's options."""
+def pmrender_render(args, scene, out, seed, bounces, mirror_depth, method, options=()):
+    """pmrender's layers (combined, direct, ...) of the scene rendered with the method's options
+    and the case's (CASE_OPTIONS)."""
     cmd = [args.pmrender, "render"] + ([scene] if scene else []) + [
         "--backend", args.backend, "--bounces", str(bounces), "--mirror-depth", str(mirror_depth),
         "--resolution", "%dx%d" % (args.size, args.size), "--seed", str(seed), "--float", "-q", "-o", out] + method
-    subprocess.run(cmd, check=True)
+    subprocess.run(cmd + list(options), check=True)
     return read_exr_layers(out)
 
 
-def pmrender_path(args, scene, out, seed, bounces, mirror_depth, spp, layers=False):
-    image = pmrender_render(args, scene, out, seed, bounces, mirror_depth, ["--method", "path", "--spp", str(spp)])
+def pmrender_path(args, scene, out, seed, bounces, mirror_depth, spp, layers=False, options=()):
+    image = pmrender_render(args, scene, out, seed, bounces, mirror_depth, ["--method", "path", "--spp", str(spp)],
+                            options)
     return image if layers else image["combined"]
 
 
@@ -180,12 +209,14 @@ def compare_scene(args, name, scene, export_from=None, textures=None, methods=()
     pm_scale, mi_scale = SAMPLE_SCALE.get(name, (1, 1))
     pm_spp, mi_spp = int(args.pm_spp * pm_scale), int(args.mi_spp * mi_scale)
     start = time.time()
+    options = CASE_OPTIONS.get(name, {}).get("path", ())
     pm_layers = [pmrender_path(args, scene, os.path.join(work, "pm%d.exr" % s), s, bounces, mirror_depth, pm_spp,
-                               layers=True) for s in (1, 2)]
+                               layers=True, options=options) for s in (1, 2)]
     pm = [p["combined"] for p in pm_layers]
     pm_seconds = time.time() - start
     start = time.time()
-    mi_scene = mitsuba.load_dict(pm_mitsuba.scene_dict(exported, max_depth, args.size, args.size, textures))
+    sampler = MI_SAMPLER.get(name, "independent")
+    mi_scene = mitsuba.load_dict(pm_mitsuba.scene_dict(exported, max_depth, args.size, args.size, textures, sampler))
     mi = [pm_mitsuba.render(mi_scene, mi_spp, seed=s) for s in (1, 2)]
     mi_seconds = time.time() - start
 
@@ -203,7 +234,7 @@ def compare_scene(args, name, scene, export_from=None, textures=None, methods=()
     detected = not ok_flux
     if not mirrors:
         fewer = pmrender_path(args, scene, os.path.join(work, "pm_fewer.exr"), 3, bounces - 1, mirror_depth,
-                              2 * pm_spp)
+                              2 * pm_spp, options=options)
         z_fewer, _, ok_fewer = v.judge(region_means(fewer, args.block))
         row["z_fewer"] = z_fewer
         detected = detected and not ok_fewer
@@ -211,7 +242,8 @@ def compare_scene(args, name, scene, export_from=None, textures=None, methods=()
     row["pass"] = ok and detected
     if methods:
         start = time.time()
-        mi_direct_scene = mitsuba.load_dict(pm_mitsuba.scene_dict(exported, 2, args.size, args.size, textures))
+        mi_direct_scene = mitsuba.load_dict(pm_mitsuba.scene_dict(exported, 2, args.size, args.size, textures,
+                                                                  sampler))
         mi_direct = [pm_mitsuba.render(mi_direct_scene, mi_spp, seed=s) for s in (1, 2)]
         row["mi_seconds"] += time.time() - start
         row["path"] = indirect_bias(pm_layers, mi, mi_direct, args.block, INDIRECT_TOLERANCE["path"])
@@ -220,10 +252,12 @@ def compare_scene(args, name, scene, export_from=None, textures=None, methods=()
             start = time.time()
             # Radiosity renders once: with point and spot lights its image does not depend on the
             # seed, and on area-box three seeds' indirect and direct means were within 0.06 % of
-            # each other, far below Mitsuba's noise (its variance is taken as none).
-            seeds = (1,) if method == "radiosity" else (1, 2)
+            # each other, far below Mitsuba's noise (its variance is taken as none). Under the
+            # environment it renders twice: there its direct light (the camera pass's environment
+            # samples) and its light links' environment samples follow the seed.
+            seeds = (1,) if method == "radiosity" and name not in ENVIRONMENT_CASES else (1, 2)
             layers = [pmrender_render(args, scene, os.path.join(work, "%s%d.exr" % (method, s)), s, bounces, 1,
-                                      METHODS[method]) for s in seeds]
+                                      METHODS[method], CASE_OPTIONS.get(name, {}).get(method, ())) for s in seeds]
             if len(layers) == 1:
                 layers = layers * 2  # one render: no noise of its own in the standard error
             r = indirect_bias(layers, mi, mi_direct, args.block, INDIRECT_TOLERANCE[method])

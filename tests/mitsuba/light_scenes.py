@@ -10,10 +10,16 @@ written at test time from the built-in Cornell box's geometry as `pmrender expor
   base-colour texture (MTL map_Kd, a PNG written here), coloured so that a mirrored u or v or an
   sRGB decoding error changes the image.
 
+- env-corner: an open corner (a floor, a back wall, a lower side wall and a block on the floor)
+  lit by nothing but a lat-long OpenEXR sky written here: a gradient from horizon to zenith, a
+  dim ground and a small bright sun off to one side and in front, turned by rotation_deg, so a
+  map mirrored, turned or flipped in the conversion moves the sun and its shadows.
+
 make_cases() returns, per case, the scene pmrender renders, the scene export-scene writes for
 Mitsuba (the textured case: its untextured twin, since export-scene refuses textures) and the
 textures pm_mitsuba.scene_dict puts back."""
 import json
+import math
 import os
 import struct
 import subprocess
@@ -35,6 +41,24 @@ PANEL_EMISSION = [68.0, 47.2, 16.0]
 # with the column, green with the row, blue is a 4 x 4 checker (sRGB codes, at most 220: linear
 # 0.72, so the floor reflects less than the walls' white at most).
 TEXELS = 16
+# The environment-lit corner (metres): a 2 x 2 floor, a back wall 1.5 high along z = 0, a side wall
+# 0.8 high along x = 0, and a 0.5 m block standing off-centre on the floor.
+CORNER_MATERIALS = {"floor": [0.5, 0.5, 0.5], "back": [0.7, 0.6, 0.45], "side": [0.35, 0.55, 0.7],
+                    "block": [0.75, 0.75, 0.75]}
+BLOCK = {"x": (1.1, 1.6), "y": (0.0, 0.5), "z": (0.6, 1.1)}
+# The camera sees the sky above the walls; its horizon falls on the boundary between the first and
+# the second pixel row at 32 x 32 (26.0 degrees down, half the field of view 27.5), so no pixel
+# centre lies where the converted map blends the sky into the ground (pm_mitsuba.ENV_MAP_UPSAMPLE).
+CORNER_CAMERA = {"position": [2.3, 1.7, 3.1], "look_at": [0.9, 0.365, 0.75], "up": [0.0, 1.0, 0.0],
+                 "vertical_fov": 55.0, "resolution": [32, 32]}
+# The sky: SKY_W x SKY_H texels (5.6 degrees each), the sun SUN_TEXELS x SUN_TEXELS texels of
+# radiance SUN around the direction SUN_DIRECTION (world, after the map's turn of SKY_ROTATION
+# degrees: in front of the back wall, to the side away from the side wall, 35 degrees up).
+SKY_W, SKY_H, SKY_ROTATION = 64, 32, 30.0
+SUN_DIRECTION = (0.55, 0.57, 0.61)
+SUN_TEXELS = 2
+SUN = [90.0, 80.0, 62.0]
+ZENITH, HORIZON, GROUND = [0.25, 0.4, 0.8], [0.75, 0.8, 0.85], [0.2, 0.17, 0.13]
 
 
 def write_png(path, rows):
@@ -48,6 +72,75 @@ def write_png(path, rows):
     with open(path, "wb") as f:
         f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw)) +
                 chunk(b"IEND", b""))
+
+
+def write_exr(path, rgb):
+    """An uncompressed scanline OpenEXR file of 32-bit float R, G, B channels from rgb (rows x
+    columns x 3, top row first). Written here rather than by Mitsuba's Bitmap, which does not
+    return from writing OpenEXR while the render pool has one thread (pm_mitsuba.render)."""
+    rows, columns = len(rgb), len(rgb[0])
+
+    def attribute(name, kind, value):
+        return name.encode() + b"\0" + kind.encode() + b"\0" + struct.pack("<i", len(value)) + value
+
+    # Channels in alphabetical order, each FLOAT (2), not linear-perceptual, sampled 1 x 1.
+    channels = b"".join(c + b"\0" + struct.pack("<iB3xii", 2, 0, 1, 1) for c in (b"B", b"G", b"R")) + b"\0"
+    window = struct.pack("<iiii", 0, 0, columns - 1, rows - 1)
+    header = (b"\x76\x2f\x31\x01" + struct.pack("<i", 2) + attribute("channels", "chlist", channels) +
+              attribute("compression", "compression", b"\0") + attribute("dataWindow", "box2i", window) +
+              attribute("displayWindow", "box2i", window) + attribute("lineOrder", "lineOrder", b"\0") +
+              attribute("pixelAspectRatio", "float", struct.pack("<f", 1.0)) +
+              attribute("screenWindowCenter", "v2f", struct.pack("<ff", 0.0, 0.0)) +
+              attribute("screenWindowWidth", "float", struct.pack("<f", 1.0)) + b"\0")
+    line_bytes = 12 * columns
+    first = len(header) + 8 * rows  # after the header and the table of one offset per scanline
+    offsets = struct.pack("<%dQ" % rows, *[first + y * (8 + line_bytes) for y in range(rows)])
+    lines = b"".join(struct.pack("<ii", y, line_bytes) +
+                     b"".join(struct.pack("<%df" % columns, *[px[c] for px in rgb[y]]) for c in (2, 1, 0))
+                     for y in range(rows))
+    with open(path, "wb") as f:
+        f.write(header + offsets + lines)
+
+
+def sky_texels():
+    """The corner's sky map (rows of (r, g, b), top row = zenith), in the convention of
+    docs/scene-format.md: texel (i, j) spans phi 2 pi [i, i + 1) / W, theta pi [j, j + 1) / H, its
+    direction (-sin theta sin phi, cos theta, sin theta cos phi) turned by SKY_ROTATION about +y."""
+    turn = math.radians(SKY_ROTATION)
+    d = [c / math.sqrt(sum(x * x for x in SUN_DIRECTION)) for c in SUN_DIRECTION]
+    # The sun's direction in the map's own frame (the turn undone), then its (u, v).
+    x, z = d[0] * math.cos(turn) - d[2] * math.sin(turn), d[0] * math.sin(turn) + d[2] * math.cos(turn)
+    u = (math.atan2(-x, z) / (2 * math.pi)) % 1.0
+    v = math.acos(d[1]) / math.pi
+    i0, j0 = int(round(u * SKY_W)) - SUN_TEXELS // 2, int(round(v * SKY_H)) - SUN_TEXELS // 2
+    rows = []
+    for j in range(SKY_H):
+        theta = math.pi * (j + 0.5) / SKY_H
+        row = []
+        for i in range(SKY_W):
+            if 0 <= (i - i0) % SKY_W < SUN_TEXELS and 0 <= j - j0 < SUN_TEXELS:
+                row.append(tuple(SUN))
+            elif theta < math.pi / 2:
+                t = math.cos(theta)  # 0 at the horizon, 1 at the zenith
+                row.append(tuple(h + (z_ - h) * t for h, z_ in zip(HORIZON, ZENITH)))
+            else:
+                row.append(tuple(GROUND))
+        rows.append(row)
+    return rows
+
+
+def quad(a, b, c, d):
+    return [a, b, c, d], [[0, 1, 2], [0, 2, 3]]
+
+
+def box_faces(x, y, z):
+    """The six faces of an axis-aligned box as (vertices, faces)."""
+    (x0, x1), (y0, y1), (z0, z1) = x, y, z
+    v = [[x0, y0, z0], [x1, y0, z0], [x1, y1, z0], [x0, y1, z0], [x0, y0, z1], [x1, y0, z1], [x1, y1, z1],
+         [x0, y1, z1]]
+    f = [[0, 2, 1], [0, 3, 2], [4, 5, 6], [4, 6, 7], [0, 4, 7], [0, 7, 3], [1, 2, 6], [1, 6, 5], [3, 7, 6],
+         [3, 6, 2], [0, 1, 5], [0, 5, 4]]
+    return v, f
 
 
 def texture_rows():
@@ -82,9 +175,12 @@ def write_obj(path, vertices, faces, comment, uvs=None, material=None):
         f.write("\n".join(lines) + "\n")
 
 
-def scene(name, meshes, materials, lights, camera):
-    return {"format": "pmrender-scene", "version": 1, "name": name, "meshes": meshes, "materials": materials,
-            "lights": lights, "camera": camera}
+def scene(name, meshes, materials, lights, camera, environment=None):
+    s = {"format": "pmrender-scene", "version": 1, "name": name, "meshes": meshes, "materials": materials,
+         "lights": lights, "camera": camera}
+    if environment:
+        s["environment"] = environment
+    return s
 
 
 def write_json(path, value):
@@ -94,7 +190,7 @@ def write_json(path, value):
 
 
 def make_cases(pmrender, work):
-    """Writes the three scenes under work/light-scenes; returns [(name, scene, exported, textures)]
+    """Writes the four scenes under work/light-scenes; returns [(name, scene, exported, textures)]
     with exported None where pmrender's own export of `scene` serves."""
     folder = os.path.join(work, "light-scenes")
     os.makedirs(folder, exist_ok=True)
@@ -142,4 +238,17 @@ def make_cases(pmrender, work):
     textures = {"checker": {"obj": os.path.join(folder, "floor.obj"), "image": image}}
     cases.append(("textured-box", write_json(os.path.join(folder, "textured-box.json"), textured),
                   write_json(os.path.join(folder, "textured-box-untextured.json"), twin), textures))
+
+    parts = {"floor": quad([0, 0, 0], [0, 0, 2], [2, 0, 2], [2, 0, 0]),
+             "back": quad([0, 0, 0], [2, 0, 0], [2, 1.5, 0], [0, 1.5, 0]),
+             "side": quad([0, 0, 0], [0, 0.8, 0], [0, 0.8, 2], [0, 0, 2]),
+             "block": box_faces(BLOCK["x"], BLOCK["y"], BLOCK["z"])}
+    corner_meshes = []
+    for name, (vertices, faces) in parts.items():
+        write_obj(os.path.join(folder, "corner-%s.obj" % name), vertices, faces, "open corner: %s, metres" % name)
+        corner_meshes.append({"file": "corner-%s.obj" % name, "material": name})
+    write_exr(os.path.join(folder, "sky.exr"), sky_texels())
+    corner = scene("env-corner", corner_meshes, {n: {"diffuse": c} for n, c in CORNER_MATERIALS.items()}, [],
+                   CORNER_CAMERA, {"map": "sky.exr", "rotation_deg": SKY_ROTATION})
+    cases.append(("env-corner", write_json(os.path.join(folder, "env-corner.json"), corner), None, None))
     return cases

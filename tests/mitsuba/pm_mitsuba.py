@@ -27,6 +27,18 @@ Conversions (docs/tradeoff.md, "Validation against Mitsuba 3"):
   `bitmap`, sRGB decoded to linear before bilinear filtering (raw false), wrap repeat; Mitsuba's
   OBJ loader flips v (flip_tex_coords) and its bitmaps have v = 0 at the top row, which is
   pmrender's convention for OBJ texture coordinates;
+- constant environment (`environment.radiance`): `constant` of that radiance;
+- environment map (`environment.map`, lat-long OpenEXR, `scale`, `rotation_deg`): `envmap` of a
+  resampled map (environment_map_table), `scale` as it is, to_world = a turn about +y by
+  rotation_deg + 180 degrees. pmrender's map direction of (u, v) (theta = pi v from +y, phi =
+  2 pi u) is (-sin theta sin phi, cos theta, sin theta cos phi) (kernels/common/environment_map.h:
+  u = 1/2 faces -z), Mitsuba's is (sin theta sin phi, cos theta, -sin theta cos phi) (u = 1/2
+  faces +z): the same (u, v) half a turn about +y apart, and both turn right-handed (a quarter
+  turn takes -z to -x in both). pmrender's texels are piecewise constant cells, Mitsuba's map
+  values are points interpolated bilinearly, at u = (i + 0.5) / W and v = j / (H - 1) (its top
+  and bottom rows lie on the poles), so the same file means different skies in the two: the
+  converter gives Mitsuba pmrender's map sampled 16 times finer, each sample the mean of
+  pmrender's map over the sample's cell;
 - camera: `perspective`, fov_axis y, the vertical field of view, to_world = look_at;
 - bounces: pmrender's direct light + B diffuse/glossy bounces is Mitsuba's max_depth = B + 2
   (Mitsuba counts every path segment: 2 is direct light only), on scenes without mirrors.
@@ -167,6 +179,47 @@ def spot_emitter(light):
                                                        up=up)}
 
 
+# Mitsuba samples per pmrender texel, along each axis, of a converted environment map: the
+# bilinear blend between neighbouring texels then spans 1/32 of a texel on either side of a
+# column boundary and 1/16 of a row boundary. Where a pixel centre sees the map inside such a
+# band the two renderers' skies differ: with 8 samples, where the top pixel row of an earlier
+# env-corner camera saw the sky 0.35 degrees above the horizon (sky above, dim ground below),
+# Mitsuba's direct light was 0.1 darker in that row (the image mean 1 % darker).
+ENV_MAP_UPSAMPLE = 16
+
+
+def environment_map_table(texels, upsample=ENV_MAP_UPSAMPLE):
+    """pmrender's lat-long map (H x W x 3, piecewise constant over its texels) as the bitmap of a
+    Mitsuba `envmap`, (f H + 1) x f W x 3 for f = upsample. Mitsuba's column i lies at u = (i +
+    0.5) / (f W), inside pmrender's texel column i // f, and takes that texel's value; its row j lies
+    at v = j / (f H) and takes the mean of pmrender's map over v +- 1 / (2 f H) (clipped at the
+    poles): one texel row's value, or half each of two where the row is a texel boundary. Linear
+    interpolation between such means keeps each row's and column's integral."""
+    f = int(upsample)
+    fine = np.repeat(np.repeat(np.asarray(texels, dtype=np.float64), f, axis=1), f, axis=0)
+    table = np.empty((fine.shape[0] + 1, fine.shape[1], 3))
+    table[0], table[-1] = fine[0], fine[-1]
+    table[1:-1] = 0.5 * (fine[:-1] + fine[1:])
+    return table.astype(np.float32)
+
+
+def read_environment_map(path):
+    """The R, G, B texels (H x W x 3, linear) of an OpenEXR map."""
+    bitmap = mi.Bitmap(path).convert(mi.Bitmap.PixelFormat.RGB, mi.Struct.Type.Float32, srgb_gamma=False)
+    return np.array(bitmap, dtype=np.float64)
+
+
+def environment_emitter(env):
+    """Mitsuba emitter of a pmrender `environment` (export-scene's: a map by its absolute path)."""
+    if "radiance" in env:
+        return {"type": "constant", "radiance": rgb(env["radiance"])}
+    table = environment_map_table(read_environment_map(env["map"]))
+    # Half a turn besides pmrender's own: the same (u, v) faces -z in pmrender, +z in Mitsuba.
+    turn = float(env.get("rotation_deg", 0.0)) + 180.0
+    return {"type": "envmap", "bitmap": mi.Bitmap(table), "scale": float(env.get("scale", 1.0)),
+            "to_world": mi.ScalarTransform4f().rotate(axis=[0.0, 1.0, 0.0], angle=turn)}
+
+
 def rgb(v):
     return {"type": "rgb", "value": [float(x) for x in v]}
 
@@ -204,8 +257,9 @@ def material_bsdf(m):
     return {"type": "blendbsdf", "weight": w, "bsdf_0": base, "bsdf_1": mirror}
 
 
-def scene_dict(exported_json, max_depth, width=None, height=None, textures=None):
-    """Mitsuba scene dict of a `pmrender export-scene` file; width/height override the camera's.
+def scene_dict(exported_json, max_depth, width=None, height=None, textures=None, sampler="independent"):
+    """Mitsuba scene dict of a `pmrender export-scene` file; width/height override the camera's;
+    sampler: the Mitsuba sampler plugin.
     textures: {exported material name: {"obj": OBJ with texture coordinates, "image": file}} for
     materials whose diffuse reflectance is a base-colour texture (times the material's diffuse,
     which must then be 1: Mitsuba's bitmap has no factor); that OBJ replaces the exported one."""
@@ -221,7 +275,7 @@ def scene_dict(exported_json, max_depth, width=None, height=None, textures=None)
     d = {"type": "scene",
          # Emitters stay visible: pmrender's direct layer shows the emitting triangles' radiance.
          "integrator": {"type": "path", "max_depth": int(max_depth), "hide_emitters": False},
-         "sensor": {"type": "pixel_centres", "inner": camera, "film": film, "sampler": {"type": "independent"}}}
+         "sensor": {"type": "pixel_centres", "inner": camera, "film": film, "sampler": {"type": sampler}}}
     textures = textures or {}
     for i, mesh in enumerate(s["meshes"]):
         material = s["materials"][mesh["material"]]
@@ -245,6 +299,8 @@ def scene_dict(exported_json, max_depth, width=None, height=None, textures=None)
         else:
             d["light%d" % i] = {"type": "point", "position": light["position"],
                                 "intensity": rgb([p / (4.0 * math.pi) for p in light["power"]])}
+    if s.get("environment"):
+        d["environment"] = environment_emitter(s["environment"])
     return d
 
 
@@ -279,12 +335,12 @@ def centred_sensor_class():
 
 
 def render(scene, spp, seed=0):
-    """Mitsuba's render of the scene: float64 array (height, width, 3).
-
-    On one render thread: this module's sensor (and the glossy BSDF) are Python, called for every
-    sample, so Dr.Jit's worker threads would queue on Python's interpreter lock. On a 32 x 32
-    spot-lit box at 64 samples one thread took 0.35 s, two 1.63 s and the default pool 2.47 s.
-    The pool is restored afterwards: Mitsuba's EXR reader hangs with a pool of one thread."""
+    """Mitsuba's render of the scene: float64 array (height, width, 3)."""
+    # One render thread: this module's sensor (and the glossy BSDF) are Python, called for every
+    # sample, so Dr.Jit's worker threads queue on Python's interpreter lock. On a 32 x 32 spot-lit
+    # box at 64 samples one thread took 0.35 s, two 1.63 s and the default pool 2.47 s. Only while
+    # rendering: with a pool of one thread Mitsuba's Bitmap never returns from reading or writing
+    # an OpenEXR file (Mitsuba 3.9.1, Dr.Jit 1.5.0), and the test reads pmrender's images with it.
     threads = dr.thread_count()
     dr.set_thread_count(1)
     try:
