@@ -1,6 +1,7 @@
 // Spot lights, area lights and the environment on CUDA against OpenCL (NVIDIA's driver on the same
 // GPU where it is present): the spot-lit and the area-lit box of tests/opencl/lights_test.cpp and
-// a floor and wall under a constant sky and under a map, rendered by each method on both backends. Both run the same kernel source and draw the same random numbers, so
+// a floor and wall under a constant sky and under a map, rendered by each method (and by final
+// gathering over the photon map) on both backends. Both run the same kernel source and draw the same random numbers, so
 // the direct light (the camera pass, with its area-light samples) must agree to rounding and each
 // method's indirect mean within the few paths or photons that rounding sends another way.
 #include <gtest/gtest.h>
@@ -32,6 +33,10 @@ std::shared_ptr<const MethodSettings> method_named(const std::string& name) {
   }
   PhotonSettings photons;
   photons.photons = 262144;
+  if (name == "final gather") {
+    photons.photons = 65536;
+    photons.final_gather = 16;
+  }
   return std::make_shared<PhotonSettings>(photons);
 }
 
@@ -40,7 +45,7 @@ void expect_backends_agree(const Scene& scene, const char* label) {
   if (!cuda) GTEST_SKIP() << "no CUDA device on this machine";
   std::unique_ptr<Device> opencl = test::open_opencl_preferring_gpu();
   ASSERT_NE(opencl, nullptr);
-  for (const char* method : {"photon", "path", "radiosity"}) {
+  for (const char* method : {"photon", "path", "radiosity", "final gather"}) {
     SCOPED_TRACE(std::string(label) + ", " + method);
     RenderSettings settings;
     settings.width = settings.height = 64;
