@@ -268,8 +268,9 @@ Run add_tradeoff_command(CLI::App& app) {
   cmd->add_option("--rmax", o->rmax, "Largest footprint semiaxis and k-NN search radius of every photon setting, "
                                      "metres (default: 10% of the scene diagonal)");
   const std::string grid = "Grid (comma-separated lists)";
-  cmd->add_option("--estimators", o->grid.estimators, "pd, knn, radius (photon mapping), path (path tracer) and "
-                                                      "radiosity (vertex link radiosity)")
+  cmd->add_option("--estimators", o->grid.estimators, "pd, knn, radius (photon mapping), fg (final gathering over "
+                                                      "the pd map), path (path tracer) and radiosity (vertex link "
+                                                      "radiosity)")
       ->capture_default_str()->group(grid);
   cmd->add_option("--photons", o->grid.photons, "Photons per pass")->capture_default_str()->group(grid);
   cmd->add_option("--passes", o->grid.passes, "Passes per frame, every estimator")->capture_default_str()->group(grid);
@@ -283,6 +284,9 @@ Run add_tradeoff_command(CLI::App& app) {
   cmd->add_option("--alpha", o->grid.alpha, "Shrink's alpha, 0 < alpha < 1 (docs/progressive.md)")
       ->transform(finite_float())->capture_default_str()->group(grid);
   cmd->add_option("--spp", o->grid.spp, "Paths per pixel and pass of the path tracer")->capture_default_str()->group(grid);
+  cmd->add_option("--final-gather", o->grid.final_gather, "Gather rays per shading point and pass of --estimators fg "
+                                                        "(final gathering over the pd map)")
+      ->capture_default_str()->group(grid);
   cmd->add_option("--max-edge", o->grid.max_edge, "Radiosity's longest element edges, metres (0: the scene diagonal / 50)")
       ->capture_default_str()->group(grid);
   cmd->add_option("--directions", o->grid.directions, "Radiosity's link directions per element (nC)")

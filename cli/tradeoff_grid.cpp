@@ -66,6 +66,7 @@ std::string TradeoffSetting::label() const {
   if (estimator == "pd") text += " s=" + number_text(parameter);
   if (estimator == "knn") text += " k=" + number_text(parameter);
   if (estimator == "radius") text += parameter > 0 ? " r=" + number_text(parameter) : " r=auto";
+  if (estimator == "fg") text += " rays=" + number_text(parameter);
   text += " x" + std::to_string(passes);
   return progressive == "shrink" ? text + " shrink" : text;
 }
@@ -95,10 +96,12 @@ RenderSettings TradeoffSetting::render_settings(const RenderSettings& base, int 
     photon->photons = photons;
     photon->bounces = bounces;
     photon->rmax = rmax;
-    value_of(kEstimatorNames, estimator, &photon->estimator);
+    value_of(kEstimatorNames, estimator == "fg" ? "pd" : estimator, &photon->estimator);
     if (estimator == "pd") photon->smoothing = float(parameter);
     if (estimator == "knn") photon->knn_k = int(parameter);
     if (estimator == "radius") photon->radius = float(parameter);
+    // Final gathering over the pd map at its automatic smoothing (the method's default).
+    if (estimator == "fg") photon->final_gather = uint32_t(parameter);
     value_of(kProgressiveNames, progressive, &photon->progressive);
     photon->alpha = alpha;
     s.method = photon;
@@ -116,6 +119,7 @@ std::vector<TradeoffSetting> expand_tradeoff_grid(const TradeoffGridLists& lists
   const std::vector<double> radius = parse_number_list(lists.radius, "--radius", true);
   const std::vector<double> max_edge = parse_number_list(lists.max_edge, "--max-edge", true);
   const std::vector<uint64_t> directions = whole_numbers(lists.directions, "--directions", 65536);
+  const std::vector<uint64_t> rays = whole_numbers(lists.final_gather, "--final-gather", 65536);
   const std::vector<std::string> modes = split(lists.progressive);
   for (const std::string& mode : modes) {
     int unused = 0;
@@ -136,7 +140,8 @@ std::vector<TradeoffSetting> expand_tradeoff_grid(const TradeoffGridLists& lists
     else if (estimator == "pd") parameters = smoothing;
     else if (estimator == "knn") for (uint64_t v : k) parameters.push_back(double(v));
     else if (estimator == "radius") parameters = radius;
-    else throw InputError("--estimators: expected pd, knn, radius, path or radiosity, got '" + estimator + "'");
+    else if (estimator == "fg") for (uint64_t v : rays) parameters.push_back(double(v));
+    else throw InputError("--estimators: expected pd, knn, radius, fg, path or radiosity, got '" + estimator + "'");
     const bool photon_mapping = estimator != "path";
     const std::vector<uint64_t> counts = photon_mapping ? photons : std::vector<uint64_t>{0};
     for (uint64_t count : counts)

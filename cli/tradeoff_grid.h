@@ -13,11 +13,11 @@
 namespace pm::cli {
 
 struct TradeoffSetting {
-  std::string estimator;  // pd, knn, radius (photon mapping), path or radiosity
+  std::string estimator;  // pd, knn, radius, fg (photon mapping; fg: final gathering over pd), path or radiosity
   uint64_t photons = 0;   // photons per pass (photon mapping)
   uint32_t passes = 1;
-  // pd: smoothing s; knn: k; radius: metres (0: the scene default); path: spp; radiosity: the
-  // longest element edge, metres (0: the scene default)
+  // pd: smoothing s; knn: k; radius: metres (0: the scene default); fg: gather rays; path: spp;
+  // radiosity: the longest element edge, metres (0: the scene default)
   double parameter = 0;
   std::string progressive = "average";  // how a photon estimator's passes combine: average or shrink
   float alpha = 2.0f / 3.0f;            // shrink's alpha
@@ -33,13 +33,14 @@ struct TradeoffSetting {
 
 // The lists as given on the command line.
 struct TradeoffGridLists {
-  std::string estimators = "pd,knn,radius,path,radiosity";
+  std::string estimators = "pd,knn,radius,fg,path,radiosity";
   std::string photons = "65536,262144,1048576";
   std::string passes = "1,4";
   std::string smoothing = "8";
   std::string k = "64";
   std::string radius = "0";
   std::string spp = "1,4,16";
+  std::string final_gather = "16";  // fg's gather rays per shading point and pass
   std::string max_edge = "0";      // radiosity's element sizes, metres (0: the scene default)
   std::string directions = "256";  // radiosity's link directions per element
   std::string progressive = "average";  // average, shrink or both; shrink only where passes > 1

@@ -223,6 +223,7 @@ nlohmann::ordered_json tradeoff_json_rows(const std::vector<TradeoffRow>& rows) 
     if (r.setting.estimator == "pd") j["smoothing"] = r.setting.parameter;
     if (r.setting.estimator == "knn") j["k"] = r.setting.parameter;
     if (r.setting.estimator == "radius") j["radius"] = r.setting.parameter;
+    if (r.setting.estimator == "fg") j["final_gather"] = r.setting.parameter;
     j["passes"] = r.setting.passes;
     if (photon_mapping) j["progressive"] = r.setting.progressive;
     if (r.setting.progressive == "shrink") j["alpha"] = r.setting.alpha;
