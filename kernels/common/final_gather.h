@@ -21,7 +21,8 @@
    first vertex (path_trace.h). The N rays of a pass are stratified: the first number is jittered
    in N strata, the second a rotated golden-ratio lattice, so that the rays spread over the
    hemisphere rather than clump. Random numbers: Philox keyed by (seed, photon_frame), counter
-   (pixel, mirror depth and vertex, "FGAT", ray index within the frame: pass * N + ray). */
+   (pixel, mirror depth and vertex, "FGAT", ray index within the frame: pass * N + ray); the light
+   samples at a hit are the camera pass's (sampled_light_direct, one per kind, keyed by the frame). */
 #ifndef PM_FINAL_GATHER_H
 #define PM_FINAL_GATHER_H
 
@@ -37,13 +38,8 @@ PM_DEVICE Vec3 final_gather_at_hit(const KernelGlobals* kg, const LaunchParams* 
                                    Vec3 wy, float offset, uint pixel, uint event, uint ray)
 {
   Vec3 radiance = direct_light(kg, p, my, y, ny, wy, offset);
-  for (uint kind = 0; kind < PM_SAMPLED_LIGHT_KINDS; ++kind) {
-    if (!sampled_light_present(p, kind)) continue;
-    Uniform4 u = rng_uniform4_bits(rng_bits4(p->seed, p->photon_frame, pixel, event, sampled_light_stream(kind), ray));
-    AreaLightSample s = sampled_light_sample(kg, p, kind, y, ny, offset, u);
-    if (vec3_max_component(s.irradiance) > 0.0f)
-      radiance = vec3_add(radiance, vec3_mul(brdf_eval(my, ny, s.wi, wy), s.irradiance));
-  }
+  for (uint kind = 0; kind < PM_SAMPLED_LIGHT_KINDS; ++kind)
+    radiance = vec3_add(radiance, sampled_light_direct(kg, p, kind, my, y, ny, wy, offset, 1u, pixel, event, ray));
   if (p->hit_count > 0u) {
     Vec3 indirect = vec3_splat(0.0f), caustic = vec3_splat(0.0f);
     uint accepted = 0;
