@@ -33,17 +33,17 @@
 #define PM_STREAM_FINAL_GATHER 0x46474154u /* "FGAT" */
 
 /* Radiance leaving y towards wy (ny facing wy) by one diffuse or glossy reflection at y: the direct
-   light, exactly, and the photon map's light arriving after further bounces. */
+   light, exactly, and the photon map's light arriving after further bounces (photons read added
+   to *accepted). */
 PM_DEVICE Vec3 final_gather_at_hit(const KernelGlobals* kg, const LaunchParams* p, const Material* my, Vec3 y, Vec3 ny,
-                                   Vec3 wy, float offset, uint pixel, uint event, uint ray)
+                                   Vec3 wy, float offset, uint pixel, uint event, uint ray, uint* accepted)
 {
   Vec3 radiance = direct_light(kg, p, my, y, ny, wy, offset);
   for (uint kind = 0; kind < PM_SAMPLED_LIGHT_KINDS; ++kind)
     radiance = vec3_add(radiance, sampled_light_direct(kg, p, kind, my, y, ny, wy, offset, 1u, pixel, event, ray));
   if (p->hit_count > 0u) {
     Vec3 indirect = vec3_splat(0.0f), caustic = vec3_splat(0.0f);
-    uint accepted = 0;
-    gather_at(kg, p, my, y, ny, wy, &indirect, &caustic, &accepted);
+    gather_at(kg, p, my, y, ny, wy, &indirect, &caustic, accepted);
     radiance = vec3_add(radiance, vec3_add(indirect, caustic));
   }
   return radiance;
@@ -52,7 +52,7 @@ PM_DEVICE Vec3 final_gather_at_hit(const KernelGlobals* kg, const LaunchParams* 
 /* The radiance a gather ray from origin along dir brings back: at each surface it meets, through
    mirrors, what that surface reflects diffusely towards the ray. */
 PM_DEVICE Vec3 final_gather_ray(const KernelGlobals* kg, const LaunchParams* p, Vec3 origin, Vec3 dir, uint pixel,
-                                uint event_base, uint ray)
+                                uint event_base, uint ray, uint* accepted)
 {
   Vec3 radiance = vec3_splat(0.0f), throughput = vec3_splat(1.0f);
   for (uint vertex = 1; vertex <= PM_PHOTON_MAX_SPECULAR + 1u; ++vertex) {
@@ -67,7 +67,7 @@ PM_DEVICE Vec3 final_gather_ray(const KernelGlobals* kg, const LaunchParams* p, 
     float offset = ray_offset_distance(origin, hit.t, p->ray_epsilon);
     if (channel_mean(material_diffuse(&m)) + channel_mean(material_glossy(&m)) > 0.0f)
       radiance = vec3_add(radiance, vec3_mul(throughput, final_gather_at_hit(kg, p, &m, pos, n, wo, offset, pixel,
-                                                                              event_base + vertex, ray)));
+                                                                              event_base + vertex, ray, accepted)));
     Vec3 mirror = material_mirror(&m);
     if (vec3_max_component(mirror) <= 0.0f) break;
     throughput = vec3_mul(throughput, mirror);
@@ -79,7 +79,8 @@ PM_DEVICE Vec3 final_gather_ray(const KernelGlobals* kg, const LaunchParams* p, 
 
 /* Work item = pixel in tile order (pixel_order.h): at each shading point of the mirror chain, the
    mean of the pass's gather rays into the indirect sum and the photon map's caustic light there
-   into the caustic sum. */
+   into the caustic sum; with collect_stats, the photons read and the shading points gathered, as
+   the gather counts them (gather.h). */
 PM_DEVICE void kernel_final_gather(const KernelGlobals* kg, const LaunchParams* p, uint item)
 {
   uint pixel;
@@ -87,6 +88,7 @@ PM_DEVICE void kernel_final_gather(const KernelGlobals* kg, const LaunchParams* 
   uint pixels = p->width * p->height;
   uint rays = p->final_gather_rays > 0u ? p->final_gather_rays : 1u;
   Vec3 indirect = vec3_splat(0.0f), caustic = vec3_splat(0.0f);
+  uint accepted = 0, points = 0;
   for (uint depth = 0; depth <= p->mirror_depth; ++depth) {
     ShadingPoint sp;
     if (!shading_point_load(kg, depth * pixels + pixel, &sp)) break;
@@ -95,7 +97,6 @@ PM_DEVICE void kernel_final_gather(const KernelGlobals* kg, const LaunchParams* 
     if (p_diffuse + p_glossy <= 0.0f) continue;
     if (p->hit_count > 0u) {
       Vec3 unused = vec3_splat(0.0f), point_caustic = vec3_splat(0.0f);
-      uint accepted = 0;
       gather_at(kg, p, m, sp.position, sp.normal, sp.outgoing, &unused, &point_caustic, &accepted);
       caustic = vec3_add(caustic, vec3_mul(sp.weight, point_caustic));
     }
@@ -116,11 +117,16 @@ PM_DEVICE void kernel_final_gather(const KernelGlobals* kg, const LaunchParams* 
       Vec3 beta = path_sample_lobe(m, glossy, sp.normal, sp.outgoing, u0, u1, &dir);
       beta = vec3_scale(beta, 1.0f / (glossy ? 1.0f - p_lobe_diffuse : p_lobe_diffuse));
       if (vec3_max_component(beta) <= 0.0f) continue;
-      sum = vec3_add(sum, vec3_mul(beta, final_gather_ray(kg, p, origin, dir, pixel, event_base, ray)));
+      sum = vec3_add(sum, vec3_mul(beta, final_gather_ray(kg, p, origin, dir, pixel, event_base, ray, &accepted)));
     }
     indirect = vec3_add(indirect, vec3_mul(sp.weight, vec3_scale(sum, 1.0f / (float)rays)));
+    ++points;
   }
   film_add(kg, p, pixel, indirect, caustic);
+  if (p->collect_stats) {
+    pm_atomic_add_u32(&kg->gather_stats[0], accepted);
+    pm_atomic_add_u32(&kg->gather_stats[1], points);
+  }
 }
 
 #endif
