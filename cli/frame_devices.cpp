@@ -46,28 +46,31 @@ std::vector<const Renderer*> renderer_pointers(const FrameDevices& opened) {
   return all;
 }
 
-FrameDevices open_frame_devices(const DeviceChoice& choice, bool sequence, uint32_t checkpoint_every, const Scene& scene,
-                                const RenderSettings& settings, const FrameJobOptions& job_options, int width, int height) {
+FrameDevices open_devices(const DeviceChoice& choice, bool sequence, uint32_t checkpoint_every) {
   FrameDevices opened;
   std::vector<std::unique_ptr<Device>>& devices = opened.devices;
   if (!choice.several) devices.push_back(create_device(choice.backend, choice.device));
   else devices = create_devices(choice.backend, choice.indices);
   if (devices.size() > 1 && !sequence && checkpoint_every > 0)
     throw InputError("--checkpoint-every: a single frame on several --devices cannot be checkpointed");
-  std::vector<Device*> all;
-  for (auto& d : devices) all.push_back(d.get());
+  return opened;
+}
+
+void make_frame_jobs(FrameDevices& opened, bool sequence, const Scene& scene, const RenderSettings& settings,
+                     const FrameJobOptions& job_options, int width, int height, std::unique_ptr<Renderer> first) {
+  std::vector<Device*> all = device_pointers(opened);
   if (sequence) {
     opened.pools.resize(all.size());  // each device's scene upload on its own thread
     for_each_device(all.size(), [&](size_t d) {
-      opened.pools[d] = std::make_unique<RendererPool>(std::vector<Device*>{all[d]}, scene, settings);
+      opened.pools[d] = std::make_unique<RendererPool>(std::vector<Device*>{all[d]}, scene, settings,
+                                                       d == 0 ? std::move(first) : nullptr);
     });
   } else {
-    opened.pools.push_back(std::make_unique<RendererPool>(all, scene, settings));
+    opened.pools.push_back(std::make_unique<RendererPool>(all, scene, settings, std::move(first)));
   }
-  for (auto& d : devices)  // before PoCL commits the buffers: a refusal instead of an abort
+  for (auto& d : opened.devices)  // before PoCL commits the buffers: a refusal instead of an abort
     check_device_memory(d->allocated_bytes(), d->info(), width, height, !settings.layers.empty());
   for (auto& pool : opened.pools) opened.jobs.push_back(std::make_unique<FrameJob>(*pool, scene, job_options));
-  return opened;
 }
 
 }  // namespace pm::cli

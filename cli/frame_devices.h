@@ -35,9 +35,13 @@ struct FrameDevices {
 std::vector<Device*> device_pointers(const FrameDevices& opened);
 std::vector<const Renderer*> renderer_pointers(const FrameDevices& opened);
 
-// Opens the devices (each on its own thread, render/device_threads.h), uploads the scene to each,
-// checks each device's memory for a frame of width x height, and makes the frame jobs.
-FrameDevices open_frame_devices(const DeviceChoice& choice, bool sequence, uint32_t checkpoint_every, const Scene& scene,
-                                const RenderSettings& settings, const FrameJobOptions& job_options, int width, int height);
+// Opens the devices (each on its own thread, render/device_threads.h); nothing runs on them yet.
+FrameDevices open_devices(const DeviceChoice& choice, bool sequence, uint32_t checkpoint_every);
+
+// Uploads the scene to each opened device, checks each device's memory for a frame of width x
+// height, and makes the frame jobs. first: a renderer already made on the first device with
+// these settings (--method auto's race winner), which the first pool takes over.
+void make_frame_jobs(FrameDevices& opened, bool sequence, const Scene& scene, const RenderSettings& settings,
+                     const FrameJobOptions& job_options, int width, int height, std::unique_ptr<Renderer> first = nullptr);
 
 }  // namespace pm::cli

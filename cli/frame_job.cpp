@@ -40,6 +40,14 @@ FrameJob::FrameJob(RendererPool& pool, const Scene& scene, const FrameJobOptions
     device_names_ += (i ? ", " : "") + pool.renderer(i).device().info().name;
 }
 
+void FrameJob::continue_from(int frame, FilmSums sums, double seconds) {
+  continuation_ = Continuation{frame, std::move(sums), seconds};
+}
+
+void FrameJob::add_attributes(const std::vector<std::pair<std::string, std::string>>& extra) {
+  extra_attributes_.insert(extra_attributes_.end(), extra.begin(), extra.end());
+}
+
 std::vector<std::pair<std::string, std::string>> FrameJob::attributes(int frame, const PassReport& report,
                                                                       const std::string& stopped_by) const {
   std::vector<std::pair<std::string, std::string>> a = {
@@ -65,6 +73,7 @@ std::vector<std::pair<std::string, std::string>> FrameJob::attributes(int frame,
     a.push_back({"pmrender/error_bias_stderr", number_text(bias.bias_error)});
     a.push_back({"pmrender/error_control_paths", std::to_string(bias.paths)});
   }
+  a.insert(a.end(), extra_attributes_.begin(), extra_attributes_.end());
   for (auto& layer_attribute : film_layer_attributes(renderer_.layers(), scene_, options_.full_float))
     a.push_back(std::move(layer_attribute));
   if (const IndirectMethod* method = renderer_.method()) {
@@ -133,13 +142,21 @@ RenderedFrame FrameJob::render(int frame, const std::string& path, const std::st
     write_exr(path, image, options_.full_float);
   };
 
+  const FilmSums* resume = checkpoint ? &checkpoint->sums : nullptr;
+  double resumed_seconds = checkpoint ? checkpoint->seconds : 0.0;
+  std::optional<Continuation> continuation;
+  if (continuation_ && continuation_->frame == frame) continuation.swap(continuation_);
+  if (continuation && !checkpoint) {
+    resume = &continuation->sums;
+    resumed_seconds = continuation->seconds;
+  }
   const auto start = std::chrono::steady_clock::now();
-  outcome.result = pool_.render_progressive(frame, options_.budget, checkpoint ? &checkpoint->sums : nullptr,
-                                            checkpoint ? checkpoint->seconds : 0.0, callbacks);
+  outcome.result = pool_.render_progressive(frame, options_.budget, resume, resumed_seconds, callbacks);
   FrameStats stats;
   FrameImage& image = rendered.image;
   image = renderer_.read_image(&stats);
   outcome.render_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (continuation && resume == &continuation->sums) outcome.render_ms += 1000.0 * continuation->seconds;  // the race's time too
   outcome.repaired_pixels = stats.repaired_pixels;
   outcome.photons_reused = method && method->stats().get("photons_reused") != 0;
   image.attributes = attributes(frame, outcome.result, outcome.result.stopped_by);

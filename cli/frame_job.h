@@ -64,6 +64,12 @@ class FrameJob {
   using ImageCheck = std::function<void(int frame, const FrameImage& image, int repaired_pixels)>;
   void set_image_check(ImageCheck check) { image_check_ = std::move(check); }
 
+  // The first render of `frame` goes on from these passes and counts their time (--method auto:
+  // the race's winner, whose renderer the pool holds, has rendered them already).
+  void continue_from(int frame, FilmSums sums, double seconds);
+  // Header attributes written into every frame's EXR (--method auto's choice).
+  void add_attributes(const std::vector<std::pair<std::string, std::string>>& extra);
+
   int width() const { return renderer_.width(); }
   int height() const { return renderer_.height(); }
   // "opencl: <device name>[, <name>...]".
@@ -80,6 +86,13 @@ class FrameJob {
   FrameJobOptions options_;
   std::string fingerprint_;
   std::mutex* pass_progress_ = nullptr;  // not null: draw, holding it
+  struct Continuation {
+    int frame = 0;
+    FilmSums sums;
+    double seconds = 0;
+  };
+  std::optional<Continuation> continuation_;
+  std::vector<std::pair<std::string, std::string>> extra_attributes_;
   ImageCheck image_check_;
 };
 

@@ -14,9 +14,10 @@ const std::vector<MethodEntry>& methods() {
   return table;
 }
 
-std::vector<std::string> method_names() {
+std::vector<std::string> method_names(bool with_auto) {
   std::vector<std::string> names;
   for (const MethodEntry& m : methods()) names.push_back(m.name);
+  if (with_auto) names.push_back(kAutoMethod);
   return names;
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "render/indirect_method.h"
+#include "render/method_race.h"
 
 namespace pm::cli {
 
@@ -19,6 +20,10 @@ class MethodOptions {
  public:
   virtual ~MethodOptions() = default;
   virtual std::shared_ptr<const MethodSettings> settings(bool budgeted) const = 0;
+  // What --method auto races of this method under a budget (render/method_race.h), each named:
+  // by default the method as its options describe it; a method with variants worth racing
+  // (photon mapping with and without final gathering) offers each.
+  virtual std::vector<RaceCandidate> candidates(const std::string& name) const { return {{name, settings(true)}}; }
 };
 
 struct MethodEntry {
@@ -29,7 +34,9 @@ struct MethodEntry {
 };
 
 const std::vector<MethodEntry>& methods();
-std::vector<std::string> method_names();
+// The methods' names, and (with_auto) "auto": the race of them all (render/method_race.h).
+std::vector<std::string> method_names(bool with_auto = false);
+constexpr const char* kAutoMethod = "auto";
 
 // Each method's options file.
 std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd);

@@ -79,6 +79,26 @@ class PhotonOptions final : public MethodOptions {
     s->validate();
     return s;
   }
+
+  // Photon mapping as its options say, and beside it the same with final gathering (16 rays a
+  // pass unless --final-gather names a count) or without it (when --final-gather asked for it).
+  std::vector<RaceCandidate> candidates(const std::string& name) const override {
+    auto plain = std::static_pointer_cast<const PhotonSettings>(settings(true));
+    auto other = std::make_shared<PhotonSettings>(*plain);
+    other->final_gather = plain->final_gather > 0 ? 0 : kRacedFinalGatherRays;
+    try {
+      other->validate();
+    } catch (const SettingError&) {
+      return {{name, plain}};  // final gathering does not apply to these settings (knn, no bounces)
+    }
+    std::shared_ptr<const MethodSettings> gathered = plain->final_gather > 0 ? plain : other;
+    std::shared_ptr<const MethodSettings> direct = plain->final_gather > 0 ? other : plain;
+    return {{name, direct},
+            {name + " --final-gather " + std::to_string(plain->final_gather > 0 ? plain->final_gather : kRacedFinalGatherRays),
+             gathered}};
+  }
+  // Final gathering's rays per pass in the race: the count docs/tradeoff.md measured.
+  static constexpr uint32_t kRacedFinalGatherRays = 16;
 };
 
 }  // namespace

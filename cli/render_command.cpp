@@ -37,6 +37,7 @@
 #include "render/frame_claim.h"
 #include "render/frame_runs.h"
 #include "render/interruption.h"
+#include "render/method_race.h"
 #include "render/output_pattern.h"
 #include "render/preview_exposure.h"
 #include "render/preview_png.h"
@@ -184,9 +185,29 @@ int run_render(const RenderCommandOptions& o) {
   FrameDevices opened;
   if (!todo.empty()) {
     DeviceChoice choice{o.render.backend, o.render.device, !o.devices.empty(), device_list};
-    opened = open_frame_devices(choice, todo.size() > 1, o.checkpoint_every, scene, settings, job_options, width, height);
+    opened = open_devices(choice, todo.size() > 1, o.checkpoint_every);
     print_device_startup_messages(device_pointers(opened), o.verbose, o.quiet);
     remove_stale_temporaries(targets, o.verbose);
+    if (o.render.method == kAutoMethod) {
+      // The methods race on the first frame; the winner renders every frame, the first going on
+      // from its passes in the race (render/method_race.h).
+      const std::vector<RaceCandidate> candidates = method_candidates(o.render);
+      MethodChoice race =
+          race_methods(*opened.devices.front(), scene, settings, candidates, todo.front(), job_options.budget);
+      settings.method = candidates[race.winner].method;
+      make_frame_jobs(opened, todo.size() > 1, scene, settings, job_options, width, height, std::move(race.renderer));
+      opened.jobs.front()->continue_from(todo.front(), std::move(race.sums), race.race_seconds);
+      for (auto& job : opened.jobs)
+        job->add_attributes({{"pmrender/method_choice", candidates[race.winner].label},
+                             {"pmrender/method_race", race.summary()}});
+      if (!o.quiet) {
+        std::printf("method auto: %s, raced on frame %d in %s (%s)\n", candidates[race.winner].label.c_str(),
+                    todo.front(), seconds_text(race.race_seconds).c_str(), race.summary().c_str());
+        std::fflush(stdout);
+      }
+    } else {
+      make_frame_jobs(opened, todo.size() > 1, scene, settings, job_options, width, height);
+    }
   }
   std::vector<std::unique_ptr<Device>>& devices = opened.devices;
   double first_frame_ms = -1;

@@ -42,7 +42,9 @@ void add_render_options(CLI::App* cmd, RenderOptions& o) {
       ->capture_default_str()->transform(integer_in(1, 65536));
   std::string method_help = "Indirect-light method:";
   for (const MethodEntry& m : methods()) method_help += std::string(" ") + m.name + " (" + m.summary + ")";
-  cmd->add_option("--method", o.method, method_help)->capture_default_str()->check(CLI::IsMember(method_names()));
+  method_help += " or auto (under --time or --target-error: the methods race on the frame and the one forecast "
+                 "to meet the budget best goes on; docs/method-auto.md)";
+  cmd->add_option("--method", o.method, method_help)->capture_default_str()->check(CLI::IsMember(method_names(true)));
   cmd->add_flag("--no-photon-reuse,--no-reuse", o.no_reuse,
                 "Compute the lighting of every frame keyed by its own frame number, also over camera-only motion");
   cmd->add_option("--environment", o.environment,
@@ -115,9 +117,23 @@ RenderSettings render_settings(const RenderOptions& o, bool budgeted) {
   settings.area_light_samples = o.area_light_samples;
   settings.reuse_lighting = !o.no_reuse;
   if (!o.resolution.empty()) parse_resolution(o.resolution, &settings.width, &settings.height);
-  settings.method = o.method_options.at(o.method)->settings(budgeted);
+  if (o.method == kAutoMethod) {
+    if (!budgeted)
+      throw SettingError("method", "auto races the methods under a budget of pmrender render: give --time SECONDS or "
+                                   "--target-error E");
+    settings.method = method_candidates(o).front().method;  // the race's winner replaces it (render/method_race.h)
+  } else {
+    settings.method = o.method_options.at(o.method)->settings(budgeted);
+  }
   settings.validate();
   return settings;
+}
+
+std::vector<RaceCandidate> method_candidates(const RenderOptions& o) {
+  std::vector<RaceCandidate> all;
+  for (const MethodEntry& m : methods())
+    for (RaceCandidate& c : o.method_options.at(m.name)->candidates(m.name)) all.push_back(std::move(c));
+  return all;
 }
 
 std::vector<int> parse_frames_option(const std::string& spec, int first, int last) {

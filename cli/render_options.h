@@ -45,5 +45,7 @@ void add_render_options(CLI::App* cmd, RenderOptions& options);
 // --time or --target-error budget stops the passes (MethodOptions::settings).
 Scene load_scene(const RenderOptions& options, SceneLoadReport* report = nullptr);
 RenderSettings render_settings(const RenderOptions& options, bool budgeted = false);
+// Every method's candidates for --method auto's race, validated (MethodOptions::candidates).
+std::vector<RaceCandidate> method_candidates(const RenderOptions& options);
 
 }  // namespace pm::cli

@@ -6,6 +6,7 @@
 
 #include "render/buffer_table.h"
 #include "render/device.h"
+#include "render/errors.h"
 
 namespace pm {
 
@@ -132,6 +133,41 @@ BiasEstimate BiasControl::add_and_compare(LaunchParams params, uint32_t samples)
   device_.download(buffers_[BufferSlot::control_sums], sums.data(), items * sizeof(float4));
   device_.download(buffers_[BufferSlot::control_film], film.data(), items * sizeof(float4));
   return compare_with_control(sums, film, grid_, paths_, kControlRegionSide);
+}
+
+void BiasControl::grow_shared(LaunchParams params, SharedControl& shared, uint32_t samples) {
+  const uint64_t items = grid_.pixels();
+  DeviceBuffer& sums = buffers_[BufferSlot::control_sums];
+  if (shared.sums.size() == items) device_.upload(sums, shared.sums.data(), items * sizeof(float4));
+  else device_.fill_zero(sums, sums.bytes());
+  params.control_stride = grid_.stride;
+  params.control_samples = samples;
+  params.control_first_sample = uint32_t(shared.paths);
+  device_.launch(KernelId::bias_control, items, params);
+  shared.sums.resize(items);
+  device_.download(sums, shared.sums.data(), items * sizeof(float4));
+  shared.paths += samples;
+  cleared_ = false;  // this renderer's own control starts again when next asked
+  paths_ = 0;
+}
+
+void BiasControl::adopt(const SharedControl& shared) {
+  const uint64_t items = grid_.pixels();
+  if (shared.sums.size() != items) throw DeviceError("error control: shared sums of another size than the control grid");
+  device_.upload(buffers_[BufferSlot::control_sums], shared.sums.data(), items * sizeof(float4));
+  paths_ = shared.paths;
+  cleared_ = true;
+}
+
+std::vector<float4> BiasControl::film_at_control(LaunchParams params) {
+  const uint64_t items = grid_.pixels();
+  params.control_stride = grid_.stride;
+  params.control_samples = 0;  // reads the film at the control pixels, adds no path
+  params.control_first_sample = 0;
+  device_.launch(KernelId::bias_control, items, params);
+  std::vector<float4> film(items);
+  device_.download(buffers_[BufferSlot::control_film], film.data(), items * sizeof(float4));
+  return film;
 }
 
 }  // namespace pm

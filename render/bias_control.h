@@ -66,6 +66,15 @@ ControlGrid control_grid(int width, int height);
 BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const std::vector<float4>& control_film,
                                   const ControlGrid& grid, uint64_t paths, uint32_t region_side);
 
+// A control shared by several renderers of one frame (--method auto's race,
+// render/method_race.h): its paths depend only on the frame, the seed and the bounces, so one set
+// of control paths measures every candidate's film, and grows on whichever renderer is at hand.
+struct SharedControl {
+  std::vector<float4> sums;  // control_sums as the kernel leaves them; empty: no paths yet
+  uint64_t paths = 0;        // per control pixel
+  uint32_t bounces = 0;      // the light bounces its paths follow
+};
+
 // Runs the control beside a renderer's film: clears it per frame, adds paths on demand.
 class BiasControl {
  public:
@@ -77,6 +86,13 @@ class BiasControl {
   BiasEstimate add_and_compare(LaunchParams params, uint32_t samples);
   const ControlGrid& grid() const { return grid_; }
   uint64_t paths() const { return paths_; }
+  // `samples` more paths per control pixel added to shared (on this device, under params).
+  void grow_shared(LaunchParams params, SharedControl& shared, uint32_t samples);
+  // shared's paths become this control's (the frame's, on this renderer from now on).
+  void adopt(const SharedControl& shared);
+  // This film (params.film_passes) at the control pixels, as compare_with_control reads it.
+  // Waits for the device.
+  std::vector<float4> film_at_control(LaunchParams params);
 
  private:
   Device& device_;

@@ -280,6 +280,10 @@ void Renderer::run_pass() { run_pass(next_pass_); }
 
 void Renderer::run_pass(uint32_t pass) {
   if (!method_) throw DeviceError("renderer: no indirect-light method to run a pass of");
+  // Several renderers may share a device (--method auto's race, render/method_race.h): its slot
+  // table then holds the buffers of whichever ran last. Binding ours again changes nothing, and
+  // costs nothing, when they are bound already.
+  buffers_.bind_all();
   frame_.params.pass_index = pass;
   method_->run_pass(frame_, pass);
   ++passes_done_;
@@ -288,6 +292,7 @@ void Renderer::run_pass(uint32_t pass) {
 }
 
 double Renderer::estimate_error(bool final, double noise_scale) {
+  buffers_.bind_all();  // as in run_pass
   double noise = estimate_noise();
   if (noise >= 0) noise *= noise_scale;
   if (method_ && method_->may_be_biased() && settings_.control_paths > 0 && passes_done_ > 0) {
@@ -325,6 +330,26 @@ double Renderer::estimate_error(bool final, double noise_scale) {
   // The control measures noise and bias together; without it, the even/odd noise is all we know.
   last_error_upper_ = last_bias_.known ? last_bias_.mean_abs_error_upper : noise;
   return last_bias_.known ? last_bias_.mean_abs_error : noise;
+}
+
+uint32_t Renderer::control_bounces() const { return method_ ? method_->light_bounces() : 0u; }
+
+void Renderer::grow_shared_control(SharedControl& shared, uint32_t samples) {
+  if (!control_) throw DeviceError("renderer: no error control on this renderer");
+  buffers_.bind_all();  // as in run_pass
+  LaunchParams p = frame_.params;
+  p.max_bounces = control_bounces();
+  p.film_passes = passes_done_ > 0 ? passes_done_ : 1u;
+  control_->grow_shared(p, shared, samples);
+  shared.bounces = p.max_bounces;
+}
+
+std::vector<float4> Renderer::film_at_control() {
+  buffers_.bind_all();  // as in run_pass
+  LaunchParams p = frame_.params;
+  p.max_bounces = control_bounces();
+  p.film_passes = passes_done_ > 0 ? passes_done_ : 1u;
+  return control_->film_at_control(p);
 }
 
 double Renderer::estimate_noise() {
@@ -374,6 +399,7 @@ void Renderer::set_film_sums(const FilmSums& sums) {
   passes_done_ = sums.passes;
   odd_passes_ = sums.odd_passes;
   next_pass_ = sums.passes;
+  if (!sums.control.sums.empty() && sums.control.bounces == control_bounces()) control_->adopt(sums.control);
 }
 
 void Renderer::add_film_sums(const FilmSums& other) {
@@ -393,6 +419,7 @@ void Renderer::add_film_sums(const FilmSums& other) {
 }
 
 void Renderer::resolve() {
+  buffers_.bind_all();  // as in run_pass
   LaunchParams p = frame_.params;
   p.film_passes = passes_done_ > 0 ? passes_done_ : 1u;
   {

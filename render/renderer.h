@@ -63,6 +63,10 @@ struct FilmSums {
   uint32_t passes = 0;
   uint32_t odd_passes = 0;  // of passes, those with an odd pass number
   std::vector<float4> indirect, caustic, odd;
+  // The error control's paths for these passes' frame, when they come with the sums (--method
+  // auto's race): set_film_sums takes them over, so the frame's next estimate starts as sharp as
+  // the race's last. Empty otherwise (checkpoints, other devices).
+  SharedControl control;
 };
 
 class Renderer {
@@ -105,6 +109,17 @@ class Renderer {
   // The last estimate's upper end (the control's estimate plus two standard errors): a target
   // error stops a frame on this, so that a lucky low control does not stop it early.
   double last_error_upper() const { return last_error_upper_; }
+
+  // --method auto's race (render/method_race.h): a control shared between the renderers of one
+  // frame grown by `samples` paths per control pixel on this renderer's device, and this film
+  // (the passes so far) at the control pixels, for compare_with_control against it: the
+  // relative mean absolute error, noise and bias together, of any method, the path tracer's
+  // included. Wait for the device.
+  void grow_shared_control(SharedControl& shared, uint32_t samples);
+  std::vector<float4> film_at_control();
+  const ControlGrid& error_control_grid() const { return control_->grid(); }
+  // The light bounces the control follows for this renderer's method.
+  uint32_t control_bounces() const;
 
   // The film sums (waits for the device), and sums put back or added in: a checkpoint's resume,
   // or another device's passes. set_film_sums also sets the pass count; add_film_sums adds it.

@@ -14,12 +14,19 @@
 
 namespace pm {
 
-RendererPool::RendererPool(const std::vector<Device*>& devices, const Scene& scene, const RenderSettings& settings) {
+RendererPool::RendererPool(const std::vector<Device*>& devices, const Scene& scene, const RenderSettings& settings)
+    : RendererPool(devices, scene, settings, nullptr) {}
+
+RendererPool::RendererPool(const std::vector<Device*>& devices, const Scene& scene, const RenderSettings& settings,
+                           std::unique_ptr<Renderer> first) {
   if (devices.empty()) throw InputError("no device to render with");
   renderers_.resize(devices.size());
+  renderers_[0] = std::move(first);
   // Each device uploads the scene and allocates on a thread of its own (its BVH build and the
   // uploads overlap those of the others).
-  for_each_device(devices.size(), [&](size_t d) { renderers_[d] = std::make_unique<Renderer>(*devices[d], scene, settings); });
+  for_each_device(devices.size(), [&](size_t d) {
+    if (!renderers_[d]) renderers_[d] = std::make_unique<Renderer>(*devices[d], scene, settings);
+  });
 }
 
 ProgressiveResult RendererPool::render_progressive(int frame, const PassBudget& budget, const FilmSums* resume,

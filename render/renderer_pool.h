@@ -18,6 +18,10 @@ namespace pm {
 class RendererPool {
  public:
   RendererPool(const std::vector<Device*>& devices, const Scene& scene, const RenderSettings& settings);
+  // The same, with first (already made on devices[0] with these settings, e.g. mid-frame from
+  // --method auto's race: render/method_race.h) as the first device's renderer.
+  RendererPool(const std::vector<Device*>& devices, const Scene& scene, const RenderSettings& settings,
+               std::unique_ptr<Renderer> first);
 
   size_t size() const { return renderers_.size(); }
   Renderer& renderer(size_t i) { return *renderers_[i]; }

@@ -1,0 +1,276 @@
+// The race of --method auto (method_race.h): rounds, forecasts, drops and the winner.
+#include "render/method_race.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "render/errors.h"
+#include "render/interruption.h"
+
+namespace pm {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+// Readings this far apart in time (a factor) measure a rate; closer ones are mostly the
+// estimate's own noise.
+constexpr double kRateSpan = 1.5;
+
+std::string percent(double e) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.2f %%", 100.0 * e);
+  return text;
+}
+
+std::string seconds_text(double s) {
+  char text[32];
+  if (!std::isfinite(s)) return "never";
+  std::snprintf(text, sizeof(text), "%.3g s", s);
+  return text;
+}
+
+// A candidate on the track. Its film at the control pixels is kept at every reading, so that all
+// its readings (and every candidate's) are measured against the same control, the latest: the
+// control's own noise inflates an early reading, and a rate fitted across controls of different
+// sizes would mistake the control sharpening for the film converging.
+struct Runner {
+  std::unique_ptr<Renderer> renderer;
+  double own_seconds = 0;
+  RaceEntry entry;
+  std::vector<std::vector<float4>> films;  // per reading
+  double last_upper = -1;  // the last reading's error plus two standard errors
+  bool out = false;
+
+  ErrorDecay decay() const {
+    const IndirectMethod* m = renderer->method();
+    if (m->max_passes() > 0 && renderer->passes_done() >= m->max_passes()) return ErrorDecay::fixed;
+    return m->may_be_biased() ? ErrorDecay::measured : ErrorDecay::monte_carlo;
+  }
+  // Whether its forecast rests on a measured rate (or on a final error).
+  bool measured() const {
+    if (decay() == ErrorDecay::fixed) return !entry.readings.empty();
+    return entry.readings.size() >= 2 &&
+           entry.readings.back().seconds >= kRateSpan * entry.readings[entry.readings.size() - 2].seconds;
+  }
+};
+
+// The candidate's passes for one round: at least one, then until the round's time is spent.
+void run_round(Runner& r, double slice, uint32_t max_passes) {
+  const Clock::time_point begun = Clock::now();
+  const IndirectMethod* m = r.renderer->method();
+  const uint32_t cap = m->max_passes() > 0 ? std::min(max_passes, m->max_passes()) : max_passes;
+  const uint32_t least = r.renderer->passes_done() + 1;
+  while (r.renderer->passes_done() < cap && (r.renderer->passes_done() < least || seconds_since(begun) < slice)) {
+    throw_if_interrupted();
+    r.renderer->run_pass();
+    r.renderer->wait();
+  }
+  r.own_seconds += seconds_since(begun);
+}
+
+// Every reading of r measured again against control.
+void measure(Runner& r, const SharedControl& control) {
+  const ControlGrid& grid = r.renderer->error_control_grid();
+  for (size_t i = 0; i < r.films.size(); ++i) {
+    const BiasEstimate e = compare_with_control(control.sums, r.films[i], grid, control.paths, kControlRegionSide);
+    r.entry.readings[i].error = e.known ? e.mean_abs_error : -1;
+    if (i + 1 == r.films.size()) r.last_upper = e.known ? e.mean_abs_error_upper : -1;
+  }
+}
+
+}  // namespace
+
+double ErrorForecast::seconds_to(double target) const {
+  if (last.error <= target) return last.seconds;
+  if (rate <= 0 || last.seconds <= 0) return std::numeric_limits<double>::infinity();
+  return last.seconds * std::pow(last.error / target, 1.0 / rate);
+}
+
+double ErrorForecast::error_at(double seconds) const {
+  if (seconds <= last.seconds || last.seconds <= 0) return last.error;
+  return last.error * std::pow(last.seconds / seconds, rate);
+}
+
+ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDecay decay) {
+  ErrorForecast f;
+  if (readings.empty()) return f;
+  f.last = readings.back();
+  switch (decay) {
+    case ErrorDecay::fixed: f.rate = 0; break;
+    case ErrorDecay::monte_carlo:
+    case ErrorDecay::measured: {
+      f.rate = decay == ErrorDecay::monte_carlo ? 0.5 : kAssumedShrinkRate;
+      // The latest reading against the latest one far enough before it.
+      for (size_t i = readings.size() - 1; i-- > 0;) {
+        const ErrorReading& a = readings[i];
+        if (a.seconds <= 0 || a.error <= 0 || f.last.error <= 0 || f.last.seconds < kRateSpan * a.seconds) continue;
+        const double measured = std::log(a.error / f.last.error) / std::log(f.last.seconds / a.seconds);
+        f.rate = std::clamp(measured, decay == ErrorDecay::monte_carlo ? kLeastMonteCarloRate : 0.0, 0.5);
+        break;
+      }
+      break;
+    }
+  }
+  return f;
+}
+
+std::string MethodChoice::summary() const {
+  std::string text;
+  for (size_t i = 0; i < entries.size(); ++i) {
+    const RaceEntry& e = entries[i];
+    if (!text.empty()) text += "; ";
+    text += e.label + ": ";
+    if (e.readings.empty()) {
+      text += e.fate;
+      continue;
+    }
+    const ErrorReading& r = e.readings.back();
+    char head[96];
+    std::snprintf(head, sizeof(head), "%u pass%s in %s, error %s", r.passes, r.passes == 1 ? "" : "es",
+                  seconds_text(r.seconds).c_str(), percent(r.error).c_str());
+    text += head;
+    text += ", " + e.fate;
+  }
+  return text;
+}
+
+MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettings& settings,
+                          const std::vector<RaceCandidate>& candidates, int frame, const PassBudget& budget) {
+  if (!budget.open_ended())
+    throw SettingError("method", "auto chooses the method that meets a budget: give --time or --target-error");
+  if (candidates.empty()) throw SettingError("method", "auto: no method to choose from");
+  if (settings.control_paths == 0)
+    throw SettingError("control-paths", "0 leaves --method auto nothing to measure the methods with; give it paths");
+  const bool by_error = budget.target_error > 0;
+  const double target = budget.target_error;
+
+  MethodChoice choice;
+  std::vector<Runner> runners(candidates.size());
+  const Clock::time_point setup_begun = Clock::now();
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    RenderSettings s = settings;
+    s.method = candidates[i].method;
+    runners[i].entry.label = candidates[i].label;
+    runners[i].renderer = std::make_unique<Renderer>(device, scene, s);
+    runners[i].renderer->begin_frame(frame);
+  }
+  device.synchronize();
+  choice.setup_seconds = seconds_since(setup_begun);
+
+  const Clock::time_point race_begun = Clock::now();
+  // With a time budget the race takes up to kRaceShareOfTime of it; without, it starts short.
+  // The rounds double.
+  double slice = budget.seconds > 0 ? 0.01 * budget.seconds : kFirstRoundSeconds;
+  // Every candidate is measured against one control (render/bias_control.h): the same paths at
+  // the same pixels, so that their errors compare and an unbiased method is measured as the
+  // others are. It doubles every round, so that the readings sharpen as the forecasts narrow.
+  SharedControl control;
+  uint64_t control_step = settings.control_paths;
+  double control_seconds = 0;
+  const uint64_t control_cap = uint64_t(settings.control_paths) * kControlPathsGrowth;
+  int reached = -1;  // a candidate that met the target error during the race
+  int best = 0;
+  for (int round = 0; round < kMaxRaceRounds; ++round, slice *= 2) {
+    for (Runner& r : runners)
+      if (!r.out && r.decay() != ErrorDecay::fixed) {
+        run_round(r, slice, budget.max_passes);
+        r.entry.readings.push_back({r.own_seconds, -1, r.renderer->passes_done()});
+        r.films.push_back(r.renderer->film_at_control());
+      }
+    // The control grows on any renderer still racing, while it has taken less time than the
+    // candidates (its first paths always: without them nothing is measured).
+    double racing_seconds = 0;
+    for (const Runner& r : runners) racing_seconds += r.own_seconds;
+    for (Runner& r : runners)
+      if (!r.out && control.paths < control_cap && (control.paths == 0 || control_seconds < racing_seconds)) {
+        const Clock::time_point begun = Clock::now();
+        r.renderer->grow_shared_control(control, uint32_t(std::min(control_step, control_cap - control.paths)));
+        control_seconds += seconds_since(begun);
+        control_step = control.paths;  // doubles it
+        break;
+      }
+    for (size_t i = 0; i < runners.size(); ++i) {
+      Runner& r = runners[i];
+      if (r.out) continue;
+      measure(r, control);
+      const ErrorReading& last = r.entry.readings.back();
+      if (by_error && reached < 0 && last.error >= 0 && r.last_upper <= target &&
+          (last.passes >= kMinPassesForError || r.decay() == ErrorDecay::fixed))
+        reached = int(i);
+    }
+    if (reached >= 0) break;
+
+    // Forecasts: seconds to the target error, or the error when the time is up.
+    const double elapsed = seconds_since(race_begun);
+    const double remaining = std::max(0.0, budget.seconds - elapsed);
+    best = -1;
+    for (size_t i = 0; i < runners.size(); ++i) {
+      Runner& r = runners[i];
+      if (r.out) continue;
+      r.entry.forecast = forecast_error(r.entry.readings, r.decay());
+      const bool known = !r.entry.readings.empty() && r.entry.readings.back().error >= 0;
+      if (!known) r.entry.forecast_value = std::numeric_limits<double>::infinity();
+      else if (by_error) r.entry.forecast_value = r.entry.forecast.seconds_to(target);
+      else r.entry.forecast_value = r.entry.forecast.error_at(r.own_seconds + remaining);
+      if (best < 0 || r.entry.forecast_value < runners[best].entry.forecast_value) best = int(i);
+    }
+    if (best < 0) throw DeviceError("--method auto: no candidate's error could be measured");
+    // None is forecast to reach the target: rank by the error each forecasts at ten times its time.
+    if (by_error && !std::isfinite(runners[best].entry.forecast_value))
+      for (size_t i = 0; i < runners.size(); ++i)
+        if (!runners[i].out && !runners[i].entry.readings.empty() &&
+            runners[i].entry.forecast.error_at(10 * runners[i].own_seconds) <
+                runners[best].entry.forecast.error_at(10 * runners[best].own_seconds))
+          best = int(i);
+    // Drop those clearly behind the best, once their own forecast rests on measurement.
+    const double best_value = runners[best].entry.forecast_value;
+    const double ratio = by_error ? kDropTimeRatio : kDropErrorRatio;
+    size_t left = 0;
+    for (size_t i = 0; i < runners.size(); ++i) {
+      Runner& r = runners[i];
+      if (r.out || int(i) == best) continue;
+      if (std::isfinite(best_value) && r.measured() && r.entry.forecast_value > ratio * best_value) {
+        r.out = true;
+        r.entry.fate = "dropped after round " + std::to_string(round + 1) + " (forecast " +
+                       (by_error ? seconds_text(r.entry.forecast_value) + " to " + percent(target)
+                                 : percent(r.entry.forecast_value) + " at the time") + ")";
+        r.renderer.reset();  // its memory back before the winner goes on
+      } else {
+        ++left;
+      }
+    }
+    if (left == 0) break;
+    // Racing on costs more than it could save: the race has taken its share of the time, or a
+    // fifth of the time the best is forecast to need.
+    if (budget.seconds > 0 && elapsed >= kRaceShareOfTime * budget.seconds) break;
+    if (by_error && std::isfinite(best_value) && runners[best].measured() && elapsed >= 0.2 * best_value) break;
+  }
+  choice.winner = size_t(reached >= 0 ? reached : best);
+  choice.race_seconds = seconds_since(race_begun);
+
+  for (size_t i = 0; i < runners.size(); ++i) {
+    Runner& r = runners[i];
+    if (i == choice.winner) {
+      r.entry.fate = reached >= 0 ? "reached the target" : "chosen";
+      if (reached < 0)
+        r.entry.fate += by_error ? " (forecast " + seconds_text(r.entry.forecast_value) + " to " + percent(target) + ")"
+                                 : " (forecast " + percent(r.entry.forecast_value) + " at the time)";
+    } else if (!r.out) {
+      r.entry.fate = by_error ? "behind (forecast " + seconds_text(r.entry.forecast_value) + " to " + percent(target) + ")"
+                              : "behind (forecast " + percent(r.entry.forecast_value) + " at the time)";
+    }
+    choice.entries.push_back(r.entry);
+  }
+  Runner& winner = runners[choice.winner];
+  choice.sums = winner.renderer->film_sums();
+  choice.sums.control = control;
+  choice.renderer = std::move(winner.renderer);
+  return choice;
+}
+
+}  // namespace pm

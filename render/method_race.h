@@ -1,0 +1,92 @@
+// --method auto: the methods race on the frame itself and the one forecast to reach the budget's
+// error soonest (--target-error) or to be the most accurate when the time is up (--time) goes on
+// (docs/method-auto.md). Every candidate renders the frame's first passes on a renderer of its own,
+// in rounds of doubling time, and after each round its own error estimate (render/bias_control.h:
+// noise and bias together) is read and forecast forwards; a candidate clearly behind the best is
+// dropped, its time spent. The winner's renderer keeps its film, so the frame continues from the
+// passes it already has: the race costs the losers' time only.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "render/progressive.h"
+#include "render/renderer.h"
+
+namespace pm {
+
+struct RaceCandidate {
+  std::string label;  // how the log and the EXR header name it, e.g. "photon", "path"
+  std::shared_ptr<const MethodSettings> method;
+};
+
+// One reading of a candidate's error estimate after `seconds` of its own render time.
+struct ErrorReading {
+  double seconds = 0;
+  double error = -1;  // Renderer::estimate_error: the relative mean absolute error of the indirect light
+  uint32_t passes = 0;
+};
+
+// How a candidate's error falls with its render time: error(t) = last.error * (last.seconds / t)^rate,
+// the rate measured from its last two readings far enough apart in time (1.5x), clamped to at
+// most 1/2 (no method beats Monte Carlo's 1/sqrt(t)). An unbiased method's (monte_carlo) is
+// assumed 1/2 until measured and kept at least 1/4: its relative mean absolute error falls
+// slower than 1/sqrt(t) only while most pixels have seen few paths. A consistent biased one
+// (photon passes that shrink: measured) is assumed 1/3 until measured and may measure 0. A
+// method whose passes are done (fixed) stays where it is.
+struct ErrorForecast {
+  ErrorReading last;
+  double rate = 0;
+  // Render time at which the error reaches `target` (its own time, the time spent included);
+  // infinity if never.
+  double seconds_to(double target) const;
+  double error_at(double seconds) const;
+};
+
+enum class ErrorDecay { monte_carlo, measured, fixed };
+constexpr double kAssumedShrinkRate = 1.0 / 3.0;
+constexpr double kLeastMonteCarloRate = 0.25;
+ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDecay decay);
+
+// What a candidate did in the race.
+struct RaceEntry {
+  std::string label;
+  std::vector<ErrorReading> readings;
+  ErrorForecast forecast;
+  double forecast_value = 0;  // seconds to the target error, or the error when the time is up
+  std::string fate;           // "chosen", "dropped after N s", "reached the target"...
+};
+
+struct MethodChoice {
+  size_t winner = 0;  // index into the candidates
+  std::vector<RaceEntry> entries;
+  double race_seconds = 0;           // wall time of the race (every candidate's passes): the frame's time so far
+  double setup_seconds = 0;          // the candidates' renderers built (scene upload, buffers): start-up
+  std::unique_ptr<Renderer> renderer;  // the winner's, its film holding `sums`
+  FilmSums sums;                     // the winner's passes so far
+  // One line for logs and the EXR header: each candidate's passes, time, error and forecast.
+  std::string summary() const;
+};
+
+// Share of a --time budget the race may take before the best candidate goes on alone.
+constexpr double kRaceShareOfTime = 0.25;
+// The first round's time per candidate without a time budget (then it doubles each round).
+constexpr double kFirstRoundSeconds = 0.05;
+// A candidate is dropped when its forecast time is this many times the best's (or, under a time
+// budget, its forecast error kDropErrorRatio times the best's).
+constexpr double kDropTimeRatio = 2.0;
+constexpr double kDropErrorRatio = 1.25;
+// Most rounds of the race: the first round's time grows 2^(kMaxRaceRounds - 1) times by the last.
+constexpr int kMaxRaceRounds = 10;
+
+// Races candidates on `frame` under budget (seconds or target_error must be set) and returns the
+// winner's renderer, mid-frame. settings: the frame's settings but for the method (the
+// candidates'). Throws SettingError when no budget is set or there is no candidate.
+MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettings& settings,
+                          const std::vector<RaceCandidate>& candidates, int frame, const PassBudget& budget);
+
+}  // namespace pm
