@@ -260,6 +260,8 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
       if (reached < 0)
         r.entry.fate += by_error ? " (forecast " + seconds_text(r.entry.forecast_value) + " to " + percent(target) + ")"
                                  : " (forecast " + percent(r.entry.forecast_value) + " at the time)";
+    } else if (!r.out && reached >= 0) {
+      r.entry.fate = "still racing when " + runners[choice.winner].entry.label + " reached the target";
     } else if (!r.out) {
       r.entry.fate = by_error ? "behind (forecast " + seconds_text(r.entry.forecast_value) + " to " + percent(target) + ")"
                               : "behind (forecast " + percent(r.entry.forecast_value) + " at the time)";

@@ -1,0 +1,53 @@
+// --method auto's forecasts (render/method_race.h): how a candidate's error is carried forward
+// from its readings, per kind of method, and where the forecast says "never".
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "render/method_race.h"
+
+namespace pm {
+namespace {
+
+TEST(MethodRaceForecast, MonteCarloFallsAsOneOverRootTimeUntilMeasured) {
+  const ErrorForecast f = forecast_error({{1.0, 0.2, 4}}, ErrorDecay::monte_carlo);
+  EXPECT_DOUBLE_EQ(f.rate, 0.5);
+  EXPECT_NEAR(f.seconds_to(0.1), 4.0, 1e-12) << "half the error: four times the time";
+  EXPECT_NEAR(f.error_at(16.0), 0.05, 1e-12);
+  EXPECT_DOUBLE_EQ(f.error_at(0.5), 0.2) << "no forecast backwards";
+  EXPECT_DOUBLE_EQ(f.seconds_to(0.3), 1.0) << "already there";
+}
+
+TEST(MethodRaceForecast, RatesAreMeasuredFromReadingsFarEnoughApart) {
+  // 0.4 at 1 s, 0.2 at 8 s: rate log 2 / log 8 = 1/3.
+  const ErrorForecast shrink = forecast_error({{1.0, 0.4, 2}, {8.0, 0.2, 16}}, ErrorDecay::measured);
+  EXPECT_NEAR(shrink.rate, 1.0 / 3.0, 1e-12);
+  EXPECT_NEAR(shrink.seconds_to(0.1), 64.0, 1e-9);
+  // Too close in time to tell (1.2x): the assumed rate.
+  const ErrorForecast close = forecast_error({{1.0, 0.4, 2}, {1.2, 0.1, 3}}, ErrorDecay::measured);
+  EXPECT_DOUBLE_EQ(close.rate, kAssumedShrinkRate);
+  // The last reading against the latest one far enough before it, not the first.
+  const ErrorForecast latest = forecast_error({{1.0, 1.0, 1}, {2.0, 0.4, 2}, {8.0, 0.2, 8}}, ErrorDecay::measured);
+  EXPECT_NEAR(latest.rate, 0.5, 1e-12);
+}
+
+TEST(MethodRaceForecast, RatesAreClampedToWhatMethodsCanDo) {
+  // Faster than Monte Carlo is noise in the readings: 1/2 at most.
+  EXPECT_DOUBLE_EQ(forecast_error({{1.0, 0.4, 2}, {4.0, 0.05, 8}}, ErrorDecay::measured).rate, 0.5);
+  // A biased method whose error stalls (or grows) never reaches a lower target.
+  const ErrorForecast stalled = forecast_error({{1.0, 0.1, 2}, {4.0, 0.12, 8}}, ErrorDecay::measured);
+  EXPECT_DOUBLE_EQ(stalled.rate, 0.0);
+  EXPECT_TRUE(std::isinf(stalled.seconds_to(0.05)));
+  // An unbiased method converges: a slow early reading keeps at least kLeastMonteCarloRate.
+  EXPECT_DOUBLE_EQ(forecast_error({{1.0, 0.1, 2}, {4.0, 0.1, 8}}, ErrorDecay::monte_carlo).rate, kLeastMonteCarloRate);
+}
+
+TEST(MethodRaceForecast, AFinishedMethodStaysWhereItIs) {
+  const ErrorForecast radiosity = forecast_error({{0.5, 0.02, 1}}, ErrorDecay::fixed);
+  EXPECT_DOUBLE_EQ(radiosity.error_at(100.0), 0.02);
+  EXPECT_DOUBLE_EQ(radiosity.seconds_to(0.03), 0.5);
+  EXPECT_TRUE(std::isinf(radiosity.seconds_to(0.01)));
+}
+
+}  // namespace
+}  // namespace pm
