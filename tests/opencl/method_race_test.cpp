@@ -1,4 +1,4 @@
-// --method auto's race (render/method_race.h) on PoCL, on the closed diffuse sphere whose
+// --method auto's race (render/method_race.h) on PoCL, on the closed diffuse sphere (test::LitSphere) whose
 // indirect light is known in closed form: the frame the winner finishes meets the target error in
 // truth, not only by its own estimate; a candidate whose bias keeps it above the target is passed
 // over however cheap it is; and the winner goes on from its race passes to the very image it
@@ -21,24 +21,8 @@
 namespace pm {
 namespace {
 
-Device& device() {
-  static std::unique_ptr<Device> d = test::open_first_device("opencl");
-  if (!d) throw std::runtime_error("no OpenCL device");
-  return *d;
-}
-
-// The closed sphere of progressive_test.cpp: every point's indirect radiance after two bounces is
-// rho/pi * Phi/A * (rho + rho^2).
-struct Sphere {
-  static constexpr float kRho = 0.5f, kRadius = 2.0f, kPower = 100.0f;
-  Scene scene = test::diffuse_sphere(kRadius, kRho, 4, {kPower, kPower, kPower});
-  double expected = kRho / double(PM_PI) * kPower / measure_scene(scene).surface_area * (kRho + kRho * kRho);
-};
-
-const Sphere& sphere() {
-  static const Sphere s;
-  return s;
-}
+Device& device() { return test::shared_opencl_device(); }
+const test::LitSphere& sphere() { return test::lit_sphere(); }
 
 RenderSettings frame_settings() {
   RenderSettings s;

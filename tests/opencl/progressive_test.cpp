@@ -36,18 +36,7 @@ Device& device() {
   return *d;
 }
 
-// The closed diffuse sphere with the light at its centre: every point's indirect radiance is
-// rho/pi * Phi/A * (rho + rho^2) after two bounces.
-struct Sphere {
-  static constexpr float kRho = 0.5f, kRadius = 2.0f, kPower = 100.0f;
-  Scene scene = test::diffuse_sphere(kRadius, kRho, 4, {kPower, kPower, kPower});
-  double expected = kRho / double(PM_PI) * kPower / measure_scene(scene).surface_area * (kRho + kRho * kRho);
-};
-
-const Sphere& sphere() {
-  static const Sphere s;
-  return s;
-}
+const test::LitSphere& sphere() { return test::lit_sphere(); }
 
 // Errors of a render of the sphere's indirect light against the exact answer.
 struct SphereError {
@@ -62,7 +51,7 @@ struct SphereError {
 enum class Estimate { kMade, kLeftOut };
 
 SphereError render_sphere(PhotonSettings photons, const PassBudget& budget, Estimate estimate = Estimate::kMade) {
-  const Sphere& s = sphere();
+  const test::LitSphere& s = sphere();
   RenderSettings settings = test::photon_render_settings(photons, budget.max_passes);
   if (estimate == Estimate::kLeftOut) settings.control_paths = 0;
   Renderer renderer(device(), s.scene, settings);

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "render/scene.h"
+#include "render/scene_scale.h"
 
 namespace pm::test {
 
@@ -70,6 +71,19 @@ inline double surface_area(const Scene& s) {
     area += 0.5 * std::sqrt(x * x + y * y + z * z);
   }
   return area;
+}
+
+// The closed diffuse sphere lit from its centre that the progressive and --method auto tests
+// render: every point's indirect radiance after two bounces is rho/pi * Phi/A * (rho + rho^2).
+struct LitSphere {
+  static constexpr float kRho = 0.5f, kRadius = 2.0f, kPower = 100.0f;
+  Scene scene = diffuse_sphere(kRadius, kRho, 4, {kPower, kPower, kPower});
+  double expected = kRho / double(PM_PI) * kPower / measure_scene(scene).surface_area * (kRho + kRho * kRho);
+};
+
+inline const LitSphere& lit_sphere() {
+  static const LitSphere s;
+  return s;
 }
 
 }  // namespace pm::test
