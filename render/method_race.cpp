@@ -45,11 +45,12 @@ struct Runner {
   std::vector<std::vector<float4>> films;  // per reading
   double last_upper = -1;  // the last reading's error plus two standard errors
   bool out = false;
+  uint32_t cap = 0;  // its passes at most: the method's (radiosity: one) or --passes, the lower
 
+  // Passes done: where it stands is where it stays (radiosity after its pass, or --passes reached).
   ErrorDecay decay() const {
-    const IndirectMethod* m = renderer->method();
-    if (m->max_passes() > 0 && renderer->passes_done() >= m->max_passes()) return ErrorDecay::fixed;
-    return m->may_be_biased() ? ErrorDecay::measured : ErrorDecay::monte_carlo;
+    if (renderer->passes_done() >= cap) return ErrorDecay::fixed;
+    return renderer->method()->may_be_biased() ? ErrorDecay::measured : ErrorDecay::monte_carlo;
   }
   // Whether its forecast rests on a measured rate (or on a final error).
   bool measured() const {
@@ -60,12 +61,10 @@ struct Runner {
 };
 
 // The candidate's passes for one round: at least one, then until the round's time is spent.
-void run_round(Runner& r, double slice, uint32_t max_passes) {
+void run_round(Runner& r, double slice) {
   const Clock::time_point begun = Clock::now();
-  const IndirectMethod* m = r.renderer->method();
-  const uint32_t cap = m->max_passes() > 0 ? std::min(max_passes, m->max_passes()) : max_passes;
   const uint32_t least = r.renderer->passes_done() + 1;
-  while (r.renderer->passes_done() < cap && (r.renderer->passes_done() < least || seconds_since(begun) < slice)) {
+  while (r.renderer->passes_done() < r.cap && (r.renderer->passes_done() < least || seconds_since(begun) < slice)) {
     throw_if_interrupted();
     r.renderer->run_pass();
     r.renderer->wait();
@@ -157,6 +156,8 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
     s.method = candidates[i].method;
     runners[i].entry.label = candidates[i].label;
     runners[i].renderer = std::make_unique<Renderer>(device, scene, s);
+    const uint32_t method_cap = runners[i].renderer->method()->max_passes();
+    runners[i].cap = method_cap > 0 ? std::min(budget.max_passes, method_cap) : budget.max_passes;
   }
   device.synchronize();
   choice.setup_seconds = seconds_since(setup_begun);
@@ -185,7 +186,7 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
   for (int round = 0; round < kMaxRaceRounds; ++round, slice *= 2) {
     for (Runner& r : runners)
       if (!r.out && r.decay() != ErrorDecay::fixed) {
-        run_round(r, slice, budget.max_passes);
+        run_round(r, slice);
         r.entry.readings.push_back({r.own_seconds, -1, r.renderer->passes_done()});
         r.films.push_back(r.renderer->film_at_control());
       }
