@@ -75,8 +75,12 @@ void run_round(Runner& r, double slice) {
 // Every reading of r measured again against control.
 void measure(Runner& r, const SharedControl& control) {
   const ControlGrid& grid = r.renderer->error_control_grid();
+  // The control's paths follow its bounces: a film of other bounces cannot be read against them
+  // (every method takes --bounces, so this holds for the command line's candidates).
+  const bool comparable = r.renderer->control_bounces() == control.bounces;
   for (size_t i = 0; i < r.films.size(); ++i) {
-    const BiasEstimate e = compare_with_control(control.sums, r.films[i], grid, control.paths, kControlRegionSide);
+    const BiasEstimate e = comparable ? compare_with_control(control.sums, r.films[i], grid, control.paths, kControlRegionSide)
+                                      : BiasEstimate{};
     r.entry.readings[i].error = e.known ? e.mean_abs_error : -1;
     if (i + 1 == r.films.size()) r.last_upper = e.known ? e.mean_abs_error_upper : -1;
   }
