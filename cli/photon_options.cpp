@@ -34,6 +34,7 @@ class PhotonOptions final : public MethodOptions {
   std::string progressive = "auto";
   std::string footprint_clip = "on";
   std::string footprint_coverage = "on";
+  std::string facet_weighting = "auto";
 
   std::shared_ptr<const MethodSettings> settings(bool budgeted) const override {
     auto s = std::make_shared<PhotonSettings>(settings_);
@@ -49,6 +50,7 @@ class PhotonOptions final : public MethodOptions {
     int coverage = 1;
     value_of(kFootprintClipNames, footprint_coverage, &coverage);
     s->footprint_coverage = coverage != 0;
+    if (facet_weighting != "auto") value_of(kFootprintClipNames, facet_weighting, &s->facet_weighting);
     if (smoothing == "auto") {
       s->smoothing = 0;
     } else {
@@ -149,6 +151,11 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
                   "lost where a footprint hangs over an edge; a few short rays per photon hit); off: over "
                   "the whole (clipped) ellipse")
       ->capture_default_str()->check(CLI::IsMember(names_of(kFootprintClipNames)))->group(group);
+  cmd->add_option("--facet-weighting", o->facet_weighting,
+                  "on: a photon counts on a facet tilted from its own surface by what its light delivers "
+                  "there, over the lit surface area; off: in full on every facet within 60 degrees; auto: on "
+                  "for --estimator radius, off for pd (docs/accuracy.md)")
+      ->capture_default_str()->check(CLI::IsMember(with_auto(names_of(kFootprintClipNames))))->group(group);
   cmd->add_option("--progressive", o->progressive,
                   "How passes combine: average (the same footprints every pass; noise falls, bias stays), "
                   "shrink (footprints and radii shrink from pass to pass: bias and noise both vanish; "

@@ -71,10 +71,16 @@ PM_DEVICE int footprint_cut_keeps(const FootprintCut* cut, float x, float y)
    send their own photons back less than they take, darkens the flat ground measurably: Sponza,
    one bounce, -3.4 % instead of +1.4 %, docs/accuracy.md), or with `surface_area` the surface
    area over the probe's cell, 1 / |cos| of the surface's tilt from n (the knn region counts the
-   photons that landed on that area, knn_gather.h). */
+   photons that landed on that area, knn_gather.h), or with `lit_area` that area only where the
+   photon's incident direction wi lies above the surface (the only surfaces the gather gives the
+   photon to) and none elsewhere: the area the photon's light is spread over when the gather
+   weighs it on a tilted facet by what its beam delivers there (gather_tilt_gain, gather_reach.h). */
 #define PM_FOOTPRINT_PROBE_HITS 4
+#define PM_COVERAGE_CELLS 0u        /* a covered probe counts its cell once */
+#define PM_COVERAGE_SURFACE_AREA 1u /* the surface area over its cell */
+#define PM_COVERAGE_LIT_AREA 2u     /* the surface area over its cell where wi lies above the surface */
 PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, const Footprint* f, Vec3 center, Vec3 n, float offset,
-                                        float x, float y, int surface_area)
+                                        float x, float y, uint area_mode, Vec3 wi)
 {
   float reach = vec3_length(f->axis_n) * pm_sqrtf(pm_fmaxf(1.0f - x * x - y * y, 0.0f)) + offset;
   Vec3 at = vec3_add(center, vec3_add(vec3_scale(f->axis_u, x), vec3_scale(f->axis_v, y)));
@@ -85,8 +91,14 @@ PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, const Footprint
     SceneHit hit = scene_trace(kg, &ray, t_min, 2.0f * reach, 0);
     if (hit.triangle < 0) return 0.0f;
     /* Triangles are two-sided: either side may face the gather's shading point. */
-    float facing = vec3_dot(scene_triangle_normal(kg->triangles, hit.triangle), n);
-    if ((k & 1) == 0 && facing * facing >= PM_GATHER_MIN_NORMAL_COS2) return surface_area ? 1.0f / pm_fabsf(facing) : 1.0f;
+    Vec3 surface_normal = scene_triangle_normal(kg->triangles, hit.triangle);
+    float facing = vec3_dot(surface_normal, n);
+    if ((k & 1) == 0 && facing * facing >= PM_GATHER_MIN_NORMAL_COS2) {
+      if (area_mode == PM_COVERAGE_CELLS) return 1.0f;
+      /* The side of the surface that faces the footprint's own normal. */
+      if (area_mode == PM_COVERAGE_LIT_AREA && !(vec3_dot(wi, surface_normal) * facing > 0.0f)) return 0.0f;
+      return 1.0f / pm_fabsf(facing);
+    }
     /* Past this surface: a crossing that hits two triangles (their shared edge, a duplicated
        face) is one crossing, or the parity would flip. */
     t_min = hit.t + gap;
@@ -96,8 +108,8 @@ PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, const Footprint
 
 /* Covered and kept kernel weights of a `count`-probe pattern (see footprint_covered_share). */
 PM_DEVICE void footprint_probe_pattern(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut, Vec3 center,
-                                       Vec3 n, float offset, float turn, uint shape, int surface_area, uint count,
-                                       float* kept, float* covered, uint* kept_probes)
+                                       Vec3 n, float offset, float turn, uint shape, uint area_mode, Vec3 wi,
+                                       uint count, float* kept, float* covered, uint* kept_probes)
 {
   *kept = 0.0f;
   *covered = 0.0f;
@@ -109,26 +121,27 @@ PM_DEVICE void footprint_probe_pattern(const KernelGlobals* kg, const Footprint*
     float w = shape == PM_KERNEL_EPANECHNIKOV ? kernel_epanechnikov(x * x + y * y) : 1.0f;
     *kept += w;
     ++*kept_probes;
-    *covered += w * footprint_probe_covered(kg, f, center, n, offset, x, y, surface_area);
+    *covered += w * footprint_probe_covered(kg, f, center, n, offset, x, y, area_mode, wi);
   }
 }
 
-/* Share of the kernel mass kept by `cut` that lies over accepted surface, in (0, 1] (with
-   `surface_area`, footprint_probe_covered: that surface's area over the kept disc's, up to 2).
+/* Share of the kernel mass kept by `cut` that lies over accepted surface, in (0, 1] (with an area
+   mode, footprint_probe_covered: that surface's area over the kept disc's, up to 2).
    turn: the pattern's angle for this hit. A footprint that its PM_FOOTPRINT_PROBES probes find
-   partly covered (or, with `surface_area`, tilted) is measured again with PM_FOOTPRINT_EDGE_PROBES: the flux is divided by the share, and
+   partly covered (or, with an area mode, tilted) is measured again with PM_FOOTPRINT_EDGE_PROBES: the flux is divided by the share, and
    1 / share is convex, so its noise is a bias (+1.0 % in Sponza's first bounce with 16 probes
    throughout, at the smallest footprints measured; docs/accuracy.md). Footprints wholly on a surface,
    most of them, cost the first pattern only. */
 PM_DEVICE float footprint_covered_share(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut,
-                                        Vec3 center, Vec3 n, float offset, float turn, uint shape, int surface_area)
+                                        Vec3 center, Vec3 n, float offset, float turn, uint shape, uint area_mode,
+                                        Vec3 wi)
 {
   float kept, covered;
   uint kept_probes;
-  footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, surface_area, PM_FOOTPRINT_PROBES, &kept,
+  footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, area_mode, wi, PM_FOOTPRINT_PROBES, &kept,
                           &covered, &kept_probes);
   if (covered > 0.0f && covered != kept)
-    footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, surface_area, PM_FOOTPRINT_EDGE_PROBES, &kept,
+    footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, area_mode, wi, PM_FOOTPRINT_EDGE_PROBES, &kept,
                             &covered, &kept_probes);
   if (!(kept > 0.0f)) return 1.0f; /* no probe inside the cuts: the clip's kept fraction is all we know */
   /* The hit itself lies on the surface: a footprint whose probes all miss (a sliver, a thin

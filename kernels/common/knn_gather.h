@@ -175,7 +175,8 @@ PM_DEVICE float knn_region_area(const KernelGlobals* kg, const LaunchParams* p, 
   float offset = ray_offset_distance(x, 0.0f, p->ray_epsilon);
   *cut = footprint_uncut();
   if (p->footprint_clip) *cut = footprint_clip(kg, f, x, n, offset, p->kernel_shape);
-  float coverage = p->footprint_coverage ? footprint_covered_share(kg, f, cut, x, n, offset, turn, p->kernel_shape, 1)
+  float coverage = p->footprint_coverage ? footprint_covered_share(kg, f, cut, x, n, offset, turn, p->kernel_shape,
+                                                                 PM_COVERAGE_SURFACE_AREA, n)
                                          : 1.0f;
   return footprint_area(*f) * cut->kept * coverage;
 }

@@ -161,6 +161,8 @@ typedef struct LaunchParams {
   float link_hidden_distance; /* radiosity: a link ray meeting a back face nearer than this started inside
                                  geometry (radiosity_links.h); 0: no origin is hidden */
   uint final_gather_rays;     /* photon mapping: gather rays per shading point and pass (final_gather.h); 0: off */
+  uint facet_weighting;       /* photon mapping: 1: a photon counts on a tilted facet by what its beam delivers there
+                                 and its footprint's area is the lit surface area (gather_reach.h); 0: in full */
 } LaunchParams;
 
 /* Environment lights (environment_light.h): none, one radiance from every direction, or an

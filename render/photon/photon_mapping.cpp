@@ -105,6 +105,7 @@ LaunchParams PhotonMapping::pass_params(const FrameContext& frame, uint32_t pass
   params.kernel_shape = uint32_t(settings_.kernel_shape);
   params.footprint_clip = settings_.footprint_clip ? 1u : 0u;
   params.footprint_coverage = settings_.footprint_coverage ? 1u : 0u;
+  params.facet_weighting = settings_.facet_weighting == 1 && settings_.estimator != PM_ESTIMATOR_KNN ? 1u : 0u;
   params.footprint_thickness = settings_.footprint_thickness;
   params.photon_sequence = uint32_t(settings_.sequence);
   return params;

@@ -50,6 +50,11 @@ class PhotonSettings final : public MethodSettings {
   // A footprint's area is the part of it that lies on a surface the gather accepts
   // (kernels/common/footprint_coverage.h): no light lost over edges, at a few short rays per hit.
   bool footprint_coverage = true;
+  // A photon counted on a facet tilted from its own surface weighs what its beam delivers there,
+  // and its footprint's area is the lit surface area under it (kernels/common/gather_reach.h,
+  // docs/accuracy.md "Bias at bends"): 1 on, 0 off, kFacetWeightingAuto by the estimator.
+  int facet_weighting = kFacetWeightingAuto;
+  static constexpr int kFacetWeightingAuto = -1;
   // The pd footprints' normal half-axis over their shorter in-plane semiaxis (docs/algorithm.md).
   float footprint_thickness = PM_FOOTPRINT_NORMAL_RATIO;
   int progressive = kProgressiveAverage;

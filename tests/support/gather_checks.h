@@ -125,6 +125,12 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
                       second ? float(std::max(0.0, cut[k].z - (mu[1] * lu + mv[1] * lv))) : 1.0f};
         if (t[0] < 1.0f || t[1] < 1.0f)
           w /= std::max(double(footprint_kept_fraction(mu, mv, t, 2, used.kernel_shape)), double(PM_GATHER_MIN_KEPT));
+        if (gather_params.facet_weighting) {
+          // What the photon's beam delivers on x's surface over what it delivered on its own:
+          // cos(wi, n) / cos(wi, n_hit), at most 4 (gather_reach.h).
+          double own = dot3(incident[k], v3(row_n[k])) / std::sqrt(axis2), there = dot3(incident[k], nrm);
+          w *= own > 0 && there > 0 ? std::min(there / own, double(PM_GATHER_MAX_TILT_GAIN)) : 0.0;
+        }
         Vec3 f = brdf_eval(&m, nrm, v3(incident[k]), wo);
         sum[0] += sw[r].x * w * f.x * power[k].x;
         sum[1] += sw[r].y * w * f.y * power[k].y;
