@@ -112,7 +112,11 @@ TEST_P(SceneAccuracy, FixedRadiusAtItsDefaultsIsWithinThreePercent) {
   // The radius's spheres reach across the bends of tessellated curved surfaces (Sibenik's ribs and
   // columns); counted in full there, its light read +3.2 % at 960 x 540; its default weighs each
   // photon by what it delivers on the tilted facet (gather_reach.h, docs/accuracy.md).
-  RenderSettings settings = photon_defaults();
+  // Conference's image mean under one pass of the radius's wide spheres moves with the photons'
+  // seed (PoCL, 96 x 54: +4.29, -0.35, +3.60 % at seeds 1-3; 16 passes +1.65 %), so there the
+  // check averages four passes (+1.64, +0.26, +1.63 %); elsewhere one pass reads within 1.4 %.
+  const bool noisy = std::string(GetParam()) == "conference";
+  RenderSettings settings = test::photon_render_settings(PhotonSettings{}, noisy ? 4 : 1);
   test::edit_photons(settings).estimator = PM_ESTIMATOR_RADIUS;
   const Accuracy a = render_against_reference(GetParam(), settings);
   EXPECT_LE(std::fabs(a.bias), kBaselineTolerance);
