@@ -71,17 +71,14 @@ PM_DEVICE int footprint_cut_keeps(const FootprintCut* cut, float x, float y)
    send their own photons back less than they take, darkens the flat ground measurably: Sponza,
    one bounce, -3.4 % instead of +1.4 %, docs/accuracy.md), or with `surface_area` the surface
    area over the probe's cell, 1 / |cos| of the surface's tilt from n (the knn region counts the
-   photons that landed on that area, knn_gather.h), or with PM_COVERAGE_BEAM_AREA that area times
-   the tilt gain of the photon's incident direction wi there (tilt_gain, gather_reach.h): what the
-   surface under the cell intercepts of the photon's beam, relative to a cell of its own surface;
-   none where wi lies below it (the gather gives the photon only to surfaces it lights). With the
-   gather weighing the photon by the same gain, its flux spreads over the facets under its
-   footprint as its beam does and integrates to itself; a footprint over a tessellated curve,
-   whose facets turn both ways, intercepts about cos(turn) of what a flat one would. */
+   photons that landed on that area, knn_gather.h), or with `lit_area` that area only where the
+   photon's incident direction wi lies above the surface (the only surfaces the gather gives the
+   photon to) and none elsewhere: the area the photon's light is spread over when the gather
+   weighs it on a tilted facet by what its beam delivers there (gather_tilt_gain, gather_reach.h). */
 #define PM_FOOTPRINT_PROBE_HITS 4
 #define PM_COVERAGE_CELLS 0u        /* a covered probe counts its cell once */
 #define PM_COVERAGE_SURFACE_AREA 1u /* the surface area over its cell */
-#define PM_COVERAGE_BEAM_AREA 2u    /* that area times the tilt gain of wi on the surface */
+#define PM_COVERAGE_LIT_AREA 2u     /* the surface area over its cell where wi lies above the surface */
 PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, const Footprint* f, Vec3 center, Vec3 n, float offset,
                                         float x, float y, uint area_mode, Vec3 wi)
 {
@@ -98,11 +95,9 @@ PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, const Footprint
     float facing = vec3_dot(surface_normal, n);
     if ((k & 1) == 0 && facing * facing >= PM_GATHER_MIN_NORMAL_COS2) {
       if (area_mode == PM_COVERAGE_CELLS) return 1.0f;
-      float area = 1.0f / pm_fabsf(facing);
-      if (area_mode == PM_COVERAGE_SURFACE_AREA) return area;
-      /* The surface's normal on the side that faces the footprint's own. */
-      float there = facing > 0.0f ? vec3_dot(wi, surface_normal) : -vec3_dot(wi, surface_normal);
-      return area * tilt_gain(vec3_dot(wi, n), there);
+      /* The side of the surface that faces the footprint's own normal. */
+      if (area_mode == PM_COVERAGE_LIT_AREA && !(vec3_dot(wi, surface_normal) * facing > 0.0f)) return 0.0f;
+      return 1.0f / pm_fabsf(facing);
     }
     /* Past this surface: a crossing that hits two triangles (their shared edge, a duplicated
        face) is one crossing, or the parity would flip. */

@@ -21,31 +21,23 @@ PM_DEVICE int photon_faces_like(float4 row_n, Vec3 n)
   return facing > 0.0f && facing * facing >= PM_GATHER_MIN_NORMAL_COS2 * vec3_dot(axis_n, axis_n);
 }
 
-/* Largest tilt gain: a photon that grazed its own surface would otherwise count without bound on
-   a facet that faces its beam. */
+/* Largest gain of gather_tilt_gain: a photon that grazed its own surface would otherwise count
+   without bound on a facet that faces its beam. */
 #define PM_GATHER_MAX_TILT_GAIN 4.0f
 
-/* What a photon's beam delivers on a facet over what it delivered on its own surface, from the
-   cosines of its incident direction with the facet's normal (`there`) and its own surface's
-   (`own`): the irradiance of a beam goes as the cosine of its incidence. 0 where the beam reaches
-   the facet from behind; capped at PM_GATHER_MAX_TILT_GAIN. */
-PM_DEVICE float tilt_gain(float own, float there)
-{
-  if (!(own > 0.0f) || !(there > 0.0f)) return 0.0f;
-  return pm_fminf(there / own, PM_GATHER_MAX_TILT_GAIN);
-}
-
-/* The tilt gain of a photon of incident direction wi (towards its light) that landed on a surface
-   whose normal axis row is row_n, on a facet of normal n: cos(wi, n) / cos(wi, n_hit). Counting
-   the photon in full on every facet within the gather's 60 degrees (gain 1) puts the light of a
-   tessellated curved surface's facets where the beam strikes them obliquely: +6.5 % on the
-   30-60 degree bends of Sibenik's ribs and arches (docs/accuracy.md, "Bias at bends"). The
-   footprint's area is measured with the same gain (PM_COVERAGE_BEAM_AREA, footprint_coverage.h),
-   so that the photon's flux is shared among the facets under its footprint in proportion to what
-   each intercepts of its beam, and integrates to itself. */
+/* What a photon of incident direction wi (towards its light) that landed on a surface whose
+   normal axis row is row_n delivers on a facet of normal n, over what it delivered on its own
+   surface: the irradiance of a beam goes as the cosine of its incidence, cos(wi, n) / cos(wi,
+   n_hit), capped at PM_GATHER_MAX_TILT_GAIN. Counting the photon in full on every facet within
+   the gather's 60 degrees (gain 1) puts the light of a tessellated curved surface's facets where
+   the beam strikes them obliquely: +6.5 % on the 30-60 degree bends of Sibenik's ribs and arches
+   (docs/accuracy.md, "Bias at bends"). */
 PM_DEVICE float gather_tilt_gain(float4 row_n, Vec3 wi, Vec3 n)
 {
-  return tilt_gain(vec3_dot(wi, vec3_normalize(vec3_from_float4(row_n))), vec3_dot(wi, n));
+  float own = vec3_dot(wi, vec3_normalize(vec3_from_float4(row_n)));
+  float there = vec3_dot(wi, n);
+  if (!(own > 0.0f) || !(there > 0.0f)) return 0.0f;
+  return pm_fminf(there / own, PM_GATHER_MAX_TILT_GAIN);
 }
 
 /* The gather's kernel weight at squared ellipsoid radius r2 (eq. 1's K). */

@@ -80,7 +80,7 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
                                                    p->photon_offset_hi).b0);
     coverage = footprint_covered_share(kg, &f, &cut, center, vec3_normalize(vec3_from_float4(n4)),
                                        ray_offset_distance(center, 0.0f, p->ray_epsilon), turn, p->kernel_shape,
-                                       p->facet_weighting ? PM_COVERAGE_BEAM_AREA : PM_COVERAGE_CELLS,
+                                       p->facet_weighting ? PM_COVERAGE_LIT_AREA : PM_COVERAGE_CELLS,
                                        vec3_from_float4(kg->hit_incident[slot]));
   }
   Vec3 lo, hi;

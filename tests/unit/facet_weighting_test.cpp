@@ -1,8 +1,8 @@
 // Unit tests of facet weighting (--facet-weighting, docs/accuracy.md "Bias at bends") on the host,
 // with the scene BVH the device uses: the gather's tilt gain (gather_reach.h) against the cosine
-// law of a beam's irradiance, and the footprint coverage's beam area (footprint_coverage.h) on a
-// floor tilted under the footprint and on a floor that bends down into a slope, with the photon's
-// light arriving above both surfaces or below the slope.
+// law of a beam's irradiance, and the footprint coverage's lit area (footprint_coverage.h) on a
+// floor that bends down into a slope, with the photon's light arriving above both surfaces or
+// below the slope.
 #include "kernels/common/compat_host.h"
 #include "kernels/common/footprint_coverage.h"
 
@@ -75,40 +75,36 @@ float covered_share(const HostScene& scene, const Footprint& f, Vec3 n, uint mod
   return footprint_covered_share(&scene.kg, &f, &cut, vec3(0, 0, 0), n, 1e-4f, 0.3f, PM_KERNEL_CONSTANT, mode, wi);
 }
 
-TEST(BeamArea, IsTheSurfaceAreaUnderTheFootprintTimesWhatItInterceptsOfTheBeam) {
+TEST(LitArea, IsTheSurfaceAreaUnderTheFootprintWhereThePhotonsLightArrivesAboveIt) {
   // A footprint tilted 20 degrees from the floor it lies on (thick enough that every probe reaches
-  // the floor): each probe's cell covers 1 / cos 20 degrees of floor, which intercepts
-  // cos(wi, floor) / cos(wi, n) of what the same cell of the footprint's own plane would.
+  // the floor): each probe's cell covers 1 / cos 20 degrees of floor.
   Scene floor_only = bent_floor();
   floor_only.positions.resize(4);
   floor_only.indices.resize(6);
   floor_only.triangle_material.resize(2);
   for (Float3& p : floor_only.positions) p.x = 4 * p.x + 4;  // [-4, 4] x [-2, 2]
   const HostScene scene(floor_only);
-  const Vec3 n = vec3(std::sin(0.349066f), std::cos(0.349066f), 0), up = vec3(0, 1, 0);
+  const Vec3 n = vec3(std::sin(0.349066f), std::cos(0.349066f), 0);
   const Footprint f = disc(n, 4.0f);
   const Vec3 from_above = unit(0.2f, 1.0f, 0.1f), from_below = unit(0.9f, -0.1f, 0.0f);
   ASSERT_GT(vec3_dot(from_below, n), 0.0f);  // above the footprint's own plane, below the floor
-  const float area = 1.0f / std::cos(0.349066f);
   EXPECT_NEAR(covered_share(scene, f, n, PM_COVERAGE_CELLS, from_above), 1.0f, 1e-6f);
-  EXPECT_NEAR(covered_share(scene, f, n, PM_COVERAGE_SURFACE_AREA, from_above), area, 1e-4f);
-  EXPECT_NEAR(covered_share(scene, f, n, PM_COVERAGE_BEAM_AREA, from_above),
-              area * vec3_dot(from_above, up) / vec3_dot(from_above, n), 1e-4f);
+  EXPECT_NEAR(covered_share(scene, f, n, PM_COVERAGE_SURFACE_AREA, from_above), 1.0f / std::cos(0.349066f), 1e-4f);
+  EXPECT_NEAR(covered_share(scene, f, n, PM_COVERAGE_LIT_AREA, from_above), 1.0f / std::cos(0.349066f), 1e-4f);
   // Light from below the floor lights none of it: only the hit's own half cell is left.
-  EXPECT_LT(covered_share(scene, f, n, PM_COVERAGE_BEAM_AREA, from_below), 0.05f);
+  EXPECT_LT(covered_share(scene, f, n, PM_COVERAGE_LIT_AREA, from_below), 0.05f);
 }
 
-TEST(BeamArea, IsTheFootprintsOwnAreaForABeamAlongItsNormalAndLeavesOutUnlitFacets) {
+TEST(LitArea, LeavesOutTheFacetsThePhotonsLightDoesNotReach) {
+  // A footprint at the bend: light from under the slope lights the floor's half of the disc only.
   const HostScene scene(bent_floor());
   const Vec3 n = vec3(0, 1, 0);
   const Footprint f = disc(n, 0.5f);
-  // A beam along the footprint's normal: a tilted cell's larger area intercepts the same flux as
-  // the cell it lies under, so the beam area is the covered cells' count.
-  EXPECT_FLOAT_EQ(covered_share(scene, f, n, PM_COVERAGE_BEAM_AREA, n), covered_share(scene, f, n, PM_COVERAGE_CELLS, n));
-  // Light from under the slope lights the floor's half of the disc only.
-  const Vec3 under_slope = unit(-1.0f, 0.2f, 0.0f);
+  const Vec3 from_above = unit(0.2f, 1.0f, 0.1f), under_slope = unit(-1.0f, 0.2f, 0.0f);
   ASSERT_LT(vec3_dot(under_slope, vec3(std::sin(0.349066f), std::cos(0.349066f), 0)), 0.0f);
-  EXPECT_NEAR(covered_share(scene, f, n, PM_COVERAGE_BEAM_AREA, under_slope), 0.5f, 0.04f);
+  EXPECT_FLOAT_EQ(covered_share(scene, f, n, PM_COVERAGE_LIT_AREA, from_above),
+                  covered_share(scene, f, n, PM_COVERAGE_SURFACE_AREA, from_above));
+  EXPECT_NEAR(covered_share(scene, f, n, PM_COVERAGE_LIT_AREA, under_slope), 0.5f, 0.04f);
 }
 
 }  // namespace
