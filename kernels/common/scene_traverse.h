@@ -97,4 +97,73 @@ PM_DEVICE SceneHit scene_trace(const KernelGlobals* kg, const Ray* ray, float t_
   return hit;
 }
 
+/* The leaves of the scene BVH whose boxes overlap [lo, hi], for many short rays that all stay
+   inside that box (the probes of one footprint, footprint_coverage.h): one box query instead of a
+   traversal from the root per ray. count < 0: more than PM_SCENE_BOX_LEAVES leaves overlap, and
+   the rays must traverse the BVH. */
+#define PM_SCENE_BOX_LEAVES 8
+typedef struct SceneBoxLeaves {
+  int first[PM_SCENE_BOX_LEAVES];
+  int size[PM_SCENE_BOX_LEAVES];
+  int count;
+} SceneBoxLeaves;
+
+PM_DEVICE SceneBoxLeaves scene_box_leaves(const KernelGlobals* kg, Vec3 lo, Vec3 hi)
+{
+  PM_GLOBAL const float4* nodes = kg->scene_nodes;
+  SceneBoxLeaves leaves;
+  leaves.count = 0;
+  int stack[PM_TRAVERSAL_STACK];
+  int sp = 0, node = 0;
+  for (;;) {
+    float4 n0 = PM_LOAD(&nodes[4 * node + 0]);
+    float4 n1 = PM_LOAD(&nodes[4 * node + 1]);
+    float4 n2 = PM_LOAD(&nodes[4 * node + 2]);
+    float4 n3 = PM_LOAD(&nodes[4 * node + 3]);
+    int child[2], size[2], visit[2];
+    child[0] = PM_AS_INT(n3.x);
+    child[1] = PM_AS_INT(n3.y);
+    size[0] = PM_AS_INT(n3.z);
+    size[1] = PM_AS_INT(n3.w);
+    visit[0] = child[0] >= 0 && n0.x <= hi.x && n0.y >= lo.x && n0.z <= hi.y && n0.w >= lo.y && n2.x <= hi.z &&
+               n2.y >= lo.z;
+    visit[1] = child[1] >= 0 && n1.x <= hi.x && n1.y >= lo.x && n1.z <= hi.y && n1.w >= lo.y && n2.z <= hi.z &&
+               n2.w >= lo.z;
+    for (int side = 0; side < 2; ++side) {
+      if (!visit[side] || size[side] == 0) continue;
+      if (leaves.count == PM_SCENE_BOX_LEAVES) {
+        leaves.count = -1;
+        return leaves;
+      }
+      leaves.first[leaves.count] = child[side];
+      leaves.size[leaves.count] = size[side];
+      ++leaves.count;
+      visit[side] = 0;
+    }
+    if (visit[0] && visit[1]) {
+      stack[sp++] = child[1];
+      node = child[0];
+    } else if (visit[0] || visit[1]) {
+      node = visit[0] ? child[0] : child[1];
+    } else {
+      if (sp == 0) break;
+      node = stack[--sp];
+    }
+  }
+  return leaves;
+}
+
+/* Closest hit in (t_min, t_max) of a ray that stays inside the box `leaves` was gathered for: the
+   same triangle tests as scene_trace, over those leaves only (or scene_trace itself, count < 0). */
+PM_DEVICE SceneHit scene_trace_in_box(const KernelGlobals* kg, const SceneBoxLeaves* leaves, const Ray* ray, float t_min,
+                                      float t_max)
+{
+  if (leaves->count < 0) return scene_trace(kg, ray, t_min, t_max, 0);
+  SceneHit hit;
+  hit.t = t_max;
+  hit.triangle = -1;
+  for (int i = 0; i < leaves->count; ++i) scene_intersect_leaf(kg, ray, leaves->first[i], leaves->size[i], t_min, &hit);
+  return hit;
+}
+
 #endif
