@@ -18,10 +18,8 @@
    kernel mass, so each photon's flux integrates to itself over the shading points it reaches.
 
    A footprint whose probes all miss still covers its own hit: it counts as half a probe's cell,
-   so the flux never divides by zero. Cost: up to PM_FOOTPRINT_PROBES short rays per footprint
-   (PM_FOOTPRINT_EDGE_PROBES more at edges), O(photons), not O(gathers), tested against the
-   triangles of the scene leaves in the footprint's box, found by one box query
-   (scene_box_leaves), rather than each traversing the BVH from its root. */
+   so the flux never divides by zero. Cost: up to PM_FOOTPRINT_PROBES short rays per footprint,
+   O(photons), not O(gathers). */
 #ifndef PM_FOOTPRINT_COVERAGE_H
 #define PM_FOOTPRINT_COVERAGE_H
 
@@ -81,8 +79,8 @@ PM_DEVICE int footprint_cut_keeps(const FootprintCut* cut, float x, float y)
 #define PM_COVERAGE_CELLS 0u        /* a covered probe counts its cell once */
 #define PM_COVERAGE_SURFACE_AREA 1u /* the surface area over its cell */
 #define PM_COVERAGE_LIT_AREA 2u     /* the surface area over its cell where wi lies above the surface */
-PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, const SceneBoxLeaves* leaves, const Footprint* f,
-                                        Vec3 center, Vec3 n, float offset, float x, float y, uint area_mode, Vec3 wi)
+PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, const Footprint* f, Vec3 center, Vec3 n, float offset,
+                                        float x, float y, uint area_mode, Vec3 wi)
 {
   float reach = vec3_length(f->axis_n) * pm_sqrtf(pm_fmaxf(1.0f - x * x - y * y, 0.0f)) + offset;
   Vec3 at = vec3_add(center, vec3_add(vec3_scale(f->axis_u, x), vec3_scale(f->axis_v, y)));
@@ -90,7 +88,7 @@ PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, const SceneBoxL
   float t_min = 0.0f;
   float gap = pm_fmaxf(1.0e-3f * reach, offset);
   for (int k = 0; k < PM_FOOTPRINT_PROBE_HITS; ++k) {
-    SceneHit hit = scene_trace_in_box(kg, leaves, &ray, t_min, 2.0f * reach);
+    SceneHit hit = scene_trace(kg, &ray, t_min, 2.0f * reach, 0);
     if (hit.triangle < 0) return 0.0f;
     /* Triangles are two-sided: either side may face the gather's shading point. */
     Vec3 surface_normal = scene_triangle_normal(kg->triangles, hit.triangle);
@@ -109,8 +107,7 @@ PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, const SceneBoxL
 }
 
 /* Covered and kept kernel weights of a `count`-probe pattern (see footprint_covered_share). */
-PM_DEVICE void footprint_probe_pattern(const KernelGlobals* kg, const SceneBoxLeaves* leaves, const Footprint* f,
-                                       const FootprintCut* cut, Vec3 center,
+PM_DEVICE void footprint_probe_pattern(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut, Vec3 center,
                                        Vec3 n, float offset, float turn, uint shape, uint area_mode, Vec3 wi,
                                        uint count, float* kept, float* covered, uint* kept_probes)
 {
@@ -124,7 +121,7 @@ PM_DEVICE void footprint_probe_pattern(const KernelGlobals* kg, const SceneBoxLe
     float w = shape == PM_KERNEL_EPANECHNIKOV ? kernel_epanechnikov(x * x + y * y) : 1.0f;
     *kept += w;
     ++*kept_probes;
-    *covered += w * footprint_probe_covered(kg, leaves, f, center, n, offset, x, y, area_mode, wi);
+    *covered += w * footprint_probe_covered(kg, f, center, n, offset, x, y, area_mode, wi);
   }
 }
 
@@ -139,20 +136,13 @@ PM_DEVICE float footprint_covered_share(const KernelGlobals* kg, const Footprint
                                         Vec3 center, Vec3 n, float offset, float turn, uint shape, uint area_mode,
                                         Vec3 wi)
 {
-  /* Every probe ray runs inside the ellipsoid's box (widened by the offset): the scene's leaves
-     there are found once, and each probe tests their triangles only. */
-  Vec3 thick = vec3_scale(n, vec3_length(f->axis_n) + offset);
-  Vec3 ext = vec3(pm_sqrtf(f->axis_u.x * f->axis_u.x + f->axis_v.x * f->axis_v.x) + pm_fabsf(thick.x) + offset,
-                  pm_sqrtf(f->axis_u.y * f->axis_u.y + f->axis_v.y * f->axis_v.y) + pm_fabsf(thick.y) + offset,
-                  pm_sqrtf(f->axis_u.z * f->axis_u.z + f->axis_v.z * f->axis_v.z) + pm_fabsf(thick.z) + offset);
-  SceneBoxLeaves leaves = scene_box_leaves(kg, vec3_sub(center, ext), vec3_add(center, ext));
   float kept, covered;
   uint kept_probes;
-  footprint_probe_pattern(kg, &leaves, f, cut, center, n, offset, turn, shape, area_mode, wi, PM_FOOTPRINT_PROBES,
-                          &kept, &covered, &kept_probes);
+  footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, area_mode, wi, PM_FOOTPRINT_PROBES, &kept,
+                          &covered, &kept_probes);
   if (covered > 0.0f && covered != kept)
-    footprint_probe_pattern(kg, &leaves, f, cut, center, n, offset, turn, shape, area_mode, wi,
-                            PM_FOOTPRINT_EDGE_PROBES, &kept, &covered, &kept_probes);
+    footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, area_mode, wi, PM_FOOTPRINT_EDGE_PROBES, &kept,
+                            &covered, &kept_probes);
   if (!(kept > 0.0f)) return 1.0f; /* no probe inside the cuts: the clip's kept fraction is all we know */
   /* The hit itself lies on the surface: a footprint whose probes all miss (a sliver, a thin
      rail) still covers something; count it as half a probe's cell. */
