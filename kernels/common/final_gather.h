@@ -43,7 +43,7 @@ PM_DEVICE Vec3 final_gather_at_hit(const KernelGlobals* kg, const LaunchParams* 
     radiance = vec3_add(radiance, sampled_light_direct(kg, p, kind, my, y, ny, wy, offset, 1u, pixel, event, ray));
   if (p->hit_count > 0u) {
     Vec3 indirect = vec3_splat(0.0f), caustic = vec3_splat(0.0f);
-    gather_at(kg, p, my, y, ny, wy, &indirect, &caustic, accepted);
+    gather_at(kg, p, my, y, ny, wy, &indirect, &caustic, accepted, p->facet_weighting != 0u);
     radiance = vec3_add(radiance, vec3_add(indirect, caustic));
   }
   return radiance;
@@ -97,7 +97,8 @@ PM_DEVICE void kernel_final_gather(const KernelGlobals* kg, const LaunchParams* 
     if (p_diffuse + p_glossy <= 0.0f) continue;
     if (p->hit_count > 0u) {
       Vec3 unused = vec3_splat(0.0f), point_caustic = vec3_splat(0.0f);
-      gather_at(kg, p, m, sp.position, sp.normal, sp.outgoing, &unused, &point_caustic, &accepted);
+      gather_at(kg, p, m, sp.position, sp.normal, sp.outgoing, &unused, &point_caustic, &accepted,
+                p->facet_weighting != 0u);
       caustic = vec3_add(caustic, vec3_mul(sp.weight, point_caustic));
     }
     uint event_base = depth << 8; /* at most PM_PHOTON_MAX_SPECULAR + 2 vertices below x */

@@ -15,6 +15,7 @@
   K(photon_map_bottom_up) /* S4: boxes, counts, leaf fusion under T */                       \
   K(photon_map_area)      /* S3: per-tile footprint area of the sorted hits (T_auto) */       \
   K(gather)            /* S6: indirect and caustic radiance at every shading point */        \
+  K(facet_gather)      /* S6 with --facet-weighting: photons weighed by what they deliver on tilted facets */ \
   K(knn_gather)        /* S6 for knn: the k nearest photons over their region's covered area */ \
   K(final_gather)      /* S6 with final gathering: rays from every shading point, the map at their hits */ \
   K(path_trace)        /* path tracer: paths from every shading point into film_indirect_sum */ \

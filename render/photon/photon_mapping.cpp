@@ -169,7 +169,9 @@ void PhotonMapping::run_pass(const FrameContext& frame, uint32_t pass) {
 
 void PhotonMapping::gather(const LaunchParams& params, StageTimer* timer) {
   StageScope scope(timer, settings_.final_gather > 0 ? "final gather" : "gather");
-  KernelId gather = settings_.estimator == PM_ESTIMATOR_KNN ? KernelId::knn_gather : KernelId::gather;
+  KernelId gather = settings_.estimator == PM_ESTIMATOR_KNN ? KernelId::knn_gather
+                    : params.facet_weighting  ? KernelId::facet_gather
+                                              : KernelId::gather;
   if (settings_.final_gather > 0) gather = KernelId::final_gather;
   device_.launch(gather, pixel_work_items(params.width, params.height), params);
 }
