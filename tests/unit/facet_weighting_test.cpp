@@ -10,7 +10,7 @@
 
 #include <cmath>
 
-#include "render/scene_bvh.h"
+#include "support/host_scene.h"
 #include "support/room_scenes.h"
 
 namespace pm {
@@ -50,15 +50,6 @@ Scene bent_floor() {
   return s;
 }
 
-struct HostScene {
-  SceneBvh bvh;
-  KernelGlobals kg{};
-  explicit HostScene(const Scene& scene) : bvh(build_scene_bvh(scene)) {
-    kg.scene_nodes = bvh.nodes.data();
-    kg.triangles = bvh.triangles.data();
-  }
-};
-
 // A footprint of radius 0.5 m at the origin with normal n, `thickness` metres thick along it.
 Footprint disc(Vec3 n, float thickness) {
   Vec3 t, b;
@@ -70,7 +61,7 @@ Footprint disc(Vec3 n, float thickness) {
   return f;
 }
 
-float covered_share(const HostScene& scene, const Footprint& f, Vec3 n, uint mode, Vec3 wi) {
+float covered_share(const test::HostScene& scene, const Footprint& f, Vec3 n, uint mode, Vec3 wi) {
   const FootprintCut cut = footprint_uncut();
   return footprint_covered_share(&scene.kg, &f, &cut, vec3(0, 0, 0), n, 1e-4f, 0.3f, PM_KERNEL_CONSTANT, mode, wi);
 }
@@ -83,7 +74,7 @@ TEST(LitArea, IsTheSurfaceAreaUnderTheFootprintWhereThePhotonsLightArrivesAboveI
   floor_only.indices.resize(6);
   floor_only.triangle_material.resize(2);
   for (Float3& p : floor_only.positions) p.x = 4 * p.x + 4;  // [-4, 4] x [-2, 2]
-  const HostScene scene(floor_only);
+  const test::HostScene scene(floor_only);
   const Vec3 n = vec3(std::sin(0.349066f), std::cos(0.349066f), 0);
   const Footprint f = disc(n, 4.0f);
   const Vec3 from_above = unit(0.2f, 1.0f, 0.1f), from_below = unit(0.9f, -0.1f, 0.0f);
@@ -97,7 +88,7 @@ TEST(LitArea, IsTheSurfaceAreaUnderTheFootprintWhereThePhotonsLightArrivesAboveI
 
 TEST(LitArea, LeavesOutTheFacetsThePhotonsLightDoesNotReach) {
   // A footprint at the bend: light from under the slope lights the floor's half of the disc only.
-  const HostScene scene(bent_floor());
+  const test::HostScene scene(bent_floor());
   const Vec3 n = vec3(0, 1, 0);
   const Footprint f = disc(n, 0.5f);
   const Vec3 from_above = unit(0.2f, 1.0f, 0.1f), under_slope = unit(-1.0f, 0.2f, 0.0f);

@@ -12,22 +12,12 @@
 #include <cmath>
 #include <vector>
 
-#include "render/scene_bvh.h"
+#include "support/host_scene.h"
 #include "support/analytic_scenes.h"
 #include "support/room_scenes.h"
 
 namespace pm {
 namespace {
-
-// The scene's BVH and the kernel's view of it.
-struct HostScene {
-  SceneBvh bvh;
-  KernelGlobals kg{};
-  explicit HostScene(const Scene& scene) : bvh(build_scene_bvh(scene)) {
-    kg.scene_nodes = bvh.nodes.data();
-    kg.triangles = bvh.triangles.data();
-  }
-};
 
 Footprint circle(float radius) {
   Footprint f;
@@ -108,7 +98,7 @@ Scene floor_and_wall(float wall_height) {
 }
 
 TEST(FootprintClip, AFootprintNextToAWallIsCutAtTheWall) {
-  HostScene scene(floor_and_wall(2.0f));
+  test::HostScene scene(floor_and_wall(2.0f));
   const Vec3 hit = vec3(0.3f, 0, 0.1f), up = vec3(0, 1, 0);
   Footprint f = circle(1.0f);
   const FootprintCut cut = footprint_clip(&scene.kg, &f, hit, up, 1e-6f, PM_KERNEL_CONSTANT);
@@ -130,7 +120,7 @@ TEST(FootprintClip, UniformPhotonsKeepTheirDensityUpToTheWall) {
   // the density estimate at distance e from the wall (sum of 1 / (area * kept) over footprints
   // reaching it, times the area per photon) against the one-dimensional profile of a cut disc
   // kernel: 0.693 (ln 2) at the wall's foot, 1 beyond two radii. Unclipped it would be 0.5.
-  HostScene scene(floor_and_wall(2.0f));
+  test::HostScene scene(floor_and_wall(2.0f));
   const float spacing = 0.02f;
   struct Clipped {
     Vec3 hit;
@@ -201,18 +191,18 @@ TEST(FootprintClip, CoplanarNeighboursLowWallsAndGentleCurvesLeaveFootprintsAlon
     for (int j = -10; j < 10; ++j)
       test::add_quad(tiles, {i * 0.1f, 0, j * 0.1f}, {i * 0.1f, 0, (j + 1) * 0.1f}, {(i + 1) * 0.1f, 0, (j + 1) * 0.1f},
                      {(i + 1) * 0.1f, 0, j * 0.1f});
-  HostScene tiled(tiles);
+  test::HostScene tiled(tiles);
   Footprint f = circle(0.5f);
   EXPECT_EQ(footprint_clip(&tiled.kg, &f, vec3(0.05f, 0, 0.02f), vec3(0, 1, 0), 1e-6f, PM_KERNEL_CONSTANT).kept, 1.0f);
   // A wall lower than the lifted plane (half of the normal half-axis: 0.125 here) is not seen.
-  HostScene low(floor_and_wall(0.05f));
+  test::HostScene low(floor_and_wall(0.05f));
   Footprint g = circle(0.5f);
   EXPECT_EQ(footprint_clip(&low.kg, &g, vec3(0.2f, 0, 0), vec3(0, 1, 0), 1e-6f, PM_KERNEL_CONSTANT).kept, 1.0f);
   // Inside a sphere of radius R = 2 the surface rises into the lifted plane (height h = half the
   // normal half-axis, a quarter of the footprint's radius) at about sqrt(2 R h) from the hit: a
   // footprint of radius 0.3 (0.55, beyond its rim) is left whole; one of 1.5 (1.22) is cut.
   static_assert(PM_FOOTPRINT_NORMAL_RATIO == 0.5f && PM_FOOTPRINT_CLIP_HEIGHT == 0.5f, "distances above assume these");
-  HostScene sphere(test::diffuse_sphere(2.0f, 0.5f, 5, {1, 1, 1}));
+  test::HostScene sphere(test::diffuse_sphere(2.0f, 0.5f, 5, {1, 1, 1}));
   const Vec3 bottom = vec3(0, -1.9995f, 0), in = vec3(0, 1, 0);
   Footprint small = circle(0.3f), large = circle(1.5f);
   EXPECT_EQ(footprint_clip(&sphere.kg, &small, bottom, in, 1e-6f, PM_KERNEL_CONSTANT).kept, 1.0f);
