@@ -2,6 +2,7 @@
 // for each estimator, both kernels, and leaf thresholds from none to strong fusion.
 #include "render/renderer.h"
 #include "scene_io/cornell_box.h"
+#include "support/analytic_scenes.h"
 #include "support/device_checks.h"
 #include "support/gather_checks.h"
 #include "support/render_settings.h"
@@ -37,6 +38,17 @@ TEST_F(OpenclGather, VoxelVolumeHeuristicMapEqualsBruteForce) {
 }
 TEST_F(OpenclGather, RadiusEqualsBruteForce) {
   test::check_gather_equals_brute_force(*device_, builtin_cornell_box(), photons(PM_ESTIMATOR_RADIUS, PM_KERNEL_CONSTANT, 4), 24, 24);
+}
+TEST_F(OpenclGather, FacetWeightedGatherOnACurvedSurfaceEqualsBruteForce) {
+  // Inside a tessellated sphere every photon's neighbours lie on facets tilted from its own, so the
+  // tilt gain (gather_reach.h) weighs nearly every pair: the facet-weighted gather kernel against
+  // the brute force's own cos(wi, n) / cos(wi, n_hit), for the radius estimator (on by default)
+  // and for pd with --facet-weighting on.
+  const Scene sphere = test::diffuse_sphere(2.0f, 0.5f, 3, {100, 100, 100});
+  test::check_gather_equals_brute_force(*device_, sphere, photons(PM_ESTIMATOR_RADIUS, PM_KERNEL_CONSTANT, 4), 24, 24);
+  PhotonSettings pd = photons(PM_ESTIMATOR_PD, PM_KERNEL_EPANECHNIKOV, 4);
+  pd.facet_weighting = 1;
+  test::check_gather_equals_brute_force(*device_, sphere, pd, 24, 24);
 }
 // knn's region is measured again on the host (support/gather_checks.h), without its coverage
 // probes: a probe ray that grazes a triangle's edge may hit on the device and miss on the host

@@ -2,6 +2,7 @@
 // tessellated diffuse sphere, viewed from the centre.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <utility>
