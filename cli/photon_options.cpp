@@ -162,8 +162,8 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
                   "docs/progressive.md) or auto: shrink under --time or --target-error, else average")
       ->capture_default_str()->check(CLI::IsMember(with_auto(names_of(kProgressiveNames))))->group(group);
   cmd->add_option("--final-gather", ph.final_gather,
-                  "Final gathering: N rays per shading point and pass, the photon map read at their hits "
-                  "(less blur, more time; 0: off; docs/final-gathering.md)")
+                  "Final gathering: N rays per shading point and pass, the photon map (--method radiosity: "
+                  "its solution) read at their hits (less blur, more time; 0: off; docs/final-gathering.md)")
       ->transform(any_unsigned32())->capture_default_str()->group(group);
   cmd->add_option("--alpha", ph.alpha, "shrink: r_i^2 = r_(i-1)^2 (i + alpha) / (i + 1), 0 < alpha < 1")->transform(finite_float())
       ->capture_default_str()->group(group);

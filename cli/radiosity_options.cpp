@@ -1,6 +1,6 @@
 // Options of the vertex link radiosity method (render/radiosity/radiosity_settings.h):
-// registration in their own help group, and the settings they describe. --bounces is shared with
-// photon mapping (the same bounce semantics): registered once, read by both. Values are checked
+// registration in their own help group, and the settings they describe. --bounces and
+// --final-gather are shared with photon mapping (the same meanings): registered once, read by both. Values are checked
 // by RadiositySettings::validate; names come from the library's name tables.
 #include <memory>
 
@@ -18,7 +18,8 @@ class RadiosityOptions final : public MethodOptions {
   std::string sides = "two";
   std::string light_samples = "one-ring";
   std::string link_origins = "one-ring";
-  CLI::Option* bounces = nullptr;  // --bounces, whoever registered it
+  CLI::Option* bounces = nullptr;       // --bounces, whoever registered it
+  CLI::Option* final_gather = nullptr;  // --final-gather, whoever registered it
 
   std::shared_ptr<const MethodSettings> settings(bool /*budgeted*/) const override {
     auto s = std::make_shared<RadiositySettings>(settings_);
@@ -26,6 +27,7 @@ class RadiosityOptions final : public MethodOptions {
     value_of(kRadiosityLightSamplesNames, light_samples, &s->light_samples);
     value_of(kRadiosityLinkOriginsNames, link_origins, &s->link_origins);
     if (bounces && bounces->count() > 0) s->bounces = bounces->as<int>();
+    if (final_gather && final_gather->count() > 0) s->final_gather = final_gather->as<uint32_t>();
     s->validate();
     return s;
   }
@@ -40,6 +42,12 @@ std::shared_ptr<MethodOptions> add_radiosity_options(CLI::App* cmd) {
   o->bounces = cmd->get_option_no_throw("--bounces");
   if (!o->bounces)
     o->bounces = cmd->add_option("--bounces", r.bounces, "Diffuse bounces of indirect light")->capture_default_str()->transform(any_int32())->group(group);
+  o->final_gather = cmd->get_option_no_throw("--final-gather");
+  if (!o->final_gather)
+    o->final_gather = cmd->add_option("--final-gather", r.final_gather,
+                                      "Final gathering: N rays per shading point and pass, the solution read at their hits "
+                                      "(0: off; docs/final-gathering.md)")
+                          ->transform(any_unsigned32())->capture_default_str()->group(group);
   cmd->add_option("--directions", r.directions, "Hemisphere directions nC shot per element (link rays)")
       ->capture_default_str()->transform(any_unsigned32())->group(group);
   cmd->add_option("--max-edge", r.max_edge, "Longest triangle edge after refinement, metres (default: the scene "

@@ -1,16 +1,20 @@
-/* Final gathering over the photon map (photon mapping with --final-gather N; docs/final-gathering.md;
-   Jensen 1996, "Global illumination using photon maps", section 3.3): instead of reading the
-   photon map at the camera's shading point x, where its footprints' blur shows, N rays leave x
-   by its own diffuse and glossy lobes, and the map is read only at their hits y, where that blur
-   is averaged over x's hemisphere.
+/* Final gathering over a cached solution (--final-gather N; docs/final-gathering.md; Jensen 1996,
+   "Global illumination using photon maps", section 3.3): instead of reading the photon map or the
+   radiosity solution at the camera's shading point x, where its blur shows, N rays leave x by its
+   own diffuse and glossy lobes, and the cache is read only at their hits y, where that blur is
+   averaged over x's hemisphere.
 
    The light reflected at x then splits by the event at y:
    - the direct light at y, exactly: a shadow ray to every point and spot light (direct_light) and
      next-event estimates of the area lights and the environment (sampled_light_sample);
-   - the light that reached y after further bounces, from the photon map: the photon method's map
-     traced with one bounce fewer (max_bounces - 1, photon_mapping.cpp), so that paths x <- y <- ...
-     keep the method's count of diffuse and glossy events. Its caustic photons (light that reached
-     y through mirrors only) count at y as well, as the photon method counts them one bounce later.
+   - the light that reached y after further bounces, from the cache, solved with one bounce fewer
+     (photon_mapping.cpp, vertex_link_radiosity.cpp), so that paths x <- y <- ... keep the method's
+     count of diffuse and glossy events:
+     PM_FINAL_GATHER_PHOTONS: the photon map traced with max_bounces - 1. Its caustic photons
+       (light that reached y through mirrors only) count at y as well, as the photon method counts
+       them one bounce later;
+     PM_FINAL_GATHER_RADIOSITY: the vertex irradiance gathered over bounces - 1 bounces,
+       interpolated at y and reflected as the radiosity image reflects it (radiosity_interpolate.h).
    A gather ray that meets a mirror follows it (up to PM_PHOTON_MAX_SPECULAR times), weighted by the
    mirror's reflectance, to the first surface that reflects diffusely. The emitters and the
    environment a gather ray sees directly are not counted: they are x's direct light (the camera
@@ -28,20 +32,30 @@
 
 #include "gather.h"
 #include "path_trace.h"
+#include "radiosity_interpolate.h"
 #include "sampled_lights.h"
 
 #define PM_STREAM_FINAL_GATHER 0x46474154u /* "FGAT" */
 
-/* Radiance leaving y towards wy (ny facing wy) by one diffuse or glossy reflection at y: the direct
-   light, exactly, and the photon map's light arriving after further bounces (photons read added
-   to *accepted). */
-PM_DEVICE Vec3 final_gather_at_hit(const KernelGlobals* kg, const LaunchParams* p, const Material* my, Vec3 y, Vec3 ny,
-                                   Vec3 wy, float offset, uint pixel, uint event, uint ray, uint* accepted)
+/* The cache the gather rays read (a constant at each kernel entry, so each kernel keeps only its
+   own cache's code and registers). */
+#define PM_FINAL_GATHER_PHOTONS 0u
+#define PM_FINAL_GATHER_RADIOSITY 1u
+
+/* Radiance leaving y (on scene triangle `leaf`) towards wy (ny facing wy) by one diffuse or glossy
+   reflection at y: the direct light, exactly, and the cache's light arriving after further bounces
+   (photons read added to *accepted). */
+PM_DEVICE Vec3 final_gather_at_hit(const KernelGlobals* kg, const LaunchParams* p, const Material* my, int leaf, Vec3 y,
+                                   Vec3 ny, Vec3 wy, float offset, uint pixel, uint event, uint ray, uint* accepted,
+                                   uint cache)
 {
   Vec3 radiance = direct_light(kg, p, my, y, ny, wy, offset);
   for (uint kind = 0; kind < PM_SAMPLED_LIGHT_KINDS; ++kind)
     radiance = vec3_add(radiance, sampled_light_direct(kg, p, kind, my, y, ny, wy, offset, 1u, pixel, event, ray));
-  if (p->hit_count > 0u) {
+  if (cache == PM_FINAL_GATHER_RADIOSITY) {
+    if (p->element_count > 0u)
+      radiance = vec3_add(radiance, radiosity_reflected(kg, p, my, leaf, y, ny, pm_fabsf(vec3_dot(wy, ny))));
+  } else if (p->hit_count > 0u) {
     Vec3 indirect = vec3_splat(0.0f), caustic = vec3_splat(0.0f);
     gather_at(kg, p, my, y, ny, wy, &indirect, &caustic, accepted, p->facet_weighting != 0u);
     radiance = vec3_add(radiance, vec3_add(indirect, caustic));
@@ -52,7 +66,7 @@ PM_DEVICE Vec3 final_gather_at_hit(const KernelGlobals* kg, const LaunchParams* 
 /* The radiance a gather ray from origin along dir brings back: at each surface it meets, through
    mirrors, what that surface reflects diffusely towards the ray. */
 PM_DEVICE Vec3 final_gather_ray(const KernelGlobals* kg, const LaunchParams* p, Vec3 origin, Vec3 dir, uint pixel,
-                                uint event_base, uint ray, uint* accepted)
+                                uint event_base, uint ray, uint* accepted, uint cache)
 {
   Vec3 radiance = vec3_splat(0.0f), throughput = vec3_splat(1.0f);
   for (uint vertex = 1; vertex <= PM_PHOTON_MAX_SPECULAR + 1u; ++vertex) {
@@ -66,8 +80,9 @@ PM_DEVICE Vec3 final_gather_ray(const KernelGlobals* kg, const LaunchParams* p, 
     Material m = surface_material(kg, scene_triangle_material(kg->triangles, hit.triangle), hit.triangle, pos);
     float offset = ray_offset_distance(origin, hit.t, p->ray_epsilon);
     if (channel_mean(material_diffuse(&m)) + channel_mean(material_glossy(&m)) > 0.0f)
-      radiance = vec3_add(radiance, vec3_mul(throughput, final_gather_at_hit(kg, p, &m, pos, n, wo, offset, pixel,
-                                                                              event_base + vertex, ray, accepted)));
+      radiance = vec3_add(radiance, vec3_mul(throughput, final_gather_at_hit(kg, p, &m, hit.triangle, pos, n, wo, offset,
+                                                                              pixel, event_base + vertex, ray, accepted,
+                                                                              cache)));
     Vec3 mirror = material_mirror(&m);
     if (vec3_max_component(mirror) <= 0.0f) break;
     throughput = vec3_mul(throughput, mirror);
@@ -78,10 +93,10 @@ PM_DEVICE Vec3 final_gather_ray(const KernelGlobals* kg, const LaunchParams* p, 
 }
 
 /* Work item = pixel in tile order (pixel_order.h): at each shading point of the mirror chain, the
-   mean of the pass's gather rays into the indirect sum and the photon map's caustic light there
+   mean of the pass's gather rays into the indirect sum and (photons) the map's caustic light there
    into the caustic sum; with collect_stats, the photons read and the shading points gathered, as
    the gather counts them (gather.h). */
-PM_DEVICE void kernel_final_gather(const KernelGlobals* kg, const LaunchParams* p, uint item)
+PM_DEVICE void final_gather_pixel(const KernelGlobals* kg, const LaunchParams* p, uint item, uint cache)
 {
   uint pixel;
   if (!pixel_of_work_item(item, p->width, p->height, &pixel)) return;
@@ -95,7 +110,7 @@ PM_DEVICE void kernel_final_gather(const KernelGlobals* kg, const LaunchParams* 
     const Material* m = &sp.material;
     float p_diffuse = channel_mean(material_diffuse(m)), p_glossy = channel_mean(material_glossy(m));
     if (p_diffuse + p_glossy <= 0.0f) continue;
-    if (p->hit_count > 0u) {
+    if (cache == PM_FINAL_GATHER_PHOTONS && p->hit_count > 0u) {
       Vec3 unused = vec3_splat(0.0f), point_caustic = vec3_splat(0.0f);
       gather_at(kg, p, m, sp.position, sp.normal, sp.outgoing, &unused, &point_caustic, &accepted,
                 p->facet_weighting != 0u);
@@ -118,16 +133,26 @@ PM_DEVICE void kernel_final_gather(const KernelGlobals* kg, const LaunchParams* 
       Vec3 beta = path_sample_lobe(m, glossy, sp.normal, sp.outgoing, u0, u1, &dir);
       beta = vec3_scale(beta, 1.0f / (glossy ? 1.0f - p_lobe_diffuse : p_lobe_diffuse));
       if (vec3_max_component(beta) <= 0.0f) continue;
-      sum = vec3_add(sum, vec3_mul(beta, final_gather_ray(kg, p, origin, dir, pixel, event_base, ray, &accepted)));
+      sum = vec3_add(sum, vec3_mul(beta, final_gather_ray(kg, p, origin, dir, pixel, event_base, ray, &accepted, cache)));
     }
     indirect = vec3_add(indirect, vec3_mul(sp.weight, vec3_scale(sum, 1.0f / (float)rays)));
     ++points;
   }
   film_add(kg, p, pixel, indirect, caustic);
-  if (p->collect_stats) {
+  if (cache == PM_FINAL_GATHER_PHOTONS && p->collect_stats) {
     pm_atomic_add_u32(&kg->gather_stats[0], accepted);
     pm_atomic_add_u32(&kg->gather_stats[1], points);
   }
+}
+
+PM_DEVICE void kernel_final_gather(const KernelGlobals* kg, const LaunchParams* p, uint item)
+{
+  final_gather_pixel(kg, p, item, PM_FINAL_GATHER_PHOTONS);
+}
+
+PM_DEVICE void kernel_radiosity_final_gather(const KernelGlobals* kg, const LaunchParams* p, uint item)
+{
+  final_gather_pixel(kg, p, item, PM_FINAL_GATHER_RADIOSITY);
 }
 
 #endif

@@ -30,6 +30,7 @@
   K(radiosity_gather)       /* radiosity: one bounce over the links (eq. 3, 4) */              \
   K(radiosity_smooth)       /* radiosity: one-ring smoothing within alpha_f (eq. 5, 6) */      \
   K(radiosity_interpolate)  /* radiosity: vertex irradiance at the shading points, film */     \
+  K(radiosity_final_gather) /* radiosity with final gathering: rays from every shading point, the solution at their hits */ \
   K(sort_histogram)    /* portable radix sort: per-tile digit counts */                      \
   K(sort_scan_chunks)  /* portable radix sort: exclusive scan within chunks of counts */     \
   K(sort_scan_totals)  /* portable radix sort: exclusive scan of chunk totals */             \

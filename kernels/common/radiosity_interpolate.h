@@ -27,6 +27,18 @@ PM_DEVICE Vec3 radiosity_irradiance_at(const KernelGlobals* kg, const LaunchPara
   return sum;
 }
 
+/* Radiance that material m at point x of scene triangle `leaf` (normal n towards the viewer, cos_o
+   the cosine of the direction it is seen from) reflects of the gathered irradiance there: diffusely
+   with rho_d, and with the glossy lobe's albedo towards the viewer. */
+PM_DEVICE Vec3 radiosity_reflected(const KernelGlobals* kg, const LaunchParams* p, const Material* m, int leaf, Vec3 x,
+                                   Vec3 n, float cos_o)
+{
+  Vec3 rho = material_diffuse(m), rho_s = material_glossy(m);
+  if (rho_s.x > 0.0f || rho_s.y > 0.0f || rho_s.z > 0.0f) rho = vec3_madd(rho, rho_s, brdf_glossy_albedo(m->glossy.w, cos_o));
+  if ((rho.x <= 0.0f && rho.y <= 0.0f && rho.z <= 0.0f) || leaf < 0) return vec3_splat(0.0f);
+  return vec3_scale(vec3_mul(rho, radiosity_irradiance_at(kg, p, leaf, x, n)), PM_INV_PI);
+}
+
 /* One work item per pixel (in tile order, pixel_order.h), over its shading points (mirror depths). */
 PM_DEVICE void kernel_radiosity_interpolate(const KernelGlobals* kg, const LaunchParams* p, uint item)
 {
@@ -43,15 +55,9 @@ PM_DEVICE void kernel_radiosity_interpolate(const KernelGlobals* kg, const Launc
     int leaf = PM_AS_INT(normal.w);
     /* The texture at the pixel's own point: the elements carry irradiance, the image its detail. */
     Material m = surface_material(kg, material_index, leaf, vec3_from_float4(pos));
-    float cos_o = pm_fabsf(vec3_dot(vec3_from_float4(kg->shade_outgoing[record]), vec3_from_float4(kg->shade_normal[record])));
-    Vec3 rho = material_diffuse(&m), rho_s = material_glossy(&m);
-    if (rho_s.x > 0.0f || rho_s.y > 0.0f || rho_s.z > 0.0f)
-      rho = vec3_madd(rho, rho_s, brdf_glossy_albedo(m.glossy.w, cos_o));
-    if (rho.x <= 0.0f && rho.y <= 0.0f && rho.z <= 0.0f) continue;
-    if (leaf < 0) continue;
-    Vec3 e = radiosity_irradiance_at(kg, p, leaf, vec3_from_float4(pos), vec3_from_float4(normal));
-    Vec3 weight = vec3_from_float4(kg->shade_weight[record]);
-    indirect = vec3_add(indirect, vec3_mul(weight, vec3_scale(vec3_mul(rho, e), PM_INV_PI)));
+    float cos_o = pm_fabsf(vec3_dot(vec3_from_float4(kg->shade_outgoing[record]), vec3_from_float4(normal)));
+    Vec3 l = radiosity_reflected(kg, p, &m, leaf, vec3_from_float4(pos), vec3_from_float4(normal), cos_o);
+    indirect = vec3_add(indirect, vec3_mul(vec3_from_float4(kg->shade_weight[record]), l));
   }
   film_add(kg, p, pixel, indirect, vec3_splat(0.0f));
 }

@@ -41,6 +41,8 @@ void RadiositySettings::validate() const {
     throw SettingError("link-origins", "expected " + names_list(kRadiosityLinkOriginsNames));
   if (!(hidden_origins >= 0) || !std::isfinite(hidden_origins))
     throw SettingError("hidden-origins", "expected 0 (off) or a positive multiple of the max edge");
+  if (final_gather > 65536) throw SettingError("final-gather", "expected 0 to 65536 rays, got " + std::to_string(final_gather));
+  if (final_gather > 0 && bounces < 1) throw SettingError("final-gather", "needs --bounces 1 or more");
   // One launch traces batch * nC rays, indexed with 32 bits.
   if (uint64_t(link_batch) * directions > 0x7fffffffull)
     throw SettingError("link-batch", std::to_string(link_batch) + " elements of " + std::to_string(directions) +
@@ -71,6 +73,7 @@ std::string RadiositySettings::describe() const {
     << " light_samples=" << name_of(kRadiosityLightSamplesNames, light_samples)
     << " link_origins=" << name_of(kRadiosityLinkOriginsNames, link_origins)
     << " hidden_origins=" << hidden_origins << " link_batch=" << (link_batch > 0 ? std::to_string(link_batch) : "auto");
+  if (final_gather > 0) s << " final_gather=" << final_gather;
   return s.str();
 }
 

@@ -32,6 +32,11 @@ class RadiositySettings final : public MethodSettings {
   // is left out of its vertex's value (radiosity_links.h); 0: every origin counts. One max edge:
   // measured across the benchmark scenes (docs/accuracy.md, "Hidden origins").
   float hidden_origins = 1.0f;
+  // Final gathering (kernels/common/final_gather.h): gather rays per shading point and pass, the
+  // solution (solved with one bounce fewer) read at their hits; 0: the solution read at the
+  // shading point, one pass. Passes add rays: the image converges to the solution's light after
+  // the first bounce, the first bounce itself exact.
+  uint32_t final_gather = 0;
 
   const char* method_name() const override { return "radiosity"; }
   void validate() const override;
@@ -41,6 +46,9 @@ class RadiositySettings final : public MethodSettings {
   RadiositySettings resolved(const SceneMeasures& measures) const;
   // Elements per link batch for `elements` elements: link_batch, or what the scratch budget holds.
   uint32_t batch_elements(uint64_t elements) const;
+  // Gathering bounces of the solution: bounces, or one fewer when final gathering reads it a
+  // bounce away from the shading point.
+  int solution_bounces() const { return final_gather > 0 ? bounces - 1 : bounces; }
   // One line: every setting, as resolved.
   std::string describe() const;
 };

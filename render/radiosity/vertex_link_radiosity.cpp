@@ -45,9 +45,12 @@ std::vector<StageInfo> VertexLinkRadiosity::stages(const FrameContext& frame) co
       {"radiosity: refine", double(scene_.triangle_count()), "triangles/s", "scene triangles refined (first frame)"},
       {"radiosity: links", elements * settings_.directions, "rays/s", "link rays, nC per element (first frame)"},
       {"radiosity: light links", double(light_samples_) * lights, "rays/s", "shadow rays, all lights (light changes)"},
-      {"radiosity: gather", double(links_) * settings_.bounces, "links/s", "links read, all bounces"},
+      {"radiosity: gather", double(links_) * settings_.solution_bounces(), "links/s", "links read, all bounces"},
       {"radiosity: smooth", elements * settings_.smooth_passes, "elements/s", "elements smoothed, all passes"},
-      {"radiosity: interpolate", double(pixels_), "pixels/s", "pixels interpolated (every frame)"},
+      settings_.final_gather > 0
+          ? StageInfo{"radiosity: final gather", double(pixels_) * settings_.final_gather, "rays/s",
+                      "gather rays, per pass"}
+          : StageInfo{"radiosity: interpolate", double(pixels_), "pixels/s", "pixels interpolated (every frame)"},
   };
 }
 
@@ -159,7 +162,7 @@ void VertexLinkRadiosity::solve(LaunchParams p, StageTimer* timer) {
   }
   {
     StageScope scope(timer, "radiosity: gather");
-    for (int bounce = 0; bounce < settings_.bounces; ++bounce) {
+    for (int bounce = 0; bounce < settings_.solution_bounces(); ++bounce) {
       p.radiosity_source = uint32_t(bounce & 1);
       device_.launch(KernelId::radiosity_gather, elements, p);
     }
@@ -180,6 +183,13 @@ void VertexLinkRadiosity::solve(LaunchParams p, StageTimer* timer) {
 
 void VertexLinkRadiosity::begin_frame(const FrameContext& frame, const FrameChange& change) {
   bool built = false, lit = false;
+  frame_ = frame.params.frame;
+  // A solution of no bounces (final gathering with --bounces 1) holds nothing: the gather rays
+  // bring the direct light at their hits alone.
+  if (settings_.solution_bounces() == 0) {
+    update_stats(false, false);
+    return;
+  }
   if (!prepared_) {
     prepare(frame.timer);
     if (element_count_ > 0) build_links(launch_params(frame), frame.timer);
@@ -194,10 +204,19 @@ void VertexLinkRadiosity::begin_frame(const FrameContext& frame, const FrameChan
   update_stats(built, lit);
 }
 
-void VertexLinkRadiosity::run_pass(const FrameContext& frame, uint32_t pass) {
-  if (element_count_ == 0) return;
+void VertexLinkRadiosity::run_pass(const FrameContext& frame, uint32_t /*pass*/) {
   LaunchParams p = launch_params(frame);
   p.radiosity_source = final_source_;
+  if (settings_.final_gather > 0) {
+    // Rays of pass k are rays k N .. k N + N - 1 of the frame (final_gather.h; pass_index is the
+    // renderer's), keyed by the frame as the photon method's are by its photons' frame.
+    p.final_gather_rays = settings_.final_gather;
+    p.photon_frame = uint32_t(frame_);
+    StageScope scope(frame.timer, "radiosity: final gather");
+    device_.launch(KernelId::radiosity_final_gather, pixel_work_items(p.width, p.height), p);
+    return;
+  }
+  if (element_count_ == 0) return;
   StageScope scope(frame.timer, "radiosity: interpolate");
   device_.launch(KernelId::radiosity_interpolate, pixel_work_items(p.width, p.height), p);
 }

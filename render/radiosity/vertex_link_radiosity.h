@@ -6,7 +6,9 @@
 //   lights moved  light links (eq. 2), nB gathering bounces (eq. 3, 4), smoothing (eq. 5, 6);
 //   camera moved  nothing: the vertex irradiance stays on the device (--no-reuse: relight anyway);
 // and every frame's single pass interpolates the vertex irradiance at the camera pass's
-// shading points into the indirect layer. The method is deterministic: one pass per frame.
+// shading points into the indirect layer: deterministic, one pass per frame. With final
+// gathering the solution has one bounce fewer and is read at the hits of gather rays from the
+// shading points instead, pass after pass (progressive, like the photon method's).
 #pragma once
 
 #include <cstdint>
@@ -24,7 +26,7 @@ class VertexLinkRadiosity final : public IndirectMethod {
   VertexLinkRadiosity(const MethodContext& context, const RadiositySettings& settings);
 
   std::string describe() const override { return settings_.describe(); }
-  uint32_t max_passes() const override { return 1; }
+  uint32_t max_passes() const override { return settings_.final_gather > 0 ? 0 : 1; }
   uint32_t light_bounces() const override { return uint32_t(settings_.bounces); }
   bool may_be_biased() const override { return true; }
   void begin_frame(const FrameContext& frame, const FrameChange& change) override;
@@ -54,6 +56,7 @@ class VertexLinkRadiosity final : public IndirectMethod {
   const Scene& scene_;
   RadiositySettings settings_;
   uint32_t pixels_ = 0;
+  int frame_ = 0;                   // the frame begun last: the key of its gather rays
 
   bool prepared_ = false;
   bool solved_ = false;

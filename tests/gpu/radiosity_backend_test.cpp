@@ -5,7 +5,8 @@
 // edge: CUDA makes 0.5 % (Cornell box) and 1.1 % (moving room) fewer links, and the indirect
 // means differ by 0.27-0.39 %. Built with -fmad=false, CUDA matched OpenCL's link count to
 // 6e-5 (2.18558M against 2.18571M), so the tolerances below are that contraction's, with room.
-// The solution is deterministic on each backend. Skipped without a CUDA device.
+// The solution is deterministic on each backend, and so are final gathering's rays over it (the
+// same random numbers on both). Skipped without a CUDA device.
 #include <gtest/gtest.h>
 
 #include "render/renderer.h"
@@ -19,12 +20,14 @@
 namespace pm {
 namespace {
 
-void expect_backends_agree(const Scene& scene, int frame, int width, int height) {
+void expect_backends_agree(const Scene& scene, int frame, int width, int height, uint32_t final_gather = 0) {
   std::unique_ptr<Device> cuda = test::open_first_device("cuda");
   if (!cuda) GTEST_SKIP() << "no CUDA device on this machine";
   std::unique_ptr<Device> opencl = test::open_opencl_preferring_gpu();
   ASSERT_NE(opencl, nullptr);
-  RenderSettings settings = test::radiosity_render_settings(RadiositySettings{});  // nC 256, two bounces
+  RadiositySettings radiosity;  // nC 256, two bounces
+  radiosity.final_gather = final_gather;
+  RenderSettings settings = test::radiosity_render_settings(radiosity);
   settings.width = width;
   settings.height = height;
   Renderer a(*cuda, scene, settings), b(*opencl, scene, settings);
@@ -45,6 +48,8 @@ void expect_backends_agree(const Scene& scene, int frame, int width, int height)
 }
 
 TEST(RadiosityBackends, CornellBoxCudaMatchesOpencl) { expect_backends_agree(builtin_cornell_box(), 0, 256, 256); }
+
+TEST(RadiosityBackends, FinalGatherCudaMatchesOpencl) { expect_backends_agree(builtin_cornell_box(), 0, 128, 128, 4); }
 
 TEST(RadiosityBackends, MovingRoomCudaMatchesOpencl) {
   expect_backends_agree(load_scene_file(test::test_data_dir() + "/animation/moving_room.json"), 6, 320, 240);

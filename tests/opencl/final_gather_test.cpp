@@ -4,7 +4,9 @@
 // the paper's smoothing, their flux spread over the whole ellipse: coverage off) costs the image
 // only the share of its bias that falls on the light after the first bounce, and shrinking passes
 // take what is left towards the path tracer's answer. With one bounce it needs no map: the direct light at
-// its rays' hits alone is the first bounce, which the path tracer must agree with.
+// its rays' hits alone is the first bounce, which the path tracer must agree with. Final gathering
+// over a radiosity solution (--method radiosity --final-gather) does the same with a mesh made
+// deliberately coarse.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +15,7 @@
 
 #include "render/path/path_settings.h"
 #include "render/photon/photon_settings.h"
+#include "render/radiosity/radiosity_settings.h"
 #include "render/renderer.h"
 #include "support/device_checks.h"
 #include "support/image_stats.h"
@@ -59,6 +62,20 @@ class FinalGather : public ::testing::Test {
     return photons;
   }
 
+  // Elements 5 times the size the spot-lit box's radiosity tests use, light and link rays from
+  // the vertices only (the paper's sampling, which the defaults replaced for its bias): a
+  // solution with a bias of its own.
+  static std::shared_ptr<RadiositySettings> coarse_solution(int bounces, uint32_t rays) {
+    auto radiosity = std::make_shared<RadiositySettings>();
+    radiosity->max_edge = 0.25f;
+    radiosity->directions = 32;
+    radiosity->light_samples = PM_RADIOSITY_LIGHT_VERTEX;
+    radiosity->link_origins = PM_RADIOSITY_ORIGINS_VERTEX;
+    radiosity->bounces = bounces;
+    radiosity->final_gather = rays;
+    return radiosity;
+  }
+
   std::unique_ptr<Device> device_;
   Scene scene_ = test::spot_box();
 };
@@ -85,6 +102,26 @@ TEST_F(FinalGather, OneBounceIsTheDirectLightAtItsRaysHits) {
   const double reference = path_mean(1);
   const double gathered = indirect_mean(blurry_map(1, 64), 4) / reference - 1;
   std::printf("spot-lit box, first bounce: final gather %+.4f against the path tracer\n", gathered);
+  EXPECT_LT(std::fabs(gathered), 0.01);
+}
+
+TEST_F(FinalGather, OverRadiosityHidesTheBiasOfACoarseSolution) {
+  const double reference = path_mean(2);
+  const double read_at_x = indirect_mean(coarse_solution(2, 0), 1) / reference - 1;
+  const double gathered = indirect_mean(coarse_solution(2, 16), 4) / reference - 1;
+  std::printf("spot-lit box, coarse radiosity: read at the shading point %+.4f, final gather %+.4f\n", read_at_x,
+              gathered);
+  // As for the blurry map: the solution supplies only the light after the first bounce, about
+  // rho / (1 + rho) of the two bounces', so that share of its bias is left. Measured: -23.3 % read
+  // at the shading point, -6.2 % gathered. The defaults' solution: Lights.MethodsAgree*.
+  EXPECT_GT(std::fabs(read_at_x), 0.1) << "the solution is coarse enough for its bias to show";
+  EXPECT_LT(std::fabs(gathered), std::fabs(read_at_x) / 2) << "only the light after the first bounce is the solution's";
+}
+
+TEST_F(FinalGather, OverRadiosityWithOneBounceIsTheDirectLightAtItsRaysHits) {
+  const double reference = path_mean(1);
+  const double gathered = indirect_mean(coarse_solution(1, 64), 4) / reference - 1;
+  std::printf("spot-lit box, first bounce: final gather over radiosity %+.4f against the path tracer\n", gathered);
   EXPECT_LT(std::fabs(gathered), 0.01);
 }
 

@@ -2,7 +2,8 @@
 // (inside the inner cone, the falloff between the cones, zero outside); an emitting square's
 // irradiance at the centre of the floor under it against the closed form, and the emitter's
 // own radiance seen from its front and nothing from its back; photon mapping, path tracing and
-// radiosity agreeing on the indirect light of a small spot-lit and of an area-lit box; and the
+// radiosity (and final gathering over the photon map and over the radiosity solution) agreeing on
+// the indirect light of a small spot-lit and of an area-lit box; and the
 // path tracer's multiple importance sampling agreeing with light sampling alone.
 #include <gtest/gtest.h>
 
@@ -182,24 +183,32 @@ void expect_methods_agree(Device& device, const Scene& scene, const char* label)
   gathered.photons = 65536;
   gathered.bounces = 2;
   gathered.final_gather = 16;
+  // And over the radiosity solution, solved with one bounce fewer.
+  RadiositySettings radiosity_gathered = radiosity;
+  radiosity_gathered.final_gather = 16;
   Renderer path_renderer(device, scene, box_settings(path_method(true), 4));
   Renderer photon_renderer(device, scene, box_settings(std::make_shared<PhotonSettings>(photons), 8));
   Renderer radiosity_renderer(device, scene, box_settings(std::make_shared<RadiositySettings>(radiosity), 1));
   Renderer gather_renderer(device, scene, box_settings(std::make_shared<PhotonSettings>(gathered), 4));
+  Renderer radiosity_gather_renderer(device, scene,
+                                     box_settings(std::make_shared<RadiositySettings>(radiosity_gathered), 4));
   const FrameImage traced = path_renderer.render_frame(0), mapped = photon_renderer.render_frame(0),
-                   solved = radiosity_renderer.render_frame(0), final_gathered = gather_renderer.render_frame(0);
+                   solved = radiosity_renderer.render_frame(0), final_gathered = gather_renderer.render_frame(0),
+                   solution_gathered = radiosity_gather_renderer.render_frame(0);
   const double path = test::mean(traced.find("indirect")->rgb);
   const double photon = test::mean(mapped.find("indirect")->rgb) + test::mean(mapped.find("caustic")->rgb);
   const double rad = test::mean(solved.find("indirect")->rgb);
   const double fg = test::mean(final_gathered.find("indirect")->rgb) + test::mean(final_gathered.find("caustic")->rgb);
-  std::printf("%s: indirect mean path %.6g, photon %.6g (%+.4f), radiosity %.6g (%+.4f), final gather %.6g (%+.4f); "
-              "direct %.6g\n", label, path, photon, photon / path - 1, rad, rad / path - 1, fg, fg / path - 1,
-              test::mean(traced.find("direct")->rgb));
+  const double rad_fg = test::mean(solution_gathered.find("indirect")->rgb);
+  std::printf("%s: indirect mean path %.6g, photon %.6g (%+.4f), radiosity %.6g (%+.4f), final gather %.6g (%+.4f), "
+              "over radiosity %.6g (%+.4f); direct %.6g\n", label, path, photon, photon / path - 1, rad, rad / path - 1, fg,
+              fg / path - 1, rad_fg, rad_fg / path - 1, test::mean(traced.find("direct")->rgb));
   EXPECT_GT(path, 0.0);
   EXPECT_NEAR(photon / path, 1.0, 0.05) << label;
   EXPECT_NEAR(rad / path, 1.0, 0.08) << label;
   EXPECT_NEAR(fg / path, 1.0, 0.03) << label;
-  for (const FrameImage* image : {&traced, &mapped, &solved, &final_gathered})
+  EXPECT_NEAR(rad_fg / path, 1.0, 0.03) << label;
+  for (const FrameImage* image : {&traced, &mapped, &solved, &final_gathered, &solution_gathered})
     EXPECT_TRUE(test::all_finite(image->find("")->rgb));
 }
 

@@ -41,6 +41,8 @@ TEST_F(OptionMessages, UnsignedOptionsRefuseSignsHexOctalJunkAndOutOfRange) {
   expect_refused("render --final-gather 70000", "--final-gather: expected 0 to 65536 rays, got 70000");
   expect_refused("render --final-gather 4 --estimator knn", "--final-gather: reads the footprints of --estimator pd");
   expect_refused("render --final-gather 4 --bounces 0", "--final-gather: needs --bounces 1 or more");
+  expect_refused("render --method radiosity --final-gather 70000", "--final-gather: expected 0 to 65536 rays, got 70000");
+  expect_refused("render --method radiosity --final-gather 4 --bounces 0", "--final-gather: needs --bounces 1 or more");
   expect_refused("render --mirror-depth ' 3'", "--mirror-depth");
   expect_refused("render --device -1", "--device: expected a whole number");
   expect_refused("render --frame -2", "--frame: expected a whole number from 0 to 999999999");
