@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "render/errors.h"
 #include "render/indirect_method.h"
 #include "render/method_race.h"
 
@@ -25,6 +26,26 @@ class MethodOptions {
   // (photon mapping with and without final gathering) offers each.
   virtual std::vector<RaceCandidate> candidates(const std::string& name) const { return {{name, settings(true)}}; }
 };
+
+// A method's race candidates with and without final gathering: the settings as given, and beside
+// them the same with `rays` gather rays a pass (or, when final gathering was asked for, without
+// it); the settings alone where final gathering does not apply to them. Settings: a MethodSettings
+// with a final_gather member (rays per pass, 0: off).
+template <class Settings>
+std::vector<RaceCandidate> with_and_without_final_gather(const std::string& name, std::shared_ptr<const Settings> given,
+                                                         uint32_t rays) {
+  auto other = std::make_shared<Settings>(*given);
+  other->final_gather = given->final_gather > 0 ? 0 : rays;
+  try {
+    other->validate();
+  } catch (const SettingError&) {
+    return {{name, given}};
+  }
+  const bool asked = given->final_gather > 0;
+  return {{name, asked ? std::shared_ptr<const Settings>(other) : given},
+          {name + " --final-gather " + std::to_string(asked ? given->final_gather : rays),
+           asked ? given : std::shared_ptr<const Settings>(other)}};
+}
 
 struct MethodEntry {
   const char* name;

@@ -82,22 +82,11 @@ class PhotonOptions final : public MethodOptions {
     return s;
   }
 
-  // Photon mapping as its options say, and beside it the same with final gathering (16 rays a
+  // Photon mapping as its options say, and beside it the same with final gathering (4 rays a
   // pass unless --final-gather names a count) or without it (when --final-gather asked for it).
   std::vector<RaceCandidate> candidates(const std::string& name) const override {
-    auto plain = std::static_pointer_cast<const PhotonSettings>(settings(true));
-    auto other = std::make_shared<PhotonSettings>(*plain);
-    other->final_gather = plain->final_gather > 0 ? 0 : kRacedFinalGatherRays;
-    try {
-      other->validate();
-    } catch (const SettingError&) {
-      return {{name, plain}};  // final gathering does not apply to these settings (knn, no bounces)
-    }
-    std::shared_ptr<const MethodSettings> gathered = plain->final_gather > 0 ? plain : other;
-    std::shared_ptr<const MethodSettings> direct = plain->final_gather > 0 ? other : plain;
-    return {{name, direct},
-            {name + " --final-gather " + std::to_string(plain->final_gather > 0 ? plain->final_gather : kRacedFinalGatherRays),
-             gathered}};
+    return with_and_without_final_gather(name, std::static_pointer_cast<const PhotonSettings>(settings(true)),
+                                         kRacedFinalGatherRays);
   }
   // Final gathering's rays per pass in the race: few, so that its first pass, which every
   // race pays, stays short (16 rays took 0.5 to 0.8 s at 960 x 540 on an H100); passes add rays.

@@ -269,8 +269,8 @@ Run add_tradeoff_command(CLI::App& app) {
                                      "metres (default: 10% of the scene diagonal)");
   const std::string grid = "Grid (comma-separated lists)";
   cmd->add_option("--estimators", o->grid.estimators, "pd, knn, radius (photon mapping), fg (final gathering over "
-                                                      "the pd map), path (path tracer) and radiosity (vertex link "
-                                                      "radiosity)")
+                                                      "the pd map), path (path tracer), radiosity (vertex link "
+                                                      "radiosity) and radiosity-fg (final gathering over its solution)")
       ->capture_default_str()->group(grid);
   cmd->add_option("--photons", o->grid.photons, "Photons per pass")->capture_default_str()->group(grid);
   cmd->add_option("--passes", o->grid.passes, "Passes per frame, every estimator")->capture_default_str()->group(grid);
@@ -285,11 +285,11 @@ Run add_tradeoff_command(CLI::App& app) {
       ->transform(finite_float())->capture_default_str()->group(grid);
   cmd->add_option("--spp", o->grid.spp, "Paths per pixel and pass of the path tracer")->capture_default_str()->group(grid);
   cmd->add_option("--final-gather", o->grid.final_gather, "Gather rays per shading point and pass of --estimators fg "
-                                                        "(final gathering over the pd map)")
+                                                        "and radiosity-fg (final gathering)")
       ->capture_default_str()->group(grid);
-  cmd->add_option("--max-edge", o->grid.max_edge, "Radiosity's longest element edges, metres (0: the scene diagonal / 50)")
+  cmd->add_option("--max-edge", o->grid.max_edge, "Radiosity's (and radiosity-fg's) longest element edges, metres (0: the scene diagonal / 50)")
       ->capture_default_str()->group(grid);
-  cmd->add_option("--directions", o->grid.directions, "Radiosity's link directions per element (nC)")
+  cmd->add_option("--directions", o->grid.directions, "Radiosity's (and radiosity-fg's) link directions per element (nC)")
       ->capture_default_str()->group(grid);
   cmd->add_option("--warmup", o->warmup, "Frames rendered first and not timed, per setting")->capture_default_str();
   cmd->add_option("--repeat", o->repeat, "Timed frames per setting (medians)")->capture_default_str();

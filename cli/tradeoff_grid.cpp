@@ -61,6 +61,9 @@ std::string TradeoffSetting::label() const {
   std::string text = estimator;
   if (estimator == "radiosity")
     return text + (parameter > 0 ? " edge=" + number_text(parameter) : " edge=auto") + " nC=" + std::to_string(directions);
+  if (estimator == "radiosity-fg")
+    return text + (parameter > 0 ? " edge=" + number_text(parameter) : " edge=auto") + " nC=" + std::to_string(directions) +
+           " rays=" + std::to_string(rays) + " x" + std::to_string(passes);
   if (estimator == "path") text += " spp=" + number_text(parameter);
   else text += " " + std::to_string(photons);
   if (estimator == "pd") text += " s=" + number_text(parameter);
@@ -74,6 +77,7 @@ std::string TradeoffSetting::label() const {
 std::string TradeoffSetting::series() const {
   if (estimator == "path") return "path tracer";
   if (estimator == "radiosity") return "radiosity";
+  if (estimator == "radiosity-fg") return "radiosity final gather";
   return "photon " + estimator + (progressive == "shrink" ? " shrink" : "");
 }
 
@@ -85,11 +89,12 @@ RenderSettings TradeoffSetting::render_settings(const RenderSettings& base, int 
     path->samples = uint32_t(parameter);
     path->bounces = bounces;
     s.method = path;
-  } else if (estimator == "radiosity") {
+  } else if (estimator == "radiosity" || estimator == "radiosity-fg") {
     auto radiosity = std::make_shared<RadiositySettings>();
     radiosity->max_edge = float(parameter);
     radiosity->directions = directions;
     radiosity->bounces = bounces;
+    if (estimator == "radiosity-fg") radiosity->final_gather = rays;
     s.method = radiosity;
   } else {
     auto photon = std::make_shared<PhotonSettings>();
@@ -135,13 +140,21 @@ std::vector<TradeoffSetting> expand_tradeoff_grid(const TradeoffGridLists& lists
         for (uint64_t n : directions) grid.push_back(TradeoffSetting{estimator, 0, 1, edge, "average", lists.alpha, uint32_t(n)});
       continue;
     }
+    if (estimator == "radiosity-fg") {
+      for (double edge : max_edge)
+        for (uint64_t n : directions)
+          for (uint64_t r : rays)
+            for (uint64_t p : passes)
+              grid.push_back(TradeoffSetting{estimator, 0, uint32_t(p), edge, "average", lists.alpha, uint32_t(n), uint32_t(r)});
+      continue;
+    }
     std::vector<double> parameters;
     if (estimator == "path") for (uint64_t v : spp) parameters.push_back(double(v));
     else if (estimator == "pd") parameters = smoothing;
     else if (estimator == "knn") for (uint64_t v : k) parameters.push_back(double(v));
     else if (estimator == "radius") parameters = radius;
     else if (estimator == "fg") for (uint64_t v : rays) parameters.push_back(double(v));
-    else throw InputError("--estimators: expected pd, knn, radius, fg, path or radiosity, got '" + estimator + "'");
+    else throw InputError("--estimators: expected pd, knn, radius, fg, path, radiosity or radiosity-fg, got '" + estimator + "'");
     const bool photon_mapping = estimator != "path";
     const std::vector<uint64_t> counts = photon_mapping ? photons : std::vector<uint64_t>{0};
     for (uint64_t count : counts)

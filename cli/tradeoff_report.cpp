@@ -213,12 +213,14 @@ nlohmann::ordered_json tradeoff_json_rows(const std::vector<TradeoffRow>& rows) 
     nlohmann::ordered_json j;
     j["label"] = r.setting.label();
     j["estimator"] = r.setting.estimator;
-    const bool photon_mapping = r.setting.estimator != "path" && r.setting.estimator != "radiosity";
+    const bool radiosity = r.setting.estimator == "radiosity" || r.setting.estimator == "radiosity-fg";
+    const bool photon_mapping = r.setting.estimator != "path" && !radiosity;
     if (r.setting.estimator == "path") j["spp"] = r.setting.parameter;
-    if (r.setting.estimator == "radiosity") {
+    if (radiosity) {
       j["max_edge"] = r.setting.parameter;
       j["directions"] = r.setting.directions;
     }
+    if (r.setting.estimator == "radiosity-fg") j["final_gather"] = r.setting.rays;
     if (photon_mapping) j["photons"] = r.setting.photons;
     if (r.setting.estimator == "pd") j["smoothing"] = r.setting.parameter;
     if (r.setting.estimator == "knn") j["k"] = r.setting.parameter;

@@ -83,19 +83,23 @@ TEST_F(TradeoffCli, ProgressiveModesAreAGridDimension) {
 }
 
 // Radiosity is a method of the grid: its element sizes and link directions are grid dimensions,
-// one pass each, a series of its own; so is final gathering (fg), over its gather rays. Per error level the report names the fastest setting of
+// one pass each, a series of its own; so is final gathering over the pd map (fg), over its gather
+// rays, and over the radiosity solution (radiosity-fg), over edges, directions, rays and passes.
+// Per error level the report names the fastest setting of
 // all that reaches it: the fastest row of the JSON's own numbers with at most that error.
 TEST_F(TradeoffCli, RadiosityIsSweptAndTheFastestMethodOfEachLevelIsNamed) {
   const fs::path out = dir_ / "methods";
   const std::vector<double> levels = {10, 0.5, 0.3, 1e-4};
   const test::ProcessResult r = pmrender(
       "tradeoff --backend opencl --resolution 16x16 --reference-spp 16 --reference-passes 2 "
-      "--estimators pd,fg,radiosity --photons 4096 --passes 1,2 --final-gather 4 --max-edge 0.2,0.1 --directions 16,32 "
+      "--estimators pd,fg,radiosity,radiosity-fg --photons 4096 --passes 1,2 --final-gather 4 --max-edge 0.2,0.1 "
+      "--directions 16,32 "
       "--warmup 0 --repeat 1 "
       "--error-levels 10,0.5,0.3,0.0001 -q -o " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const nlohmann::json j = nlohmann::json::parse(test::read_text(out / "tradeoff.json"));
-  ASSERT_EQ(j["settings"].size(), 8u) << "pd, fg: 2 pass counts each; radiosity: 2 edges x 2 direction counts, one pass";
+  ASSERT_EQ(j["settings"].size(), 16u) << "pd, fg: 2 pass counts each; radiosity: 2 edges x 2 direction counts, one "
+                                          "pass; radiosity-fg: the same x 2 pass counts";
   EXPECT_EQ(j["settings"][2]["label"], "fg 4096 rays=4 x1");
   EXPECT_EQ(j["settings"][2]["final_gather"], 4);
   EXPECT_EQ(j["settings"][3]["label"], "fg 4096 rays=4 x2");
@@ -108,6 +112,14 @@ TEST_F(TradeoffCli, RadiosityIsSweptAndTheFastestMethodOfEachLevelIsNamed) {
   EXPECT_FALSE(first.contains("photons"));
   EXPECT_FALSE(first.contains("progressive"));
   EXPECT_EQ(j["settings"][7]["label"], "radiosity edge=0.1 nC=32");
+  const nlohmann::json& gathered = j["settings"][9];
+  EXPECT_EQ(gathered["label"], "radiosity-fg edge=0.2 nC=16 rays=4 x2");
+  EXPECT_EQ(gathered["estimator"], "radiosity-fg");
+  EXPECT_EQ(gathered["passes"], 2);
+  EXPECT_EQ(gathered["final_gather"], 4);
+  EXPECT_EQ(gathered["directions"], 16);
+  EXPECT_FALSE(gathered.contains("photons"));
+  EXPECT_EQ(j["settings"][15]["label"], "radiosity-fg edge=0.1 nC=32 rays=4 x2");
   for (const auto& s : j["settings"]) EXPECT_TRUE(std::isfinite(s["relmae"].get<double>())) << s["label"];
 
   ASSERT_EQ(j["fastest"].size(), levels.size());
@@ -135,7 +147,7 @@ TEST_F(TradeoffCli, BadInputExitsTwoBeforeRendering) {
   } cases[] = {
       {"--estimators pd", "--reference or --reference-spp: give exactly one"},
       {"--reference-spp 4 --estimators pd,photon",
-       "--estimators: expected pd, knn, radius, fg, path or radiosity, got 'photon'"},
+       "--estimators: expected pd, knn, radius, fg, path, radiosity or radiosity-fg, got 'photon'"},
       {"--reference-spp 4 --directions 0", "--directions: expected a comma-separated list of positive numbers"},
       {"--reference-spp 4 --max-edge 0.1,-1", "--max-edge: expected a comma-separated list of numbers >= 0"},
       {"--reference-spp 4 --photons 100,x", "--photons: expected a comma-separated list"},
