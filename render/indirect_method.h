@@ -89,6 +89,11 @@ class IndirectMethod {
   // biased method's film (render/bias_control.h); an unbiased one needs no control.
   virtual uint32_t light_bounces() const = 0;
   virtual bool may_be_biased() const = 0;
+  // Whether its passes are independent samples of one estimate (the path tracer's paths, final
+  // gathering's rays over a fixed radiosity solution): their error falls as noise does until a
+  // bias shows. Photon passes are not: they trace a new map each pass, and shrinking ones change
+  // its bias as they go (--method auto forecasts them more slowly; render/method_race.h).
+  virtual bool passes_are_samples() const { return true; }
 
   // Once per frame, before its passes. change says what differs from the previous frame.
   virtual void begin_frame(const FrameContext& frame, const FrameChange& change) = 0;

@@ -41,6 +41,7 @@ std::string seconds_text(double s) {
 struct Runner {
   std::unique_ptr<Renderer> renderer;
   double own_seconds = 0;
+  double start_seconds = 0;  // of own_seconds, beginning the frame (before any pass)
   RaceEntry entry;
   std::vector<std::vector<float4>> films;  // per reading
   double last_upper = -1;  // the last reading's error plus two standard errors
@@ -50,13 +51,14 @@ struct Runner {
   // Passes done: where it stands is where it stays (radiosity after its pass, or --passes reached).
   ErrorDecay decay() const {
     if (renderer->passes_done() >= cap) return ErrorDecay::fixed;
-    return renderer->method()->may_be_biased() ? ErrorDecay::measured : ErrorDecay::monte_carlo;
+    if (!renderer->method()->may_be_biased()) return ErrorDecay::monte_carlo;
+    return renderer->method()->passes_are_samples() ? ErrorDecay::sampled : ErrorDecay::measured;
   }
   // Whether its forecast rests on a measured rate (or on a final error).
   bool measured() const {
     if (decay() == ErrorDecay::fixed) return !entry.readings.empty();
-    return entry.readings.size() >= 2 &&
-           entry.readings.back().seconds >= kRateSpan * entry.readings[entry.readings.size() - 2].seconds;
+    return entry.readings.size() >= 2 && entry.readings.back().seconds - start_seconds >=
+                                             kRateSpan * (entry.readings[entry.readings.size() - 2].seconds - start_seconds);
   }
 };
 
@@ -90,34 +92,33 @@ void measure(Runner& r, const SharedControl& control) {
 
 double ErrorForecast::seconds_to(double target) const {
   if (last.error <= target) return last.seconds;
-  if (rate <= 0 || last.seconds <= 0) return std::numeric_limits<double>::infinity();
-  return last.seconds * std::pow(last.error / target, 1.0 / rate);
+  const double passes = last.seconds - start;
+  if (rate <= 0 || passes <= 0) return std::numeric_limits<double>::infinity();
+  return start + passes * std::pow(last.error / target, 1.0 / rate);
 }
 
 double ErrorForecast::error_at(double seconds) const {
-  if (seconds <= last.seconds || last.seconds <= 0) return last.error;
-  return last.error * std::pow(last.seconds / seconds, rate);
+  const double passes = last.seconds - start;
+  if (seconds <= last.seconds || passes <= 0) return last.error;
+  return last.error * std::pow(passes / (seconds - start), rate);
 }
 
-ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDecay decay) {
+ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDecay decay, double start_seconds) {
   ErrorForecast f;
+  f.start = start_seconds;
   if (readings.empty()) return f;
   f.last = readings.back();
-  switch (decay) {
-    case ErrorDecay::fixed: f.rate = 0; break;
-    case ErrorDecay::monte_carlo:
-    case ErrorDecay::measured: {
-      f.rate = decay == ErrorDecay::monte_carlo ? 0.5 : kAssumedShrinkRate;
-      // The latest reading against the latest one far enough before it.
-      for (size_t i = readings.size() - 1; i-- > 0;) {
-        const ErrorReading& a = readings[i];
-        if (a.seconds <= 0 || a.error <= 0 || f.last.error <= 0 || f.last.seconds < kRateSpan * a.seconds) continue;
-        const double measured = std::log(a.error / f.last.error) / std::log(f.last.seconds / a.seconds);
-        f.rate = std::clamp(measured, decay == ErrorDecay::monte_carlo ? kLeastMonteCarloRate : 0.0, 0.5);
-        break;
-      }
-      break;
-    }
+  if (decay == ErrorDecay::fixed) return f;
+  f.rate = decay == ErrorDecay::measured ? kAssumedShrinkRate : 0.5;
+  // The latest reading against the latest one far enough before it, in the passes' time.
+  const double last_passes = f.last.seconds - start_seconds;
+  for (size_t i = readings.size() - 1; i-- > 0;) {
+    const ErrorReading& a = readings[i];
+    const double passes = a.seconds - start_seconds;
+    if (passes <= 0 || a.error <= 0 || f.last.error <= 0 || last_passes < kRateSpan * passes) continue;
+    const double measured = std::log(a.error / f.last.error) / std::log(last_passes / passes);
+    f.rate = std::clamp(measured, decay == ErrorDecay::monte_carlo ? kLeastMonteCarloRate : 0.0, 0.5);
+    break;
   }
   return f;
 }
@@ -172,7 +173,7 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
     const Clock::time_point begun = Clock::now();
     r.renderer->begin_frame(frame);
     r.renderer->wait();
-    r.own_seconds = seconds_since(begun);
+    r.own_seconds = r.start_seconds = seconds_since(begun);
   }
 
   // With a time budget the race takes up to kRaceShareOfTime of it; without, it starts short.
@@ -224,7 +225,7 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
     for (size_t i = 0; i < runners.size(); ++i) {
       Runner& r = runners[i];
       if (r.out) continue;
-      r.entry.forecast = forecast_error(r.entry.readings, r.decay());
+      r.entry.forecast = forecast_error(r.entry.readings, r.decay(), r.start_seconds);
       const bool known = !r.entry.readings.empty() && r.entry.readings.back().error >= 0;
       if (!known) r.entry.forecast_value = std::numeric_limits<double>::infinity();
       else if (by_error) r.entry.forecast_value = r.entry.forecast.seconds_to(target);

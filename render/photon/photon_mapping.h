@@ -25,6 +25,7 @@ class PhotonMapping final : public IndirectMethod {
   uint32_t max_passes() const override { return 0; }
   uint32_t light_bounces() const override { return uint32_t(settings_.bounces); }
   bool may_be_biased() const override { return true; }
+  bool passes_are_samples() const override { return false; }
   void begin_frame(const FrameContext& frame, const FrameChange& change) override;
   void run_pass(const FrameContext& frame, uint32_t pass) override;
   MethodStats stats() const override { return stats_; }

@@ -42,6 +42,24 @@ TEST(MethodRaceForecast, RatesAreClampedToWhatMethodsCanDo) {
   EXPECT_DOUBLE_EQ(forecast_error({{1.0, 0.1, 2}, {4.0, 0.1, 8}}, ErrorDecay::monte_carlo).rate, kLeastMonteCarloRate);
 }
 
+TEST(MethodRaceForecast, TheFramesStartIsNotPartOfTheDecay) {
+  // 1 s beginning the frame (radiosity's solve), then 0.2 at 1.25 s and 0.1 at 2 s: four times
+  // the passes' time, half the error. Measured against the whole time the rate would read 0.74
+  // (clamped to 1/2) and the forecast would miss where the time goes.
+  const ErrorForecast f = forecast_error({{1.25, 0.2, 1}, {2.0, 0.1, 4}}, ErrorDecay::sampled, 1.0);
+  EXPECT_NEAR(f.rate, 0.5, 1e-12);
+  EXPECT_NEAR(f.seconds_to(0.05), 1.0 + 4.0, 1e-9) << "the passes' second quadruples; the start is paid once";
+  EXPECT_NEAR(f.error_at(17.0), 0.025, 1e-12);
+  // Until two readings are far enough apart in the passes' time, passes that are samples of one
+  // estimate fall as 1/sqrt(t), biased or not; photon passes (measured) more slowly.
+  const ErrorForecast first = forecast_error({{1.25, 0.2, 1}, {1.3, 0.19, 2}}, ErrorDecay::sampled, 1.0);
+  EXPECT_DOUBLE_EQ(first.rate, 0.5);
+  EXPECT_NEAR(first.seconds_to(0.095), 1.0 + 0.3 * 4.0, 1e-9);
+  EXPECT_DOUBLE_EQ(forecast_error({{1.25, 0.2, 1}}, ErrorDecay::measured, 1.0).rate, kAssumedShrinkRate);
+  // And a sampled estimate whose bias shows stalls, as any biased one may.
+  EXPECT_DOUBLE_EQ(forecast_error({{1.5, 0.1, 2}, {4.0, 0.1, 8}}, ErrorDecay::sampled, 1.0).rate, 0.0);
+}
+
 TEST(MethodRaceForecast, AFinishedMethodStaysWhereItIs) {
   const ErrorForecast radiosity = forecast_error({{0.5, 0.02, 1}}, ErrorDecay::fixed);
   EXPECT_DOUBLE_EQ(radiosity.error_at(100.0), 0.02);
