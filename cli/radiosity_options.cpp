@@ -8,6 +8,7 @@
 
 #include "cli/method_options.h"
 #include "cli/number_parsing.h"
+#include "render/errors.h"
 #include "render/radiosity/radiosity_settings.h"
 
 namespace pm::cli {
@@ -20,6 +21,7 @@ class RadiosityOptions final : public MethodOptions {
   std::string sides = "two";
   std::string light_samples = "one-ring";
   std::string link_origins = "one-ring";
+  std::string directions = "auto";
   CLI::Option* bounces = nullptr;       // --bounces, whoever registered it
   CLI::Option* final_gather = nullptr;  // --final-gather, whoever registered it
 
@@ -28,6 +30,13 @@ class RadiosityOptions final : public MethodOptions {
     value_of(kRadiositySidesNames, sides, &s->sides);
     value_of(kRadiosityLightSamplesNames, light_samples, &s->light_samples);
     value_of(kRadiosityLinkOriginsNames, link_origins, &s->link_origins);
+    if (directions != "auto") {
+      try {
+        s->directions = uint32_t(parse_unsigned("--directions", directions, 1, 16384));
+      } catch (const InputError&) {
+        throw SettingError("directions", "expected auto or 1 to 16384 directions per element, got '" + directions + "'");
+      }
+    }
     if (bounces && bounces->count() > 0) s->bounces = bounces->as<int>();
     if (final_gather && final_gather->count() > 0) s->final_gather = final_gather->as<uint32_t>();
     s->validate();
@@ -58,8 +67,11 @@ std::shared_ptr<MethodOptions> add_radiosity_options(CLI::App* cmd) {
                                       "Final gathering: N rays per shading point and pass, the solution read at their hits "
                                       "(0: off; docs/final-gathering.md)")
                           ->transform(any_unsigned32())->capture_default_str()->group(group);
-  cmd->add_option("--directions", r.directions, "Hemisphere directions nC shot per element (link rays)")
-      ->capture_default_str()->transform(any_unsigned32())->group(group);
+  cmd->add_option("--directions", o->directions, "Hemisphere directions nC shot per element (link rays): auto (" +
+                                                      std::to_string(RadiositySettings::kDirections) + "; " +
+                                                      std::to_string(RadiositySettings::kFinalGatherDirections) +
+                                                      " with --final-gather) or a number")
+      ->capture_default_str()->group(group);
   cmd->add_option("--max-edge", r.max_edge, "Longest triangle edge after refinement, metres (default: the scene "
                                             "diagonal / 50)")->transform(finite_float())->group(group);
   cmd->add_option("--feature-angle", r.feature_angle, "Feature angle alpha_f, degrees: vertices split and smoothing "

@@ -24,7 +24,7 @@ constexpr uint64_t kLinkScratchBudget = uint64_t(256) << 20;
 }  // namespace
 
 void RadiositySettings::validate() const {
-  if (directions < 1 || directions > 16384)
+  if (directions > 16384)
     throw SettingError("directions", "expected 1 to 16384 directions per element, got " + std::to_string(directions));
   if (bounces < 0 || bounces > 16) throw SettingError("bounces", "expected 0 to 16, got " + std::to_string(bounces));
   if (!(max_edge >= 0) || !std::isfinite(max_edge))
@@ -44,8 +44,9 @@ void RadiositySettings::validate() const {
   if (final_gather > 65536) throw SettingError("final-gather", "expected 0 to 65536 rays, got " + std::to_string(final_gather));
   if (final_gather > 0 && bounces < 1) throw SettingError("final-gather", "needs --bounces 1 or more");
   // One launch traces batch * nC rays, indexed with 32 bits.
-  if (uint64_t(link_batch) * directions > 0x7fffffffull)
-    throw SettingError("link-batch", std::to_string(link_batch) + " elements of " + std::to_string(directions) +
+  const uint32_t nc = resolved_directions();
+  if (uint64_t(link_batch) * nc > 0x7fffffffull)
+    throw SettingError("link-batch", std::to_string(link_batch) + " elements of " + std::to_string(nc) +
                                          " directions exceed 2^31 rays per launch");
 }
 
@@ -56,6 +57,7 @@ RadiositySettings RadiositySettings::resolved(const SceneMeasures& measures) con
   // closer to the path-traced references for 1.2 to 3.8 times the link rays.
   if (s.max_edge == 0) s.max_edge = float(measures.diagonal / 50.0);
   if (!(s.max_edge > 0)) s.max_edge = 1.0f;  // an empty or point-sized scene: nothing to refine
+  s.directions = resolved_directions();
   return s;
 }
 
@@ -67,7 +69,7 @@ uint32_t RadiositySettings::batch_elements(uint64_t elements) const {
 
 std::string RadiositySettings::describe() const {
   std::ostringstream s;
-  s << "directions=" << directions << " bounces=" << bounces << " max_edge=" << max_edge
+  s << "directions=" << resolved_directions() << " bounces=" << bounces << " max_edge=" << max_edge
     << " feature_angle=" << feature_angle << " smooth_passes=" << smooth_passes
     << " sides=" << name_of(kRadiositySidesNames, sides)
     << " light_samples=" << name_of(kRadiosityLightSamplesNames, light_samples)

@@ -142,7 +142,7 @@ TEST_F(RadiosityCli, RenderAndBenchRunAndBadOptionsAreRefused) {
     EXPECT_NE(r.out.find(row), std::string::npos) << row << "\n" << r.out;
 
   for (const std::pair<const char*, const char*>& bad :
-       {std::pair{"--directions 0", "--directions: expected 1 to 16384"}, {"--feature-angle 0", "--feature-angle:"},
+       {std::pair{"--directions 0", "--directions: expected auto or 1 to 16384"}, {"--feature-angle 0", "--feature-angle:"},
         {"--max-edge -1", "--max-edge:"}, {"--max-edge 0.00001", "--max-edge:"}, {"--sides three", "--sides"},
         {"--hidden-origins -1", "--hidden-origins:"}}) {
     r = pmrender(std::string("render --backend opencl --method radiosity --resolution 8x8 -o ") + (dir_ / "bad.exr").string() +
