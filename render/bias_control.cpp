@@ -118,16 +118,23 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
 BiasControl::BiasControl(Device& device, BufferTable& buffers, int width, int height)
     : device_(device), buffers_(buffers), grid_(control_grid(width, height)) {}
 
+void BiasControl::launch(LaunchParams params, uint32_t samples, uint64_t first_sample) {
+  const uint64_t items = grid_.pixels();
+  params.control_stride = grid_.stride;
+  params.control_samples = samples;
+  params.control_first_sample = uint32_t(first_sample);
+  params.control_lanes = std::min<uint32_t>(PM_CONTROL_LANES, std::max<uint32_t>(samples, 1));
+  if (samples > 0) device_.launch(KernelId::bias_control, items * params.control_lanes, params);
+  device_.launch(KernelId::bias_control_sum, items, params);
+}
+
 BiasEstimate BiasControl::add_and_compare(LaunchParams params, uint32_t samples) {
   const uint64_t items = grid_.pixels();
   if (!cleared_) {
     device_.fill_zero(buffers_[BufferSlot::control_sums], buffers_[BufferSlot::control_sums].bytes());
     cleared_ = true;
   }
-  params.control_stride = grid_.stride;
-  params.control_samples = samples;
-  params.control_first_sample = uint32_t(paths_);
-  device_.launch(KernelId::bias_control, items, params);
+  launch(params, samples, paths_);
   paths_ += samples;
   std::vector<float4> sums(items), film(items);
   device_.download(buffers_[BufferSlot::control_sums], sums.data(), items * sizeof(float4));
@@ -140,10 +147,7 @@ void BiasControl::grow_shared(LaunchParams params, SharedControl& shared, uint32
   DeviceBuffer& sums = buffers_[BufferSlot::control_sums];
   if (shared.sums.size() == items) device_.upload(sums, shared.sums.data(), items * sizeof(float4));
   else device_.fill_zero(sums, sums.bytes());
-  params.control_stride = grid_.stride;
-  params.control_samples = samples;
-  params.control_first_sample = uint32_t(shared.paths);
-  device_.launch(KernelId::bias_control, items, params);
+  launch(params, samples, shared.paths);
   shared.sums.resize(items);
   device_.download(sums, shared.sums.data(), items * sizeof(float4));
   shared.paths += samples;
@@ -161,10 +165,7 @@ void BiasControl::adopt(const SharedControl& shared) {
 
 std::vector<float4> BiasControl::film_at_control(LaunchParams params) {
   const uint64_t items = grid_.pixels();
-  params.control_stride = grid_.stride;
-  params.control_samples = 0;  // reads the film at the control pixels, adds no path
-  params.control_first_sample = 0;
-  device_.launch(KernelId::bias_control, items, params);
+  launch(params, 0, 0);  // reads the film at the control pixels, adds no path
   std::vector<float4> film(items);
   device_.download(buffers_[BufferSlot::control_film], film.data(), items * sizeof(float4));
   return film;

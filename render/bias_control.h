@@ -95,6 +95,10 @@ class BiasControl {
   std::vector<float4> film_at_control(LaunchParams params);
 
  private:
+  // samples paths per control pixel (paths first_sample... of its stream), shared out over up to
+  // PM_CONTROL_LANES work items each, added to control_sums; then the film read at the pixels.
+  void launch(LaunchParams params, uint32_t samples, uint64_t first_sample);
+
   Device& device_;
   BufferTable& buffers_;
   ControlGrid grid_;

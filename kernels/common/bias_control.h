@@ -10,7 +10,10 @@
    Per control pixel, control_sums holds (sum of the paths' indirect radiance rgb, sum of the
    squares of their channel means) over every launch of the frame (the host counts the paths),
    and control_film the film's resolved indirect + caustic light there at the latest launch, with
-   the pixel's index in w. Random numbers: the path
+   the pixel's index in w. A launch shares each control pixel's paths out over control_lanes work
+   items (a thousand control pixels alone would leave a GPU nearly idle, one thread running
+   every path of its pixel in turn), each writing its sums to control_partials; a second kernel
+   adds the lanes in order, so the sums do not depend on the device's scheduling. Random numbers: the path
    tracer's stream, keyed by (seed ^ PM_STREAM_CONTROL, frame), so the control never shares a path
    with a --method path render of the same seed. */
 #ifndef PM_BIAS_CONTROL_H
@@ -36,9 +39,12 @@ PM_DEVICE int control_pixel(const LaunchParams* p, uint c, uint* pixel)
   return 1;
 }
 
-/* Work item = control pixel. */
-PM_DEVICE void kernel_bias_control(const KernelGlobals* kg, const LaunchParams* p, uint c)
+/* Work item = (control pixel c, lane l), item = c * control_lanes + l: the lane's share of the
+   launch's paths (samples l, l + lanes, ...), its sums into control_partials[item]. */
+PM_DEVICE void kernel_bias_control(const KernelGlobals* kg, const LaunchParams* p, uint item)
 {
+  uint lanes = p->control_lanes > 0u ? p->control_lanes : 1u;
+  uint c = item / lanes, lane = item % lanes;
   uint pixel;
   if (!control_pixel(p, c, &pixel)) return;
   uint pixels = p->width * p->height;
@@ -47,7 +53,7 @@ PM_DEVICE void kernel_bias_control(const KernelGlobals* kg, const LaunchParams* 
   q.path_frame = p->frame;
   Vec3 sum = vec3_splat(0.0f);
   float squares = 0.0f;
-  for (uint s = 0; s < p->control_samples; ++s) {
+  for (uint s = lane; s < p->control_samples; s += lanes) {
     Vec3 path = vec3_splat(0.0f);
     for (uint depth = 0; depth <= p->mirror_depth; ++depth) {
       ShadingPoint sp;
@@ -61,8 +67,24 @@ PM_DEVICE void kernel_bias_control(const KernelGlobals* kg, const LaunchParams* 
     float mean = (path.x + path.y + path.z) * (1.0f / 3.0f);
     squares += mean * mean;
   }
-  float4 old = kg->control_sums[c];
-  kg->control_sums[c] = PM_MAKE_FLOAT4(old.x + sum.x, old.y + sum.y, old.z + sum.z, old.w + squares);
+  kg->control_partials[item] = vec3_to_float4(sum, squares);
+}
+
+/* Work item = control pixel: the launch's lanes added to its sums in lane order (none when the
+   launch had no paths: control_samples 0 only reads the film), and the film read there. */
+PM_DEVICE void kernel_bias_control_sum(const KernelGlobals* kg, const LaunchParams* p, uint c)
+{
+  uint pixel;
+  if (!control_pixel(p, c, &pixel)) return;
+  if (p->control_samples > 0u) {
+    uint lanes = p->control_lanes > 0u ? p->control_lanes : 1u;
+    float4 total = kg->control_sums[c];
+    for (uint lane = 0; lane < lanes; ++lane) {
+      float4 part = kg->control_partials[c * lanes + lane];
+      total = PM_MAKE_FLOAT4(total.x + part.x, total.y + part.y, total.z + part.z, total.w + part.w);
+    }
+    kg->control_sums[c] = total;
+  }
   float inv_passes = 1.0f / (float)(p->film_passes > 0u ? p->film_passes : 1u);
   Vec3 film = vec3_scale(vec3_add(vec3_from_float4(kg->film_indirect_sum[pixel]),
                                   vec3_from_float4(kg->film_caustic_sum[pixel])), inv_passes);

@@ -13,6 +13,10 @@
 #ifndef PM_BUFFERS_H
 #define PM_BUFFERS_H
 
+/* The bias control's work items per control pixel at most (bias_control.h): its paths shared out
+   so that a launch over about a thousand control pixels fills a GPU. */
+#define PM_CONTROL_LANES 64u
+
 #define PM_BUFFER_LIST(X)                                                                                   \
   /* S0 scene, uploaded once per renderer */                                                               \
   X(scene, float4, scene_nodes, uploaded, 1)  /* BVH2, 4 float4 per node, child boxes in the parent */      \
@@ -52,6 +56,7 @@
   /* the error estimate's bias control (bias_control.h), one entry per control pixel */                    \
   X(frame, float4, control_sums, control_pixels, 1) /* paths' rgb sum, w = sum of squared channel means */ \
   X(frame, float4, control_film, control_pixels, 1) /* the film's indirect + caustic there; w = pixel */   \
+  X(frame, float4, control_partials, control_pixels, PM_CONTROL_LANES) /* per lane of a launch, as control_sums */ \
   /* photon mapping, S1 emitters: per light (first photon of the pass, photon count, 0, 0) */              \
   X(photon, uint4, photon_emitters, uploaded, 1)                                                            \
   /* photon mapping, S2 hits: slot order [photon * hit_slots_per_photon + k] */                            \

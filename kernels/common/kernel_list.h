@@ -23,6 +23,7 @@
   K(film_layers)       /* S7: albedo, normal, depth, position, ids from the shading points */  \
   K(film_error_tiles)  /* S7: per-tile sums for the error estimate from even and odd passes */ \
   K(bias_control)      /* S7: paths at sparse control pixels beside the film, for the error's bias */ \
+  K(bias_control_sum)  /* S7: the control's lanes summed per control pixel, the film read there */ \
   K(radiosity_link_trace)   /* radiosity: nC rays per element of a batch, barycentric links */ \
   K(radiosity_link_merge)   /* radiosity: an element's links to one element combined */        \
   K(radiosity_link_store)   /* radiosity: merged links, compact, at host-computed offsets */   \

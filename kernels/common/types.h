@@ -163,6 +163,7 @@ typedef struct LaunchParams {
   uint final_gather_rays;     /* photon mapping: gather rays per shading point and pass (final_gather.h); 0: off */
   uint facet_weighting;       /* photon mapping: 1: a photon counts on a tilted facet by what its beam delivers there
                                  and its footprint's area is the lit surface area (gather_reach.h); 0: in full */
+  uint control_lanes;         /* bias control: work items per control pixel, each a share of its paths (bias_control.h) */
 } LaunchParams;
 
 /* Environment lights (environment_light.h): none, one radiance from every direction, or an
