@@ -183,7 +183,9 @@ void VertexLinkRadiosity::solve(LaunchParams p, StageTimer* timer) {
 
 void VertexLinkRadiosity::begin_frame(const FrameContext& frame, const FrameChange& change) {
   bool built = false, lit = false;
-  frame_ = frame.params.frame;
+  // The gather rays' key: as the photon method's photons, the first frame of a run sharing its
+  // lights (camera-only frames then show the same noise rather than flicker), unless --no-reuse.
+  ray_frame_ = frame.reuse_lighting ? frame.light_run_start : frame.frame;
   // A solution of no bounces (final gathering with --bounces 1) holds nothing: the gather rays
   // bring the direct light at their hits alone.
   if (settings_.solution_bounces() == 0) {
@@ -209,9 +211,9 @@ void VertexLinkRadiosity::run_pass(const FrameContext& frame, uint32_t /*pass*/)
   p.radiosity_source = final_source_;
   if (settings_.final_gather > 0) {
     // Rays of pass k are rays k N .. k N + N - 1 of the frame (final_gather.h; pass_index is the
-    // renderer's), keyed by the frame as the photon method's are by its photons' frame.
+    // renderer's).
     p.final_gather_rays = settings_.final_gather;
-    p.photon_frame = uint32_t(frame_);
+    p.photon_frame = uint32_t(ray_frame_);
     StageScope scope(frame.timer, "radiosity: final gather");
     device_.launch(KernelId::radiosity_final_gather, pixel_work_items(p.width, p.height), p);
     return;

@@ -56,7 +56,7 @@ class VertexLinkRadiosity final : public IndirectMethod {
   const Scene& scene_;
   RadiositySettings settings_;
   uint32_t pixels_ = 0;
-  int frame_ = 0;                   // the frame begun last: the key of its gather rays
+  int ray_frame_ = 0;               // the key of the gather rays of the frame begun last
 
   bool prepared_ = false;
   bool solved_ = false;

@@ -1,6 +1,7 @@
 // Vertex link radiosity end to end on the OpenCL backend: what a frame recomputes (light-only
 // frames re-run light links and gathering but never rebuild links; camera-only frames re-run
-// nothing but the interpolation, and still equal a fresh render), agreement with photon mapping
+// nothing but the interpolation, and still equal a fresh render), final gathering's rays across
+// frames, agreement with photon mapping
 // on the Cornell box, and the command line (render, bench, a bad option).
 #include <gtest/gtest.h>
 
@@ -98,6 +99,28 @@ TEST_F(Radiosity, CameraOnlyFramesOnlyInterpolate) {
   EXPECT_TRUE(again.find("indirect")->rgb == last.find("indirect")->rgb);
   EXPECT_GT(test::mean(last.find("indirect")->rgb), 0.0);
   EXPECT_TRUE(test::all_finite(last.find("")->rgb));
+}
+
+// Final gathering's rays are keyed like the photon method's photons: by the first frame of a run
+// of frames sharing their lights, so that a still scene's frames show the same noise instead of
+// flickering; with --no-reuse every frame draws its own.
+TEST_F(Radiosity, FinalGatherRaysFollowTheLightRun) {
+  Scene scene = moving_room();
+  scene.animation.camera = CameraAnimation{};  // the lamp stops at frame 12, the camera stands
+  RadiositySettings radiosity;
+  radiosity.directions = 16;
+  radiosity.final_gather = 4;
+  RenderSettings settings = small_radiosity(24, 18, 16);
+  settings.method = std::make_shared<RadiositySettings>(radiosity);
+  settings.control_paths = 0;
+  Renderer reused(*device_, scene, settings);
+  const FrameImage a13 = reused.render_frame(13), a14 = reused.render_frame(14);
+  EXPECT_TRUE(a13.find("indirect")->rgb == a14.find("indirect")->rgb) << "one run of still lights: the same rays";
+  settings.reuse_lighting = false;
+  Renderer fresh(*device_, scene, settings);
+  const FrameImage b13 = fresh.render_frame(13), b14 = fresh.render_frame(14);
+  EXPECT_FALSE(b13.find("indirect")->rgb == b14.find("indirect")->rgb) << "--no-reuse: each frame its own rays";
+  EXPECT_GT(test::mean(b14.find("indirect")->rgb), 0.0);
 }
 
 // Both methods estimate the same indirect light (bounces 1 and 2, all diffuse). Their biases
