@@ -1,5 +1,6 @@
-// Host driver of the portable radix sort: per 4-bit digit, histogram -> chunk scan -> total scan
-// -> stable scatter, ping-ponging between the pair buffers (see kernels/common/radix_sort.h).
+// Host driver of the portable radix sort: per digit of PM_SORT_RADIX_BITS, histogram -> chunk
+// scan -> chunk-total scan -> stable scatter, ping-ponging between the pair buffers (see
+// kernels/common/radix_sort.h).
 #include "render/portable_sort.h"
 
 #include <utility>
@@ -10,10 +11,12 @@ namespace {
 
 uint32_t tile_count(uint32_t count) { return (count + PM_SORT_TILE - 1) / PM_SORT_TILE; }
 
+uint32_t chunk_count(uint32_t entries) { return (entries + PM_SORT_SCAN_CHUNK - 1) / PM_SORT_SCAN_CHUNK; }
+
+// Digit counts, then each chunk's total and each chunk's first position.
 size_t histogram_bytes(uint32_t count) {
   size_t entries = size_t(PM_SORT_RADIX) * tile_count(count);
-  size_t chunks = (entries + PM_SORT_TILE - 1) / PM_SORT_TILE;
-  return (entries + chunks) * sizeof(uint32_t);
+  return (entries + 2 * size_t(chunk_count(uint32_t(entries)))) * sizeof(uint32_t);
 }
 
 }  // namespace
@@ -36,8 +39,8 @@ void portable_sort_pairs(Device& device, PortableSortScratch& scratch, DeviceBuf
   LaunchParams params{};
   params.sort_count = count;
   params.sort_tile_count = tile_count(count);
-  uint32_t entries = PM_SORT_RADIX * params.sort_tile_count;
-  uint32_t chunks = (entries + PM_SORT_TILE - 1) / PM_SORT_TILE;
+  const uint32_t lanes = PM_SORT_RADIX * params.sort_tile_count;  // one per digit of every tile
+  const uint32_t chunks = chunk_count(lanes);
   device.bind(BufferSlot::sort_histogram, scratch.histogram(device, count));
 
   // Each pass scatters from (keys, values) into the other pair. With an even pass count the
@@ -59,10 +62,10 @@ void portable_sort_pairs(Device& device, PortableSortScratch& scratch, DeviceBuf
     device.bind(BufferSlot::sort_values, *values);
     device.bind(BufferSlot::sort_keys_alt, *keys_alt);
     device.bind(BufferSlot::sort_values_alt, *values_alt);
-    device.launch(KernelId::sort_histogram, params.sort_tile_count, params);
+    device.launch(KernelId::sort_histogram, lanes, params);
     device.launch(KernelId::sort_scan_chunks, chunks, params);
-    device.launch(KernelId::sort_scan_totals, 1, params);
-    device.launch(KernelId::sort_scatter, params.sort_tile_count, params);
+    device.launch(KernelId::sort_scan_totals, chunks, params);
+    device.launch(KernelId::sort_scatter, lanes, params);
     std::swap(keys, keys_alt);
     std::swap(values, values_alt);
   }

@@ -1,12 +1,13 @@
 // Host driver of the portable radix sort kernels (kernels/common/radix_sort.h), used by backends
-// without a library sort. Four bits per pass, ping-ponging between the input and output pairs.
+// without a library sort. PM_SORT_RADIX_BITS per pass, ping-ponging between the input and output pairs.
 #pragma once
 
 #include "render/device.h"
 
 namespace pm {
 
-// Scratch the sort needs beyond the pair buffers: the digit histogram and chunk totals.
+// Scratch the sort needs beyond the pair buffers: the digit histogram, chunk totals and
+// chunk offsets.
 // Owned by the backend so repeated sorts reuse it.
 class PortableSortScratch {
  public:

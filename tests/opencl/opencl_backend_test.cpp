@@ -16,11 +16,18 @@ class OpenclBackend : public ::testing::Test {
 
 TEST_F(OpenclBackend, StructLayoutsAgreeWithHost) { test::check_layout_agrees(*device_); }
 
+// Sizes around the tiles of 256 keys and the scan's chunks of 256 digit counts (8 tiles), up to
+// hundreds of chunks.
 TEST_F(OpenclBackend, SortsPairsStablyAcrossTileBoundaries) {
-  for (uint32_t count : {1u, 2u, 255u, 256u, 257u, 4097u, 100000u}) test::check_sort_pairs(*device_, count, 30, count);
+  for (uint32_t count : {1u, 2u, 255u, 256u, 257u, 2048u, 2049u, 4097u, 100000u, 1048579u})
+    test::check_sort_pairs(*device_, count, 30, count);
 }
 
-TEST_F(OpenclBackend, SortsOddDigitCountKeys) { test::check_sort_pairs(*device_, 5000, 10, 7); }
+// An odd number of digit passes (15 bits: 3; 32 bits: 7) ends in the output pair as well.
+TEST_F(OpenclBackend, SortsOddDigitCountKeys) {
+  test::check_sort_pairs(*device_, 5000, 15, 7);
+  test::check_sort_pairs(*device_, 5000, 32, 8);
+}
 
 TEST_F(OpenclBackend, OutOfRangeDeviceIndexIsAnInputError) {
   EXPECT_THROW(create_device("opencl", 9999), InputError);

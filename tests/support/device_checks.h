@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <numeric>
 #include <random>
@@ -73,9 +74,14 @@ inline void check_layout_agrees(Device& device) {
   EXPECT_EQ(eps, -0.25f);
 }
 
+// Sorts (keys, values) by the low key_bits into the output pair: Device::sort_pairs, or another
+// sort on the same buffers (the portable sort on a backend that has a library sort).
+using SortPairs = std::function<void(DeviceBuffer& keys_in, DeviceBuffer& values_in, DeviceBuffer& keys_out,
+                                     DeviceBuffer& values_out, uint32_t count, int key_bits)>;
+
 // sort_pairs is a stable sort by the low key_bits into the output buffers, for sizes around the
 // tile boundaries.
-inline void check_sort_pairs(Device& device, uint32_t count, int key_bits, uint32_t seed) {
+inline void check_sort_pairs(Device& device, uint32_t count, int key_bits, uint32_t seed, const SortPairs& sort = {}) {
   std::mt19937 rng(seed);
   std::vector<uint32_t> keys(count), values(count);
   const uint32_t mask = key_bits >= 32 ? 0xffffffffu : ((1u << key_bits) - 1);
@@ -88,7 +94,10 @@ inline void check_sort_pairs(Device& device, uint32_t count, int key_bits, uint3
   DeviceBuffer keys_out = device.allocate(bytes, "keys out"), values_out = device.allocate(bytes, "values out");
   device.upload(keys_in, keys.data(), bytes);
   device.upload(values_in, values.data(), bytes);
-  device.sort_pairs(keys_in, values_in, keys_out, values_out, count, key_bits);
+  if (sort)
+    sort(keys_in, values_in, keys_out, values_out, count, key_bits);
+  else
+    device.sort_pairs(keys_in, values_in, keys_out, values_out, count, key_bits);
   std::vector<uint32_t> sorted_keys(count), sorted_values(count);
   device.download(keys_out, sorted_keys.data(), bytes);
   device.download(values_out, sorted_values.data(), bytes);
