@@ -1,5 +1,5 @@
-// Host driver of the portable radix sort: per digit of PM_SORT_RADIX_BITS, histogram -> chunk
-// scan -> chunk-total scan -> stable scatter, ping-ponging between the pair buffers (see
+// Host driver of the portable radix sort: per digit of PM_SORT_RADIX_BITS, histogram (with the
+// digits' and groups' totals) -> stable scatter, ping-ponging between the pair buffers (see
 // kernels/common/radix_sort.h).
 #include "render/portable_sort.h"
 
@@ -11,12 +11,14 @@ namespace {
 
 uint32_t tile_count(uint32_t count) { return (count + PM_SORT_TILE - 1) / PM_SORT_TILE; }
 
-uint32_t chunk_count(uint32_t entries) { return (entries + PM_SORT_SCAN_CHUNK - 1) / PM_SORT_SCAN_CHUNK; }
+// One set of totals: every digit's group totals, then the digit totals (radix_totals_size).
+size_t totals_entries(uint32_t tiles) {
+  return size_t(PM_SORT_RADIX) * ((tiles + PM_SORT_GROUP - 1) / PM_SORT_GROUP + 1);
+}
 
-// Digit counts, then each chunk's total and each chunk's first position.
+// Digit counts, then two sets of totals (one per pass parity).
 size_t histogram_bytes(uint32_t count) {
-  size_t entries = size_t(PM_SORT_RADIX) * tile_count(count);
-  return (entries + 2 * size_t(chunk_count(uint32_t(entries)))) * sizeof(uint32_t);
+  return (size_t(PM_SORT_RADIX) * tile_count(count) + 2 * totals_entries(tile_count(count))) * sizeof(uint32_t);
 }
 
 }  // namespace
@@ -40,8 +42,9 @@ void portable_sort_pairs(Device& device, PortableSortScratch& scratch, DeviceBuf
   params.sort_count = count;
   params.sort_tile_count = tile_count(count);
   const uint32_t lanes = PM_SORT_RADIX * params.sort_tile_count;  // one per digit of every tile
-  const uint32_t chunks = chunk_count(lanes);
-  device.bind(BufferSlot::sort_histogram, scratch.histogram(device, count));
+  DeviceBuffer& histogram = scratch.histogram(device, count);
+  device.fill_zero(histogram, histogram_bytes(count));  // the first pass's totals; each scatter zeroes the next's
+  device.bind(BufferSlot::sort_histogram, histogram);
 
   // Each pass scatters from (keys, values) into the other pair. With an even pass count the
   // input pair first goes to the output buffers, so that the last pass lands there.
@@ -63,8 +66,6 @@ void portable_sort_pairs(Device& device, PortableSortScratch& scratch, DeviceBuf
     device.bind(BufferSlot::sort_keys_alt, *keys_alt);
     device.bind(BufferSlot::sort_values_alt, *values_alt);
     device.launch(KernelId::sort_histogram, lanes, params);
-    device.launch(KernelId::sort_scan_chunks, chunks, params);
-    device.launch(KernelId::sort_scan_totals, chunks, params);
     device.launch(KernelId::sort_scatter, lanes, params);
     std::swap(keys, keys_alt);
     std::swap(values, values_alt);

@@ -6,8 +6,7 @@
 
 namespace pm {
 
-// Scratch the sort needs beyond the pair buffers: the digit histogram, chunk totals and
-// chunk offsets.
+// Scratch the sort needs beyond the pair buffers: the digit counts and their totals.
 // Owned by the backend so repeated sorts reuse it.
 class PortableSortScratch {
  public:

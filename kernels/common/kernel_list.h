@@ -32,9 +32,7 @@
   K(radiosity_smooth)       /* radiosity: one-ring smoothing within alpha_f (eq. 5, 6) */      \
   K(radiosity_interpolate)  /* radiosity: vertex irradiance at the shading points, film */     \
   K(radiosity_final_gather) /* radiosity with final gathering: rays from every shading point, the solution at their hits */ \
-  K(sort_histogram)    /* portable radix sort: per tile and digit, the digit's count */      \
-  K(sort_scan_chunks)  /* portable radix sort: exclusive scan within chunks of counts */     \
-  K(sort_scan_totals)  /* portable radix sort: per chunk, the sum of the totals before it */  \
+  K(sort_histogram)    /* portable radix sort: per tile and digit, its count, added to totals */\
   K(sort_scatter)      /* portable radix sort: per tile and digit, its keys moved in order */\
   K(layout_probe)      /* writes sizeof/offsetof of shared structs for the layout test */
 

@@ -196,12 +196,12 @@ typedef struct LaunchParams {
 #define PM_RADIOSITY_MAX_TREE_DEPTH 128
 
 /* The portable radix sort (radix_sort.h): 5-bit digits, so that a tile's 32 digit lanes fill a
-   GPU warp and 30-bit Morton keys take 6 passes; tiles of 256 keys; the digit counts scanned in
-   chunks of 256. */
+   GPU warp and 30-bit Morton keys take 6 passes; tiles of 256 keys; a digit's counts summed in
+   groups of 64 tiles. */
 #define PM_SORT_RADIX_BITS 5
 #define PM_SORT_RADIX (1 << PM_SORT_RADIX_BITS)
 #define PM_SORT_TILE 256
-#define PM_SORT_SCAN_CHUNK 256
+#define PM_SORT_GROUP 64
 
 /* Perfect-mirror reflections a light path may take besides its diffuse and glossy bounces (caps
    mirror-to-mirror loops): the photon tracer and the path tracer count the same paths. */
