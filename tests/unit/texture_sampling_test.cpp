@@ -45,7 +45,9 @@ TEST(TextureSampling, SrgbTableMatchesTheStandard) {
   EXPECT_EQ(packed.srgb_table[255], 1.0f);
   for (int code = 0; code < 256; ++code) {
     EXPECT_FLOAT_EQ(packed.srgb_table[size_t(code)], float(test::srgb_to_linear(code))) << code;
-    if (code > 0) EXPECT_GT(packed.srgb_table[size_t(code)], packed.srgb_table[size_t(code - 1)]) << code;
+    if (code > 0) {
+      EXPECT_GT(packed.srgb_table[size_t(code)], packed.srgb_table[size_t(code - 1)]) << code;
+    }
   }
   // Code 10 lies on the linear piece (10 / 255 < 0.04045), 11 on the power piece.
   EXPECT_NEAR(packed.srgb_table[10], 10.0 / 255.0 / 12.92, 1e-9);
