@@ -81,8 +81,6 @@
   X(photon, float4, map_power, map_hits, 1)    /* rgb flux / (ellipse area x covered share) */            \
   X(photon, float4, map_incident, map_hits, 1)                                                              \
   X(photon, float4, map_cut, map_hits, 1)      /* second cut of a clipped footprint (footprint_clip.h) */   \
-  X(photon, uint, map_edge_count, counters, 1) /* footprints left to the edge probe pattern (S3) */         \
-  X(photon, uint, map_edges, map_hits, 1)      /* and their sorted positions, in no set order */           \
   X(photon, uint, gather_stats, counters, 2)   /* [0] hits accepted, [1] shading points (collect_stats) */ \
   X(photon, uint, map_tile_offsets, bounds_tiles, 1) /* S4: first compacted key of each tile's valid hits */\
   X(photon, uint, morton_keys, map_hits, 1)    /* S4 input of the sort: Morton keys of the valid hits */ \

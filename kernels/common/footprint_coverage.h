@@ -125,59 +125,28 @@ PM_DEVICE void footprint_probe_pattern(const KernelGlobals* kg, const Footprint*
   }
 }
 
-/* The share a pattern measured (see footprint_covered_share): covered / kept, in (0, 1] (with an
-   area mode up to 2); where no probe is inside the cuts, 1 (the clip's kept fraction is all we
-   know); where every probe missed, half a probe's cell: the hit itself lies on the surface, so a
-   footprint whose probes all miss (a sliver, a thin rail) still covers something. */
-PM_DEVICE float footprint_share_of(float kept, float covered, uint kept_probes)
-{
-  if (!(kept > 0.0f)) return 1.0f;
-  return covered > 0.0f ? covered / kept : 0.5f / (float)kept_probes;
-}
-
-/* What footprint_first_share returns for a footprint that its first pattern finds partly covered
-   (or, with an area mode, tilted): the edge pattern must measure it. */
-#define PM_COVERAGE_PARTIAL (-1.0f)
-
-/* The share from the first pattern of PM_FOOTPRINT_PROBES probes, or PM_COVERAGE_PARTIAL. */
-PM_DEVICE float footprint_first_share(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut, Vec3 center,
-                                      Vec3 n, float offset, float turn, uint shape, uint area_mode, Vec3 wi)
+/* Share of the kernel mass kept by `cut` that lies over accepted surface, in (0, 1] (with an area
+   mode, footprint_probe_covered: that surface's area over the kept disc's, up to 2).
+   turn: the pattern's angle for this hit. A footprint that its PM_FOOTPRINT_PROBES probes find
+   partly covered (or, with an area mode, tilted) is measured again with PM_FOOTPRINT_EDGE_PROBES: the flux is divided by the share, and
+   1 / share is convex, so its noise is a bias (+1.0 % in Sponza's first bounce with 16 probes
+   throughout, at the smallest footprints measured; docs/accuracy.md). Footprints wholly on a surface,
+   most of them, cost the first pattern only. */
+PM_DEVICE float footprint_covered_share(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut,
+                                        Vec3 center, Vec3 n, float offset, float turn, uint shape, uint area_mode,
+                                        Vec3 wi)
 {
   float kept, covered;
   uint kept_probes;
   footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, area_mode, wi, PM_FOOTPRINT_PROBES, &kept,
                           &covered, &kept_probes);
-  if (covered > 0.0f && covered != kept) return PM_COVERAGE_PARTIAL;
-  return footprint_share_of(kept, covered, kept_probes);
-}
-
-/* The share from the edge pattern of PM_FOOTPRINT_EDGE_PROBES probes alone. */
-PM_DEVICE float footprint_edge_share(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut, Vec3 center,
-                                     Vec3 n, float offset, float turn, uint shape, uint area_mode, Vec3 wi)
-{
-  float kept, covered;
-  uint kept_probes;
-  footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, area_mode, wi, PM_FOOTPRINT_EDGE_PROBES, &kept,
-                          &covered, &kept_probes);
-  return footprint_share_of(kept, covered, kept_probes);
-}
-
-/* Share of the kernel mass kept by `cut` that lies over accepted surface, in (0, 1] (with an area
-   mode, footprint_probe_covered: that surface's area over the kept disc's, up to 2).
-   turn: the pattern's angle for this hit. A footprint that its PM_FOOTPRINT_PROBES probes find
-   partly covered (or, with an area mode, tilted) is measured again with
-   PM_FOOTPRINT_EDGE_PROBES: the flux is divided by the share, and 1 / share is convex, so its
-   noise is a bias (+1.0 % in Sponza's first bounce with 16 probes throughout, at the smallest
-   footprints measured; docs/accuracy.md). Footprints wholly on a surface, most of them, cost the
-   first pattern only. The footprint stage runs the two patterns as two launches
-   (photon_footprint.h), the knn gather one after the other. */
-PM_DEVICE float footprint_covered_share(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut,
-                                        Vec3 center, Vec3 n, float offset, float turn, uint shape, uint area_mode,
-                                        Vec3 wi)
-{
-  float share = footprint_first_share(kg, f, cut, center, n, offset, turn, shape, area_mode, wi);
-  return share != PM_COVERAGE_PARTIAL ? share
-                                      : footprint_edge_share(kg, f, cut, center, n, offset, turn, shape, area_mode, wi);
+  if (covered > 0.0f && covered != kept)
+    footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, area_mode, wi, PM_FOOTPRINT_EDGE_PROBES, &kept,
+                            &covered, &kept_probes);
+  if (!(kept > 0.0f)) return 1.0f; /* no probe inside the cuts: the clip's kept fraction is all we know */
+  /* The hit itself lies on the surface: a footprint whose probes all miss (a sliver, a thin
+     rail) still covers something; count it as half a probe's cell. */
+  return covered > 0.0f ? covered / kept : 0.5f / (float)kept_probes;
 }
 
 #endif

@@ -9,7 +9,6 @@
   K(photon_trace)      /* S1+S2: emit, trace, record hits with differentials */              \
   K(photon_footprint_scale) /* S3: per-tile footprint area at s = 1 (automatic smoothing) */ \
   K(photon_footprint)  /* S3: footprints of the sorted hits: AABBs, gather data, area */    \
-  K(photon_footprint_edges) /* S3: the footprints the first probe pattern found partly covered */ \
   K(photon_reduce)     /* S4: per-tile hit bounds and count (Morton bounds, compaction) */  \
   K(photon_morton)     /* S4: 30-bit Morton keys (empty slots sort last) */                  \
   K(photon_map_nodes)  /* S4: Karras radix tree inner nodes */                               \

@@ -44,19 +44,14 @@ PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p
   return f;
 }
 
-/* Which probe pattern a footprint launch measures the coverage with (footprint_coverage.h). */
-#define PM_FOOTPRINT_FIRST_PATTERN 0
-#define PM_FOOTPRINT_EDGE_PATTERN 1
-
-/* Writes the gather data of hit sorted_slots[k] at k (the coverage measured with `pattern`), so
-   the photon map's leaves and the gather read contiguous memory. The gather data of a hit: the
-   footprint clipped at the geometry around it (footprint_clip.h), its bounds, the rows of the
-   inverse of its basis, whose w hold the first cut (mu, mv, t): the gather accepts x where
-   mu (row_u . (x - hit)) + mv (row_v . (x - hit)) <= t, a second cut in map_cut (flagged
-   PM_HIT_SECOND_CUT), and flux / (area * covered share); the gather divides by the kernel mass
-   the cuts keep about each shading point. For knn the bounds are the point box hit +- r_max the
-   knn traversal expects, and the power is the flux (the knn gather divides by its own area). */
-PM_DEVICE void photon_footprint_at(const KernelGlobals* kg, const LaunchParams* p, uint k, int pattern)
+/* Work item = sorted position k < hit_count: the gather data of hit sorted_slots[k], written at
+   k, so the photon map's leaves and the gather read contiguous memory. The gather data of a hit: the footprint clipped at the geometry around it (footprint_clip.h),
+   its bounds, the rows of the inverse of its basis, whose w hold the first cut (mu, mv, t): the
+   gather accepts x where mu (row_u . (x - hit)) + mv (row_v . (x - hit)) <= t, a second cut in
+   map_cut (flagged PM_HIT_SECOND_CUT), and flux / (area * covered share); the gather divides by the kernel mass the cuts keep about each shading point. For
+   knn the bounds are the point box hit +- r_max the knn traversal expects, and the power is the
+   flux (the knn gather divides by its own area). */
+PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchParams* p, uint k)
 {
   uint slot = kg->sorted_slots[k];
   float4 n4 = kg->hit_normal[slot];
@@ -83,18 +78,10 @@ PM_DEVICE void photon_footprint_at(const KernelGlobals* kg, const LaunchParams* 
     float turn = PM_TWO_PI * rng_to_unit(rng_bits4(p->seed, frame, p->photon_offset + slot / per_photon,
                                                    slot % per_photon, PM_STREAM_FOOTPRINT_PROBE,
                                                    p->photon_offset_hi).b0);
-    Vec3 n = vec3_normalize(vec3_from_float4(n4)), wi = vec3_from_float4(kg->hit_incident[slot]);
-    float offset = ray_offset_distance(center, 0.0f, p->ray_epsilon);
-    uint area_mode = p->facet_weighting ? PM_COVERAGE_LIT_AREA : PM_COVERAGE_CELLS;
-    if (pattern == PM_FOOTPRINT_EDGE_PATTERN) {
-      coverage = footprint_edge_share(kg, &f, &cut, center, n, offset, turn, p->kernel_shape, area_mode, wi);
-    } else {
-      coverage = footprint_first_share(kg, &f, &cut, center, n, offset, turn, p->kernel_shape, area_mode, wi);
-      if (coverage == PM_COVERAGE_PARTIAL) { /* measured and written by the edge launch */
-        kg->map_edges[pm_atomic_add_u32(&kg->map_edge_count[0], 1u)] = k;
-        return;
-      }
-    }
+    coverage = footprint_covered_share(kg, &f, &cut, center, vec3_normalize(vec3_from_float4(n4)),
+                                       ray_offset_distance(center, 0.0f, p->ray_epsilon), turn, p->kernel_shape,
+                                       p->facet_weighting ? PM_COVERAGE_LIT_AREA : PM_COVERAGE_CELLS,
+                                       vec3_from_float4(kg->hit_incident[slot]));
   }
   Vec3 lo, hi;
   footprint_bounds(f, center, &lo, &hi);
@@ -130,24 +117,6 @@ PM_DEVICE void photon_footprint_at(const KernelGlobals* kg, const LaunchParams* 
   kg->map_cut[k] = PM_MAKE_FLOAT4(cut.mu[1], cut.mv[1], cut.t[1], 0.0f);
   kg->map_power[k] = vec3_to_float4(power, 0.0f);
   kg->map_incident[k] = kg->hit_incident[slot];
-}
-
-/* Work item = sorted position k < hit_count: its footprint, with the first probe pattern; a
-   footprint that pattern finds partly covered is left to kernel_photon_footprint_edges. Run in
-   one launch, the edge pattern's 64 probes for the few footprints at edges held their warps'
-   other lanes idle (16 probes each): nearly every warp has one. */
-PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchParams* p, uint k)
-{
-  photon_footprint_at(kg, p, k, PM_FOOTPRINT_FIRST_PATTERN);
-}
-
-/* Work item = entry i of the footprints kernel_photon_footprint found partly covered (the
-   launch covers every hit; items past map_edge_count do nothing): the footprint with the edge
-   pattern. The list's order depends on scheduling, what is written at each k does not. */
-PM_DEVICE void kernel_photon_footprint_edges(const KernelGlobals* kg, const LaunchParams* p, uint i)
-{
-  if (i >= kg->map_edge_count[0]) return;
-  photon_footprint_at(kg, p, kg->map_edges[i], PM_FOOTPRINT_EDGE_PATTERN);
 }
 
 #endif

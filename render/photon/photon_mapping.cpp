@@ -259,13 +259,7 @@ void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
   const uint32_t map_tiles = photon_map_bounds_tile_count(bounds.count);
   {
     StageScope scope(timer, "footprints");
-    // Footprints that the first probe pattern finds partly covered are listed and measured again
-    // by a launch of their own (kernels/common/photon_footprint.h); it covers every hit, as only
-    // the device knows how many were listed.
-    const bool probes = params.footprint_coverage && params.estimator != PM_ESTIMATOR_KNN;
-    if (probes) device_.fill_zero(buffers_[BufferSlot::map_edge_count], sizeof(uint32_t));
     device_.launch(KernelId::photon_footprint, bounds.count, params);
-    if (probes) device_.launch(KernelId::photon_footprint_edges, bounds.count, params);
     device_.launch(KernelId::photon_map_area, map_tiles, params);
   }
   device_.download(buffers_[BufferSlot::map_partials], partials.data(), 2 * size_t(map_tiles) * sizeof(float4));
