@@ -40,8 +40,15 @@ typedef int int32_t;
 #define pm_expf exp
 #define pm_logf log
 #define pm_floorf floor
-/* A product rounded on its own, never fused into a following add (watertight ray_triangle). */
-#define pm_mul_rn(a, b) ((a) * (b)) /* kernels.cl turns FP_CONTRACT off */
+/* A product rounded on its own, never fused into a following add: a fused a*b+c breaks
+   ray_triangle's watertight edge tests (cracks, hits on point triangles). Contraction is off in
+   this function's body only (C99's scope of the pragma); everywhere else a*b+c may fuse, as on
+   CUDA, where only these products are unfused (__fmul_rn). */
+static inline float pm_mul_rn(float a, float b)
+{
+#pragma OPENCL FP_CONTRACT OFF
+  return a * b;
+}
 #define pm_fmaf fma
 #define pm_copysignf copysign
 #define pm_isfinite(x) isfinite(x)

@@ -1,7 +1,6 @@
 /* OpenCL entry points: one __kernel per entry of PM_KERNEL_LIST, generated below. Each computes
    its work-item index, checks bounds and calls the shared stage function. This file and every
    header it includes are flattened into the binary at build time (embed_kernel_source.cpp). */
-#pragma OPENCL FP_CONTRACT OFF /* fused a*b+c breaks ray_triangle's watertight edge tests (cracks, hits on point triangles) */
 #include "kernels/opencl/compat.h"
 #include "kernels/common/stages.h"
 
