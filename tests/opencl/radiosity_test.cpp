@@ -1,8 +1,8 @@
 // Vertex link radiosity end to end on the OpenCL backend: what a frame recomputes (light-only
 // frames re-run light links and gathering but never rebuild links; camera-only frames re-run
 // nothing but the interpolation, and still equal a fresh render), final gathering's rays across
-// frames, agreement with photon mapping
-// on the Cornell box, and the command line (render, bench, a bad option).
+// frames, agreement with photon mapping on the Cornell box, and the command line (render, bench,
+// a bad option).
 #include <gtest/gtest.h>
 
 #include <cstdio>
