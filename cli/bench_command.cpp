@@ -17,6 +17,7 @@
 #include "cli/bench_photon.h"
 #include "cli/commands.h"
 #include "cli/render_options.h"
+#include "cli/scene_beside_driver.h"
 #include "cli/startup_report.h"
 #include "render/atomic_file.h"
 #include "render/device.h"
@@ -126,8 +127,7 @@ int run_bench(const BenchOptions& o) {
   const RenderSettings settings = render_settings(o.render);
   check_photon_extras(settings, !sweep.empty(), o.radius_histogram);
   startup.mark("options");
-  const Scene scene = load_scene(o.render);
-  startup.mark("scene load", scene.source);
+  const Scene scene = load_scene_beside_driver(o.render, o.render.device, nullptr, &startup);
 
   std::unique_ptr<Device> device = create_device(o.render.backend, o.render.device);
   print_device_startup_messages({device.get()}, false, false);

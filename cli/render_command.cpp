@@ -29,6 +29,7 @@
 #include "cli/progress_line.h"
 #include "cli/signals.h"
 #include "cli/render_options.h"
+#include "cli/scene_beside_driver.h"
 #include "cli/startup_report.h"
 #include "render/background_writer.h"
 #include "render/device.h"
@@ -128,8 +129,7 @@ int run_render(const RenderCommandOptions& o) {
     throw InputError("--exposure: sets the exposure of the --preview PNG; give --preview NAME.png too");
   startup.mark("options");
   SceneLoadReport report;
-  Scene scene = load_scene(o.render, &report);
-  startup.mark("scene load", scene.source);
+  Scene scene = load_scene_beside_driver(o.render, o.devices.empty() ? o.render.device : -1, &report, &startup);
   RenderSettings settings = render_settings(o.render, o.seconds > 0 || o.target_error > 0);
   settings.layers = parse_film_layers(o.layers);
   const std::string pattern = o.output.empty() ? default_output_pattern(scene.name) : o.output;

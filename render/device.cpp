@@ -95,6 +95,20 @@ std::vector<std::unique_ptr<Device>> create_devices(const std::string& backend, 
   return devices;
 }
 
+void warm_up_backend(const std::string& backend, int index) noexcept {
+  try {
+#if PMRENDER_HAVE_CUDA
+    if (backend == "cuda" || (backend == "auto" && count_cuda_devices() > 0)) {
+      warm_up_cuda_device(index);
+      return;
+    }
+#endif
+    if (backend == "opencl" || backend == "auto") warm_up_opencl();
+  } catch (...) {
+    // The device's opening meets the same error and reports it.
+  }
+}
+
 std::unique_ptr<Device> create_device(const std::string& backend, int index) {
   if (backend == "auto") {
 #if PMRENDER_HAVE_CUDA

@@ -131,6 +131,12 @@ std::vector<std::string> compiled_backends();
 std::unique_ptr<Device> create_device(const std::string& backend, int index);
 // The backend "auto" means on this machine: "cuda" when a CUDA device exists, else "opencl".
 std::string resolve_backend(const std::string& backend);
+// Initialises backend's driver (CUDA: and device index's primary context; index -1: the driver
+// only) so that opening a device later in the process finds it done, while another thread does
+// work that needs no device (cli/scene_beside_driver.h). Call it on the thread that lives as long
+// as the process: PoCL, started on a thread that then ends, leaves memory that AddressSanitizer
+// reports at exit. Errors are left for the opening.
+void warm_up_backend(const std::string& backend, int index) noexcept;
 // Several devices of one backend; an empty index list means every device of the backend.
 std::vector<std::unique_ptr<Device>> create_devices(const std::string& backend, const std::vector<int>& indices);
 

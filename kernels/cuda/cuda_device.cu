@@ -248,6 +248,13 @@ std::vector<DeviceInfo> list_cuda_devices() {
   return infos;
 }
 
+void warm_up_cuda_device(int index) {
+  const int count = cuda_device_count();
+  take_driver_init_ms();  // done before the device's opening: not a step of it
+  if (index >= 0 && index < count && cudaSetDevice(index) == cudaSuccess) cudaFree(nullptr);
+  cudaGetLastError();
+}
+
 std::unique_ptr<Device> create_cuda_device(int index) {
   int count = cuda_device_count();
   if (count == 0) throw DeviceError("CUDA: no CUDA device found (no GPU, or no CUDA driver)");

@@ -244,6 +244,8 @@ std::vector<DeviceInfo> list_opencl_devices() {
   return infos;
 }
 
+void warm_up_opencl() { enumerate(); }
+
 std::unique_ptr<Device> create_opencl_device(int index) {
   StepClock clock;
   std::vector<DeviceEntry> entries = enumerate();
