@@ -11,7 +11,6 @@
 #include "footprint.h"
 #include "footprint_clip.h"
 #include "footprint_coverage.h"
-#include "footprint_whole.h"
 #include "kernel_globals.h"
 #include "photon_map.h"
 #include "photon_trace.h"
@@ -65,15 +64,13 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     f.axis_v = vec3_scale(f.axis_v, p->footprint_scale);
     f.axis_n = vec3_scale(f.axis_n, p->footprint_scale);
   }
-  Vec3 n = vec3_normalize(vec3_from_float4(n4));
-  float offset = ray_offset_distance(center, 0.0f, p->ray_epsilon);
   FootprintCut cut = footprint_uncut();
   /* knn's region is clipped about each shading point instead (knn_gather.h). */
-  if (p->footprint_clip && p->estimator != PM_ESTIMATOR_KNN) cut = footprint_clip(kg, &f, center, n, offset, p->kernel_shape);
+  if (p->footprint_clip && p->estimator != PM_ESTIMATOR_KNN)
+    cut = footprint_clip(kg, &f, center, vec3_normalize(vec3_from_float4(n4)),
+                         ray_offset_distance(center, 0.0f, p->ray_epsilon), p->kernel_shape);
   float coverage = 1.0f;
-  /* A footprint wholly on its own flat surface is covered without probes (footprint_whole.h). */
-  if (p->footprint_coverage && p->estimator != PM_ESTIMATOR_KNN &&
-      !footprint_wholly_on_own_surface(kg, &f, center, n, offset, PM_AS_INT(kg->hit_flux[slot].w))) {
+  if (p->footprint_coverage && p->estimator != PM_ESTIMATOR_KNN) {
     /* The pattern's turn: drawn per photon and record, the same on every backend and for any
        slot layout. */
     uint per_photon = p->hit_slots_per_photon > 0u ? p->hit_slots_per_photon : 1u;
@@ -81,7 +78,8 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     float turn = PM_TWO_PI * rng_to_unit(rng_bits4(p->seed, frame, p->photon_offset + slot / per_photon,
                                                    slot % per_photon, PM_STREAM_FOOTPRINT_PROBE,
                                                    p->photon_offset_hi).b0);
-    coverage = footprint_covered_share(kg, &f, &cut, center, n, offset, turn, p->kernel_shape,
+    coverage = footprint_covered_share(kg, &f, &cut, center, vec3_normalize(vec3_from_float4(n4)),
+                                       ray_offset_distance(center, 0.0f, p->ray_epsilon), turn, p->kernel_shape,
                                        p->facet_weighting ? PM_COVERAGE_LIT_AREA : PM_COVERAGE_CELLS,
                                        vec3_from_float4(kg->hit_incident[slot]));
   }

@@ -53,16 +53,14 @@ PM_DEVICE int photon_glossy_reemit(PhotonRay* ray, Vec3 n, float exponent, float
   return vec3_dot(ray->direction, nf) > 0.0f;
 }
 
-/* A hit record; flux.w keeps the hit triangle (its leaf-order index), so that the footprint stage
-   can tell a footprint that lies wholly on it (footprint_whole.h). */
 PM_DEVICE void photon_store_hit(const KernelGlobals* kg, uint slot, const PhotonRay* ray, Vec3 n, Vec3 flux, float delta,
-                                uint flags, int triangle)
+                                uint flags)
 {
   if (vec3_dot(n, ray->direction) > 0.0f) n = vec3_neg(n); /* the side the photon arrived on */
   kg->hit_position[slot] = vec3_to_float4(ray->origin, PM_UINT_AS_FLOAT(flags));
   kg->hit_normal[slot] = vec3_to_float4(n, PM_UINT_AS_FLOAT(flags));
   kg->hit_incident[slot] = vec3_to_float4(vec3_neg(ray->direction), delta);
-  kg->hit_flux[slot] = vec3_to_float4(flux, PM_UINT_AS_FLOAT((uint)triangle));
+  kg->hit_flux[slot] = vec3_to_float4(flux, 0.0f);
   kg->hit_dp_u[slot] = vec3_to_float4(ray->dp_u, 0.0f);
   kg->hit_dp_v[slot] = vec3_to_float4(ray->dp_v, 0.0f);
 }
@@ -148,7 +146,7 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
       if (p_diffuse + p_glossy > 0.0f && (diffuse_bounces > 0 || specular_bounces > 0) &&
           stored < p->hit_slots_per_photon) {
         uint flags = PM_HIT_VALID | (diffuse_bounces == 0 ? PM_HIT_CAUSTIC : 0u);
-        photon_store_hit(kg, first_slot + stored, &ray, n, flux, delta, flags, hit.triangle);
+        photon_store_hit(kg, first_slot + stored, &ray, n, flux, delta, flags);
         ++stored;
       }
 
