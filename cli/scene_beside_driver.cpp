@@ -1,6 +1,8 @@
 // The scene's load on a thread beside the driver's start (scene_beside_driver.h).
 #include "cli/scene_beside_driver.h"
 
+#include <sys/resource.h>
+
 #include <cstdio>
 #include <future>
 
@@ -9,8 +11,26 @@
 
 namespace pm::cli {
 
+namespace {
+
+// Whether the process's address space is limited (ulimit -v, as batch systems set it).
+bool address_space_limited() {
+  rlimit limit{};
+  return getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY;
+}
+
+}  // namespace
+
 Scene load_scene_beside_driver(const RenderOptions& o, int device_index, SceneLoadReport* report,
                                StartupSteps* startup) {
+  // Under a limited address space the driver waits for the device's opening: its mappings count
+  // against the limit, and the frame's memory check, made before any device work, must judge the
+  // request by what the user has, not by what a driver took first (cli/memory.h).
+  if (address_space_limited()) {
+    Scene scene = load_scene(o, report);
+    startup->mark("scene load", scene.source + " (the driver starts with the device: the address space is limited)");
+    return scene;
+  }
   double load_ms = 0;
   std::future<Scene> loading = std::async(std::launch::async, [&o, report, &load_ms] {
     StepClock clock;

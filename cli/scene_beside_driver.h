@@ -14,7 +14,9 @@ namespace pm::cli {
 // load_scene(o, report) on a thread while this thread starts o.backend's driver (device_index:
 // the device to open, -1 when several are). Marks one start-up step, "scene load", whose detail
 // says how long each side took. Bad input is reported as load_scene reports it, after the
-// driver's start has finished (a driver's initialisation cannot be abandoned midway).
+// driver's start has finished (a driver's initialisation cannot be abandoned midway). Under a
+// limited address space (ulimit -v) the scene loads alone and the driver starts with the device,
+// after the memory checks.
 Scene load_scene_beside_driver(const RenderOptions& o, int device_index, SceneLoadReport* report,
                                StartupSteps* startup);
 

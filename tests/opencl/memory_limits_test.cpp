@@ -1,7 +1,8 @@
 // Requests that cannot fit in memory are refused with the numbers (exit code 2) before the first
 // frame, instead of std::bad_alloc or PoCL's assertion (exit code 134) when a buffer is first
 // touched. The limit is the process's address space (ulimit -v), as a user or a batch system
-// would set it. (Not for AddressSanitizer builds: their shadow memory does not fit such limits.)
+// would set it; under it the driver does not start before the checks. (Not for AddressSanitizer
+// builds: their shadow memory does not fit such limits.)
 #include <sys/wait.h>
 
 #include <gtest/gtest.h>
@@ -84,9 +85,12 @@ TEST_F(MemoryLimits, DeviceBuffersThatDoNotFitTheHostAreRefusedBeforeTheFirstFra
 }
 
 TEST_F(MemoryLimits, AFittingRequestRendersUnderTheSameKindOfLimit) {
-  const test::ProcessResult r = render_under_limit("4000000", "--backend opencl --resolution 64x64 --photons 1000");
+  const test::ProcessResult r = render_under_limit("4000000", "--backend opencl --resolution 64x64 --photons 1000 -v");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(std::filesystem::exists(dir_ / "f.exr"));
+  // The driver did not start beside the scene load, ahead of the memory checks
+  // (cli/scene_beside_driver.h): its mappings would count against the limit.
+  EXPECT_NE(r.out.find("the driver starts with the device: the address space is limited"), std::string::npos) << r.out;
 }
 
 }  // namespace
