@@ -35,7 +35,7 @@ std::string scene_path() { return test::test_data_dir() + "/animation/moving_roo
 
 // Frames of a few hundred milliseconds on PoCL, so that processes overlap and a kill lands in one;
 // without the error estimate, whose control paths grow with the frame's own time.
-const char kFrameOptions[] = " --backend opencl --resolution 48x36 --photons 150000 --control-paths 0";
+const char kFrameOptions[] = " --backend opencl --resolution 48x36 --photons 75000 --control-paths 0";
 
 
 class FrameClaimsCli : public test::PmrenderProcessTest {

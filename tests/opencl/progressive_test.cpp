@@ -105,11 +105,11 @@ TEST(ProgressiveSettings, ShrinkFollowsKnausZwicker) {
 // Average: every pass has the same footprints, so the noise falls as 1/sqrt(passes) while the
 // bias stays; the estimate tracks the true error, bias included.
 TEST(Progressive, AverageLowersNoiseButKeepsTheBias) {
-  const SphereError r4 = render_sphere(PM_ESTIMATOR_RADIUS, kProgressiveAverage, 4);
-  const SphereError r64 = render_sphere(PM_ESTIMATOR_RADIUS, kProgressiveAverage, 64);
+  const SphereError r2 = render_sphere(PM_ESTIMATOR_RADIUS, kProgressiveAverage, 2);
+  const SphereError r32 = render_sphere(PM_ESTIMATOR_RADIUS, kProgressiveAverage, 32);
   // 16x the passes: the noise (nearly all of the radius estimator's error here) falls 4x.
-  EXPECT_NEAR(r4.mean_abs / r64.mean_abs, 4.0, 1.2);
-  for (const SphereError* e : {&r4, &r64}) {
+  EXPECT_NEAR(r2.mean_abs / r32.mean_abs, 4.0, 1.2);
+  for (const SphereError* e : {&r2, &r32}) {
     EXPECT_GT(e->estimate, e->mean_abs / 2) << "the estimate is within a factor of 2 of the true error";
     EXPECT_LT(e->estimate, e->mean_abs * 2);
   }
@@ -120,38 +120,38 @@ TEST(Progressive, AverageLowersNoiseButKeepsTheBias) {
   biased.photons = 20000;
   biased.footprint_coverage = false;
   PassBudget budget;
-  budget.max_passes = 64;
-  const SphereError p64 = render_sphere(biased, budget);
+  budget.max_passes = 32;
+  const SphereError p32 = render_sphere(biased, budget);
   budget.max_passes = 1;
   const SphereError p1 = render_sphere(biased, budget, Estimate::kLeftOut);
-  std::printf("pd without coverage: bias %+.4f (1 pass), %+.4f (64 passes), estimate %.4f, mean |error| %.4f\n",
-              p1.bias, p64.bias, p64.estimate, p64.mean_abs);
-  EXPECT_LT(p64.bias, -0.03);
-  EXPECT_NEAR(p64.bias, p1.bias, 0.04);
-  EXPECT_GE(p64.estimate, 2.0 / 3.0 * std::fabs(p64.bias)) << "the estimate sees the bias";
-  EXPECT_LT(p64.estimate, 1.5 * p64.mean_abs);
+  std::printf("pd without coverage: bias %+.4f (1 pass), %+.4f (32 passes), estimate %.4f, mean |error| %.4f\n",
+              p1.bias, p32.bias, p32.estimate, p32.mean_abs);
+  EXPECT_LT(p32.bias, -0.03);
+  EXPECT_NEAR(p32.bias, p1.bias, 0.04);
+  EXPECT_GE(p32.estimate, 2.0 / 3.0 * std::fabs(p32.bias)) << "the estimate sees the bias";
+  EXPECT_LT(p32.estimate, 1.5 * p32.mean_abs);
 }
 
 // Shrink: footprints (pd), radii (radius) and the k-NN bound shrink from pass to pass, so the
-// bias falls as passes grow. alpha = 0.2 shrinks fast enough to show it in 64 passes.
+// bias falls as passes grow. alpha = 0.2 shrinks fast enough to show it in 32 passes.
 TEST(Progressive, ShrinkLowersTheBiasOfEveryEstimator) {
   // pd's footprints are within a percent of the closed form from the first pass on (their
   // coverage follows the sphere's curve): shrinking keeps them there.
   const Estimate none = Estimate::kLeftOut;
   const SphereError pd1 = render_sphere(PM_ESTIMATOR_PD, kProgressiveShrink, 1, 0.2f, 0, none);
-  const SphereError pd64 = render_sphere(PM_ESTIMATOR_PD, kProgressiveShrink, 64, 0.2f, 0, none);
+  const SphereError pd32 = render_sphere(PM_ESTIMATOR_PD, kProgressiveShrink, 32, 0.2f, 0, none);
   EXPECT_LT(std::fabs(pd1.bias), 0.015);
-  EXPECT_LT(std::fabs(pd64.bias), 0.01);
+  EXPECT_LT(std::fabs(pd32.bias), 0.01);
   // k-NN's bias (k photons counted inside the radius of the k-th: +1/(k-1)) goes once the
   // shrinking bound, here started at about the 64th neighbour's distance, cuts below it.
   const SphereError knn1 = render_sphere(PM_ESTIMATOR_KNN, kProgressiveShrink, 1, 0.2f, 0.15f, none);
-  const SphereError knn64 = render_sphere(PM_ESTIMATOR_KNN, kProgressiveShrink, 64, 0.2f, 0.15f, none);
-  EXPECT_LT(std::fabs(knn64.bias), std::fabs(knn1.bias));
-  EXPECT_LT(std::fabs(knn64.bias), 0.01);
-  const SphereError radius64 = render_sphere(PM_ESTIMATOR_RADIUS, kProgressiveShrink, 64, 0.2f);
-  EXPECT_LT(std::fabs(radius64.bias), 0.01);
-  EXPECT_GT(radius64.estimate, radius64.mean_abs / 2);
-  EXPECT_LT(radius64.estimate, radius64.mean_abs * 2);
+  const SphereError knn32 = render_sphere(PM_ESTIMATOR_KNN, kProgressiveShrink, 32, 0.2f, 0.15f, none);
+  EXPECT_LT(std::fabs(knn32.bias), std::fabs(knn1.bias));
+  EXPECT_LT(std::fabs(knn32.bias), 0.01);
+  const SphereError radius32 = render_sphere(PM_ESTIMATOR_RADIUS, kProgressiveShrink, 32, 0.2f);
+  EXPECT_LT(std::fabs(radius32.bias), 0.01);
+  EXPECT_GT(radius32.estimate, radius32.mean_abs / 2);
+  EXPECT_LT(radius32.estimate, radius32.mean_abs * 2);
 }
 
 // At the paper's s = 8 and 200,000 photons a pass (the analytic sphere test's settings) pd starts
