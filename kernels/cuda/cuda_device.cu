@@ -162,7 +162,7 @@ class CudaDevice final : public Device {
     LaunchParams params_copy = params;
     uint32_t items = work_items;
     void* args[2] = {&params_copy, &items};  // cudaLaunchKernel reads each argument through a pointer
-    const unsigned block = 128;
+    const unsigned block = kCudaBlockThreads;
     const unsigned grid = (work_items + block - 1) / block;
     cudaError_t err = cudaLaunchKernel(pm_cuda_kernel_table[static_cast<int>(id)], dim3(grid), dim3(block), args, 0, stream_);
     if (err != cudaSuccess)
