@@ -8,14 +8,14 @@
 
 __constant__ KernelGlobals pm_kernel_globals;
 
-// Registers against occupancy. Left to itself ptxas gives the tracing kernels 99 to 167 registers
-// (the path tracer 165, final gathering 163, the bias control 167, the photon trace 99, the
-// footprints 107: sm_90, CUDA 12), so that few warps are resident to hide the traversal's memory
+// Registers against occupancy. Left to itself ptxas gives the tracing kernels 89 to 157 registers
+// (the path tracer 157, final gathering 155, the bias control 132, the photon trace 95, the
+// footprints 89: sm_90, CUDA 12), so that few warps are resident to hide the traversal's memory
 // latency. Eight blocks per SM cap them at 64 registers, some of it spilled to L1: measured on an
 // H100 (docs/benchmarks.md, "Registers against occupancy"), the path tracer's pass 30 % and final
-// gathering's 46 % faster, the 1080p photon frames 5-7 %. The density-estimation gathers get no
-// launch bounds at all: capped at 64 registers pm_gather read 5-10 % slower at the paper profile,
-// and bounded at one block per SM it ran three times slower.
+// gathering's 46 % faster, the 1080p photon frames up to 5 %. The density-estimation gathers get
+// no launch bounds at all: capped at 64 registers pm_gather read 5-10 % slower at the paper
+// profile, and bounded at one block per SM it ran three times slower.
 #define PM_CUDA_BOUNDS_0 __launch_bounds__(kCudaBlockThreads, 8)
 #define PM_CUDA_BOUNDS_1
 // PM_CUDA_UNBOUNDED(kernel) is 1 for the kernels named by a PM_CUDA_UNBOUNDED_<kernel> below, else

@@ -208,10 +208,10 @@ class OpenclDevice final : public Device {
     request.source = kOpenclKernelSource;
     request.source_size = kOpenclKernelSourceSize;
     request.options = "-cl-std=CL1.2 -cl-mad-enable -D PM_OPENCL_DEVICE_INDEX=" + std::to_string(info_.index);
-    // NVIDIA's compiler gives the tracing kernels 100-160 registers and too few resident warps to
-    // hide their memory latency; at 64 (some spilled to L1) the path tracer's pass ran 31 % and
-    // the 1080p photon frames 5-14 % faster on an H100 (docs/benchmarks.md, "Registers against
-    // occupancy"; the CUDA backend caps the same kernels with launch bounds).
+    // As on CUDA, the tracing kernels are faster with more resident warps than registers: capped
+    // at 64 registers for the whole program, the path tracer's pass ran 31 % and the 1080p photon
+    // frames 4.6-13.9 % faster on an H100 (docs/benchmarks.md, "Registers against occupancy";
+    // the CUDA backend caps the same kernels with launch bounds).
     if (info_.platform.find("NVIDIA") != std::string::npos) request.options += " -cl-nv-maxrregcount=64";
     program_ = build_opencl_program(request, ProgramCache(program_cache_settings_from_environment()), startup_);
     StepClock clock;

@@ -55,9 +55,9 @@ class StartupCli : public test::PmrenderProcessTest {
 TEST_F(StartupCli, RenderVerboseReportsTheStepsAndTheSecondRunLoadsTheProgram) {
   test::ProcessResult first = pmrender(std::string(kTinyRender) + "-v -o " + (dir_ / "a.exr").string());
   ASSERT_EQ(first.exit_code, 0) << first.out << first.err;
-  for (const char* row : {"start-up, step by step", "scene load", "beside it the opencl driver's start", "opencl 0: platforms", "opencl 0: context", "opencl 0: program",
-                          "renderer: BVH build", "renderer: scene upload", "to the first frame",
-                          "first frame (host wall)"})
+  for (const char* row : {"start-up, step by step", "scene load", "beside it the opencl driver's start",
+                          "opencl 0: platforms", "opencl 0: context", "opencl 0: program", "renderer: BVH build",
+                          "renderer: scene upload", "to the first frame", "first frame (host wall)"})
     EXPECT_NE(first.out.find(row), std::string::npos) << "no '" << row << "' in\n" << first.out;
   EXPECT_NE(first.out.find("program cache: opencl 0: stored"), std::string::npos) << first.out;
   EXPECT_EQ(cache_files().size(), 1u);
