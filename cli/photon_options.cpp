@@ -21,6 +21,25 @@ std::vector<std::string> with_auto(std::vector<std::string> names) {
   return names;
 }
 
+// An option that is "auto" (0: the settings choose) or a finite number above 0 and, where
+// `below` > 0, below it.
+double auto_or_positive(const char* setting, const std::string& text, double auto_value, double below) {
+  if (text == "auto") return auto_value;
+  size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !(v > 0) || !std::isfinite(v) || (below > 0 && !(v < below)))
+    throw SettingError(setting, std::string(below > 0 ? "expected auto or a number between 0 and " + std::to_string(int(below)) +
+                                                            " (exclusive)"
+                                                      : "expected auto or a positive number") +
+                                    ", got '" + text + "'");
+  return v;
+}
+
 class PhotonOptions final : public MethodOptions {
  public:
   PhotonSettings settings_;
@@ -35,6 +54,8 @@ class PhotonOptions final : public MethodOptions {
   std::string footprint_clip = "on";
   std::string footprint_coverage = "on";
   std::string facet_weighting = "auto";
+  std::string overlap = "auto";
+  std::string alpha = "auto";
 
   std::shared_ptr<const MethodSettings> settings(bool budgeted) const override {
     auto s = std::make_shared<PhotonSettings>(settings_);
@@ -51,20 +72,9 @@ class PhotonOptions final : public MethodOptions {
     value_of(kFootprintClipNames, footprint_coverage, &coverage);
     s->footprint_coverage = coverage != 0;
     if (facet_weighting != "auto") value_of(kFootprintClipNames, facet_weighting, &s->facet_weighting);
-    if (smoothing == "auto") {
-      s->smoothing = 0;
-    } else {
-      size_t used = 0;
-      float v = 0;
-      try {
-        v = std::stof(smoothing, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != smoothing.size() || !(v > 0) || !std::isfinite(v))
-        throw SettingError("smoothing", "expected auto or a positive number, got '" + smoothing + "'");
-      s->smoothing = v;
-    }
+    s->smoothing = float(auto_or_positive("smoothing", smoothing, 0, 0));
+    s->overlap = auto_or_positive("overlap", overlap, 0, 0);
+    s->alpha = float(auto_or_positive("alpha", alpha, 0, 1));
     if (leaf == "auto") {
       s->leaf_threshold = 0;
     } else {
@@ -115,9 +125,11 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
   cmd->add_option("--footprint-thickness", o->settings_.footprint_thickness,
                   "Half-thickness of the pd footprints along the surface normal, over their shorter semiaxis")
       ->capture_default_str()->group(group);
-  cmd->add_option("--overlap", o->settings_.overlap,
+  cmd->add_option("--overlap", o->overlap,
                   "The automatic smoothing's target: photon footprints covering each point of the scene's "
-                  "surface on average (more: smoother, blurrier)")
+                  "surface on average (more: smoother, blurrier); auto: " +
+                      std::to_string(int(kAutoSmoothingOverlap)) + ", or " + std::to_string(int(kShrinkStartOverlap)) +
+                      " at the first of pd's shrinking passes (docs/progressive.md)")
       ->capture_default_str()->group(group);
   cmd->add_option("--rmax", ph.rmax, "Largest footprint semiaxis and k-NN search radius, metres "
                                      "(default: 10% of the scene diagonal)")->transform(finite_float())->group(group);
@@ -143,7 +155,7 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
   cmd->add_option("--facet-weighting", o->facet_weighting,
                   "on: a photon counts on a facet tilted from its own surface by what its light delivers "
                   "there, over the lit surface area; off: in full on every facet within 60 degrees; auto: on "
-                  "for --estimator radius, off for pd (docs/accuracy.md)")
+                  "for --estimator radius and pd's shrinking passes, off for pd's averaged ones (docs/accuracy.md)")
       ->capture_default_str()->check(CLI::IsMember(with_auto(names_of(kFootprintClipNames))))->group(group);
   cmd->add_option("--progressive", o->progressive,
                   "How passes combine: average (the same footprints every pass; noise falls, bias stays), "
@@ -154,7 +166,9 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
                   "Final gathering: N rays per shading point and pass, the photon map (--method radiosity: "
                   "its solution) read at their hits (less blur, more time; 0: off; docs/final-gathering.md)")
       ->transform(any_unsigned32())->capture_default_str()->group(group);
-  cmd->add_option("--alpha", ph.alpha, "shrink: r_i^2 = r_(i-1)^2 (i + alpha) / (i + 1), 0 < alpha < 1")->transform(finite_float())
+  cmd->add_option("--alpha", o->alpha,
+                  "shrink: r_i^2 = r_(i-1)^2 (i + alpha) / (i + 1), 0 < alpha < 1; auto: 0.3 for pd, 2/3 for "
+                  "knn, radius and final gathering (docs/progressive.md)")
       ->capture_default_str()->group(group);
   return o;
 }

@@ -115,6 +115,21 @@ RenderSettings TradeoffSetting::render_settings(const RenderSettings& base, int 
   return s;
 }
 
+namespace {
+
+// The alpha a photon estimator's shrinking passes run with: the one given, or the renderer's
+// default for that estimator (0.3 for pd, 2/3 for the others) where 0.
+float shrink_alpha(const std::string& estimator, float given) {
+  PhotonSettings probe;
+  value_of(kEstimatorNames, estimator == "fg" ? "pd" : estimator, &probe.estimator);
+  probe.final_gather = estimator == "fg" ? 1 : 0;
+  probe.progressive = kProgressiveShrink;
+  probe.alpha = given;
+  return probe.alpha_or_default();
+}
+
+}  // namespace
+
 std::vector<TradeoffSetting> expand_tradeoff_grid(const TradeoffGridLists& lists) {
   const std::vector<uint64_t> photons = whole_numbers(lists.photons, "--photons", uint64_t(1) << 28);
   const std::vector<uint64_t> passes = whole_numbers(lists.passes, "--passes", 1u << 20);
@@ -131,8 +146,9 @@ std::vector<TradeoffSetting> expand_tradeoff_grid(const TradeoffGridLists& lists
     if (!value_of(kProgressiveNames, mode, &unused))
       throw InputError("--progressive: expected " + names_list(kProgressiveNames) + ", got '" + mode + "'");
   }
-  if (!(lists.alpha > 0 && lists.alpha < 1))
-    throw InputError("--alpha: expected a number between 0 and 1 (exclusive), got " + number_text(lists.alpha));
+  if (!(lists.alpha >= 0 && lists.alpha < 1))
+    throw InputError("--alpha: expected a number between 0 and 1 (exclusive), or 0 for the defaults, got " +
+                     number_text(lists.alpha));
   std::vector<TradeoffSetting> grid;
   for (const std::string& estimator : split(lists.estimators)) {
     if (estimator == "radiosity") {
@@ -163,7 +179,8 @@ std::vector<TradeoffSetting> expand_tradeoff_grid(const TradeoffGridLists& lists
           for (const std::string& mode : photon_mapping ? modes : std::vector<std::string>{"average"}) {
             // Shrinking starts at the first pass's footprints: one shrink pass is the average pass.
             if (mode == "shrink" && p == 1 && modes.size() > 1) continue;
-            grid.push_back(TradeoffSetting{estimator, count, uint32_t(p), parameter, mode, lists.alpha});
+            grid.push_back(TradeoffSetting{estimator, count, uint32_t(p), parameter, mode,
+                                           mode == "shrink" ? shrink_alpha(estimator, lists.alpha) : lists.alpha});
           }
   }
   return grid;

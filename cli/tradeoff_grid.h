@@ -22,7 +22,7 @@ struct TradeoffSetting {
   // radiosity, radiosity-fg: the longest element edge, metres (0: the scene default)
   double parameter = 0;
   std::string progressive = "average";  // how a photon estimator's passes combine: average or shrink
-  float alpha = 2.0f / 3.0f;            // shrink's alpha
+  float alpha = 0.0f;                   // shrink's alpha; 0: the estimator's default (PhotonSettings)
   uint32_t directions = 0;              // radiosity, radiosity-fg: link directions per element (nC)
   uint32_t rays = 0;                    // radiosity-fg: gather rays per shading point and pass
 
@@ -48,7 +48,7 @@ struct TradeoffGridLists {
   std::string max_edge = "0";      // radiosity's (and radiosity-fg's) element sizes, metres (0: the scene default)
   std::string directions = "256";  // radiosity's (and radiosity-fg's) link directions per element
   std::string progressive = "average";  // average, shrink or both; shrink only where passes > 1
-  float alpha = 2.0f / 3.0f;
+  float alpha = 0.0f;  // 0: each estimator's default
 };
 
 // Every combination, estimator by estimator in the order given; radiosity, deterministic, gets one

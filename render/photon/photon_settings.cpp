@@ -35,8 +35,8 @@ void PhotonSettings::validate() const {
   if (!(footprint_thickness > 0 && footprint_thickness <= 4))
     throw SettingError("footprint-thickness", "expected a number above 0 and at most 4, got " +
                                                   std::to_string(footprint_thickness));
-  if (!(overlap > 0) || !std::isfinite(overlap))
-    throw SettingError("overlap", "expected a positive number, got " + std::to_string(overlap));
+  if (!(overlap >= 0) || !std::isfinite(overlap))
+    throw SettingError("overlap", "expected auto or a positive number, got " + std::to_string(overlap));
   if (!(rmax >= 0) || !std::isfinite(rmax)) throw SettingError("rmax", "must be a positive length in metres");
   if (!(radius >= 0) || !std::isfinite(radius)) throw SettingError("radius", "must be a positive length in metres");
   if (knn_k < 1 || knn_k > 256) throw SettingError("k", "expected 1 to 256, got " + std::to_string(knn_k));
@@ -51,7 +51,8 @@ void PhotonSettings::validate() const {
   if (final_gather > 0 && estimator == PM_ESTIMATOR_KNN)
     throw SettingError("final-gather", "reads the footprints of --estimator pd or radius, not knn");
   if (final_gather > 0 && bounces < 1) throw SettingError("final-gather", "needs --bounces 1 or more");
-  if (!(alpha > 0 && alpha < 1)) throw SettingError("alpha", "expected a number between 0 and 1 (exclusive), got " + std::to_string(alpha));
+  if (!(alpha >= 0 && alpha < 1))
+    throw SettingError("alpha", "expected auto or a number between 0 and 1 (exclusive), got " + std::to_string(alpha));
   if (photons * hit_slots_per_photon() > kMaxHitSlots)
     throw SettingError("photons", std::to_string(photons) + " photons per pass need more than 2^29 hit records; "
                                   "use fewer photons per pass and more passes");
@@ -63,8 +64,12 @@ PhotonSettings PhotonSettings::resolved(const SceneMeasures& measures) const {
   if (s.radius == 0) s.radius = float(0.05 * measures.diagonal);
   // Chosen by the measured bias of each estimator on the benchmark scenes (docs/accuracy.md): the
   // fixed radius's spheres reach far across the bends of curved surfaces, pd's thin footprints
-  // hardly, and knn has its own region (knn_gather.h).
-  if (s.facet_weighting == kFacetWeightingAuto) s.facet_weighting = s.estimator == PM_ESTIMATOR_RADIUS ? 1 : 0;
+  // hardly (but pd's shrinking passes reach the medium sizes where its bias without the weighting
+  // peaks: "Shrink that converges"), and knn has its own region (knn_gather.h).
+  if (s.facet_weighting == kFacetWeightingAuto)
+    s.facet_weighting = s.estimator == PM_ESTIMATOR_RADIUS || s.shrinking_pd() ? 1 : 0;
+  s.overlap = overlap_or_default();
+  s.alpha = alpha_or_default();
   return s;
 }
 
@@ -73,7 +78,7 @@ std::string PhotonSettings::describe() const {
   s << "photons=" << photons << " bounces=" << bounces << " estimator=" << name_of(kEstimatorNames, estimator)
     << " kernel=" << name_of(kKernelShapeNames, kernel_shape) << " smoothing=";
   if (smoothing > 0) s << smoothing;
-  else s << "auto overlap=" << overlap;
+  else s << "auto overlap=" << overlap_or_default();
   s << " rmax=" << rmax;
   if (estimator == PM_ESTIMATOR_RADIUS) s << " radius=" << radius;
   if (estimator == PM_ESTIMATOR_KNN) s << " k=" << knn_k;
@@ -86,15 +91,16 @@ std::string PhotonSettings::describe() const {
     << " footprint_thickness=" << footprint_thickness << " facet_weighting="
     << (facet_weighting == kFacetWeightingAuto ? "auto" : name_of(kFootprintClipNames, facet_weighting ? 1 : 0))
     << " progressive=" << name_of(kProgressiveNames, progressive);
-  if (progressive == kProgressiveShrink) s << " alpha=" << alpha;
+  if (progressive == kProgressiveShrink) s << " alpha=" << alpha_or_default();
   return s.str();
 }
 
 double PhotonSettings::footprint_scale(uint32_t pass) const {
   if (progressive != kProgressiveShrink) return 1.0;
+  const double a = alpha_or_default();
   // In logarithms: a product of a million factors stays exact enough and never underflows early.
   double log_area = 0;
-  for (uint32_t j = 1; j <= pass; ++j) log_area += std::log((j + double(alpha)) / (j + 1.0));
+  for (uint32_t j = 1; j <= pass; ++j) log_area += std::log((j + a) / (j + 1.0));
   return std::exp(0.5 * log_area);
 }
 

@@ -27,13 +27,23 @@ enum PhotonMapBuilder { kPhotonMapLbvh = 0, kPhotonMapVvh = 1 };
 // shrinking from pass to pass (progressive photon mapping, consistent).
 enum ProgressiveMode { kProgressiveAverage = 0, kProgressiveShrink = 1 };
 
+// pd's shrinking passes (--progressive shrink, the default under a budget) start from footprints a
+// quarter of one pass's area (overlap 50 instead of 200), shrink with alpha 0.3 and weigh photons
+// on tilted facets (facet weighting): chosen by measured error on the benchmark scenes, where the
+// one-pass defaults shrunk with alpha 2/3 made the bias grow with the passes (docs/accuracy.md,
+// "Shrink that converges"). Other estimators, and final gathering, keep alpha 2/3 (not measured).
+constexpr double kShrinkStartOverlap = 50.0;
+constexpr float kShrinkAlphaPd = 0.3f;
+constexpr float kShrinkAlpha = 2.0f / 3.0f;
+
 class PhotonSettings final : public MethodSettings {
  public:
   uint64_t photons = 262144;  // emitted per pass, all lights together; 0: no indirect light
   int bounces = 2;            // diffuse bounces of indirect light
   float smoothing = 0.0f;     // s of section 4.3, diffusely reflected photons; 0: automatic per pass
-  double overlap = kAutoSmoothingOverlap;  // the automatic s: footprints per surface point (render/footprint_scale.h)
-                              // (render/footprint_scale.h)
+  // The automatic s: footprints per surface point (render/footprint_scale.h); 0: by the mode
+  // (kAutoSmoothingOverlap, or kShrinkStartOverlap for pd's shrinking passes).
+  double overlap = 0;
   float rmax = 0.0f;          // footprint semiaxis clamp (knn: search radius), metres; 0: 10 % of the scene diagonal
   int estimator = PM_ESTIMATOR_PD;
   int kernel_shape = PM_KERNEL_CONSTANT;
@@ -58,7 +68,9 @@ class PhotonSettings final : public MethodSettings {
   // The pd footprints' normal half-axis over their shorter in-plane semiaxis (docs/algorithm.md).
   float footprint_thickness = PM_FOOTPRINT_NORMAL_RATIO;
   int progressive = kProgressiveAverage;
-  float alpha = 2.0f / 3.0f;  // shrink: r_i^2 = r_{i-1}^2 (i + alpha) / (i + 1) (Knaus & Zwicker 2011)
+  // shrink: r_i^2 = r_{i-1}^2 (i + alpha) / (i + 1) (Knaus & Zwicker 2011); 0: by the estimator
+  // (kShrinkAlphaPd for pd's shrinking passes, kShrinkAlpha otherwise).
+  float alpha = 0.0f;
   // Final gathering (kernels/common/final_gather.h): gather rays per shading point and pass, the
   // map read at their hits and traced with one bounce fewer; 0: the map read at the shading point.
   uint32_t final_gather = 0;
@@ -74,7 +86,18 @@ class PhotonSettings final : public MethodSettings {
   uint32_t hit_slots_per_photon(bool scene_has_mirrors = true) const {
     return uint32_t(bounces + (scene_has_mirrors ? 2 : 0));
   }
-  // The defaults that depend on the scene (rmax, radius) filled in.
+  // Whether these are pd's shrinking passes read at the shading point, whose defaults differ
+  // (overlap, alpha, facet weighting; docs/accuracy.md "Shrink that converges").
+  bool shrinking_pd() const {
+    return progressive == kProgressiveShrink && estimator == PM_ESTIMATOR_PD && final_gather == 0;
+  }
+  // alpha and overlap as given, or their defaults for this mode when 0 (auto).
+  float alpha_or_default() const { return alpha > 0 ? alpha : shrinking_pd() ? kShrinkAlphaPd : kShrinkAlpha; }
+  double overlap_or_default() const {
+    return overlap > 0 ? overlap : shrinking_pd() ? kShrinkStartOverlap : kAutoSmoothingOverlap;
+  }
+  // The defaults that depend on the scene (rmax, radius) or on the mode (overlap, alpha, facet
+  // weighting) filled in.
   PhotonSettings resolved(const SceneMeasures& measures) const;
   // One line: every setting, as resolved.
   std::string describe() const;

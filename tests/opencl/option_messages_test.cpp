@@ -55,6 +55,9 @@ TEST_F(OptionMessages, FloatOptionsRefuseNonFiniteAndJunk) {
   expect_refused("render --smoothing inf", "--smoothing: expected auto or a positive number, got 'inf'");
   expect_refused("render --smoothing nan", "--smoothing");
   expect_refused("render --smoothing 0", "--smoothing: expected auto or a positive number, got '0'");
+  expect_refused("render --overlap -5", "--overlap: expected auto or a positive number, got '-5'");
+  expect_refused("render --alpha 1", "--alpha: expected auto or a number between 0 and 1 (exclusive), got '1'");
+  expect_refused("render --alpha 0", "--alpha: expected auto or a number between 0 and 1 (exclusive), got '0'");
   expect_refused("render --rmax 1e39", "--rmax: expected a finite number");
   expect_refused("render --rmax -1", "--rmax: must be a positive length in metres");
   expect_refused("render --rmax 0x1p3", "--rmax");

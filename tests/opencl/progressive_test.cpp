@@ -102,6 +102,42 @@ TEST(ProgressiveSettings, ShrinkFollowsKnausZwicker) {
   EXPECT_GT(p.footprint_scale(1000000), 0.0);
 }
 
+// pd's shrinking passes have their own defaults (docs/accuracy.md, "Shrink that converges"): a
+// first pass at a quarter of one pass's footprint area, alpha 0.3 and facet weighting; averaged
+// passes, the other estimators and final gathering keep theirs; values given are kept.
+TEST(ProgressiveSettings, PdShrinkingPassesHaveTheirOwnDefaults) {
+  SceneMeasures measures;
+  measures.diagonal = 10;
+  PhotonSettings average;
+  PhotonSettings r = average.resolved(measures);
+  EXPECT_EQ(r.overlap, kAutoSmoothingOverlap);
+  EXPECT_EQ(r.facet_weighting, 0);
+  PhotonSettings shrink;
+  shrink.progressive = kProgressiveShrink;
+  r = shrink.resolved(measures);
+  EXPECT_EQ(r.overlap, kShrinkStartOverlap);
+  EXPECT_EQ(r.alpha, kShrinkAlphaPd);
+  EXPECT_EQ(r.facet_weighting, 1);
+  EXPECT_DOUBLE_EQ(shrink.footprint_scale(1), std::sqrt((1 + double(kShrinkAlphaPd)) / 2)) << "unresolved alike";
+  PhotonSettings gathered = shrink;
+  gathered.final_gather = 4;
+  r = gathered.resolved(measures);
+  EXPECT_EQ(r.overlap, kAutoSmoothingOverlap);
+  EXPECT_EQ(r.alpha, kShrinkAlpha);
+  EXPECT_EQ(r.facet_weighting, 0);
+  PhotonSettings knn = shrink;
+  knn.estimator = PM_ESTIMATOR_KNN;
+  EXPECT_EQ(knn.resolved(measures).alpha, kShrinkAlpha);
+  PhotonSettings given = shrink;
+  given.overlap = 400;
+  given.alpha = 0.5f;
+  given.facet_weighting = 0;
+  r = given.resolved(measures);
+  EXPECT_EQ(r.overlap, 400);
+  EXPECT_EQ(r.alpha, 0.5f);
+  EXPECT_EQ(r.facet_weighting, 0);
+}
+
 // Average: every pass has the same footprints, so the noise falls as 1/sqrt(passes) while the
 // bias stays; the estimate tracks the true error, bias included.
 TEST(Progressive, AverageLowersNoiseButKeepsTheBias) {
@@ -135,13 +171,15 @@ TEST(Progressive, AverageLowersNoiseButKeepsTheBias) {
 // Shrink: footprints (pd), radii (radius) and the k-NN bound shrink from pass to pass, so the
 // bias falls as passes grow. alpha = 0.2 shrinks fast enough to show it in 32 passes.
 TEST(Progressive, ShrinkLowersTheBiasOfEveryEstimator) {
-  // pd's footprints are within a percent of the closed form from the first pass on (their
-  // coverage follows the sphere's curve): shrinking keeps them there.
+  // pd's shrinking passes weigh photons on tilted facets (facet weighting, their default): on
+  // this tight concave curve the first pass's large footprints read +1.8 % with it (+0.1 %
+  // without, the same photons; PoCL), and shrinking takes it under half a percent (+0.3 %).
   const Estimate none = Estimate::kLeftOut;
   const SphereError pd1 = render_sphere(PM_ESTIMATOR_PD, kProgressiveShrink, 1, 0.2f, 0, none);
   const SphereError pd32 = render_sphere(PM_ESTIMATOR_PD, kProgressiveShrink, 32, 0.2f, 0, none);
-  EXPECT_LT(std::fabs(pd1.bias), 0.015);
+  EXPECT_LT(std::fabs(pd1.bias), 0.025);
   EXPECT_LT(std::fabs(pd32.bias), 0.01);
+  EXPECT_LT(std::fabs(pd32.bias), std::fabs(pd1.bias));
   // k-NN's bias (k photons counted inside the radius of the k-th: +1/(k-1)) goes once the
   // shrinking bound, here started at about the 64th neighbour's distance, cuts below it.
   const SphereError knn1 = render_sphere(PM_ESTIMATOR_KNN, kProgressiveShrink, 1, 0.2f, 0.15f, none);
