@@ -177,8 +177,9 @@ std::vector<TradeoffSetting> expand_tradeoff_grid(const TradeoffGridLists& lists
       for (double parameter : parameters)
         for (uint64_t p : passes)
           for (const std::string& mode : photon_mapping ? modes : std::vector<std::string>{"average"}) {
-            // Shrinking starts at the first pass's footprints: one shrink pass is the average pass.
-            if (mode == "shrink" && p == 1 && modes.size() > 1) continue;
+            // Shrinking starts at the first pass's footprints: one shrink pass is the average pass,
+            // but for pd, whose shrinking passes weigh photons on tilted facets (PhotonSettings).
+            if (mode == "shrink" && p == 1 && modes.size() > 1 && estimator != "pd") continue;
             grid.push_back(TradeoffSetting{estimator, count, uint32_t(p), parameter, mode,
                                            mode == "shrink" ? shrink_alpha(estimator, lists.alpha) : lists.alpha});
           }

@@ -62,8 +62,9 @@ TEST_F(TradeoffCli, TinyGridEndToEnd) {
 }
 
 // Progressive modes are a grid dimension: shrink only where passes > 1 (one shrink pass is the
-// average pass), its own label and series, and its footprints shrink: at 8 passes the shrink
-// setting has less bias and more noise than the average setting, so their errors differ.
+// average pass) but for pd, whose one shrink pass differs by its facet weighting; its own label
+// and series, and its footprints shrink: at 8 passes the shrink setting has less bias and more
+// noise than the average setting, so their errors differ.
 TEST_F(TradeoffCli, ProgressiveModesAreAGridDimension) {
   const fs::path out = dir_ / "modes";
   const test::ProcessResult r = pmrender(
@@ -72,13 +73,14 @@ TEST_F(TradeoffCli, ProgressiveModesAreAGridDimension) {
       out.string());
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   const nlohmann::json j = nlohmann::json::parse(test::read_text(out / "tradeoff.json"));
-  ASSERT_EQ(j["settings"].size(), 3u) << j.dump(1);
+  ASSERT_EQ(j["settings"].size(), 4u) << j.dump(1);
   EXPECT_EQ(j["settings"][0]["label"], "pd 4096 s=8 x1");
-  EXPECT_EQ(j["settings"][1]["label"], "pd 4096 s=8 x8");
-  EXPECT_EQ(j["settings"][2]["label"], "pd 4096 s=8 x8 shrink");
-  EXPECT_EQ(j["settings"][2]["progressive"], "shrink");
-  EXPECT_EQ(j["settings"][2]["alpha"].get<double>(), 0.5);
-  EXPECT_NE(j["settings"][1]["relmae"].get<double>(), j["settings"][2]["relmae"].get<double>());
+  EXPECT_EQ(j["settings"][1]["label"], "pd 4096 s=8 x1 shrink");
+  EXPECT_EQ(j["settings"][2]["label"], "pd 4096 s=8 x8");
+  EXPECT_EQ(j["settings"][3]["label"], "pd 4096 s=8 x8 shrink");
+  EXPECT_EQ(j["settings"][3]["progressive"], "shrink");
+  EXPECT_EQ(j["settings"][3]["alpha"].get<double>(), 0.5);
+  EXPECT_NE(j["settings"][2]["relmae"].get<double>(), j["settings"][3]["relmae"].get<double>());
   EXPECT_NE(test::read_text(out / "tradeoff.svg").find("photon pd shrink"), std::string::npos);
 }
 
