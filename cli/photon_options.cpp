@@ -128,8 +128,9 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
   cmd->add_option("--overlap", o->overlap,
                   "The automatic smoothing's target: photon footprints covering each point of the scene's "
                   "surface on average (more: smoother, blurrier); auto: " +
-                      std::to_string(int(kAutoSmoothingOverlap)) + ", or " + std::to_string(int(kShrinkStartOverlap)) +
-                      " at the first of pd's shrinking passes (docs/progressive.md)")
+                      std::to_string(int(kAutoSmoothingOverlap)) + ", " + std::to_string(int(kShrinkStartOverlap)) +
+                      " at the first of pd's shrinking passes, " + std::to_string(int(kFinalGatherOverlap)) +
+                      " under final gathering (docs/accuracy.md)")
       ->capture_default_str()->group(group);
   cmd->add_option("--rmax", ph.rmax, "Largest footprint semiaxis and k-NN search radius, metres "
                                      "(default: 10% of the scene diagonal)")->transform(finite_float())->group(group);

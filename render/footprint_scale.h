@@ -22,11 +22,13 @@
 namespace pm {
 
 // The overlap of the automatic smoothing, chosen by measured error across the benchmark scenes
-// (docs/accuracy.md): at the default 262144 photons, one pass, 200 gives the lowest geometric mean
-// of the indirect relMAE over Sponza, Sibenik, Conference and both Cornell boxes (800, the value
-// calibrated on the built-in Cornell box alone, blurs the real scenes: relMAE 23-28 % against
-// 16-20 % in them at 96 x 54).
-constexpr double kAutoSmoothingOverlap = 200.0;
+// (docs/accuracy.md, "The one-pass footprint size by its bias"): at the default 262144 photons, one
+// pass, 100 keeps the expected indirect bias within 1.1 % on Sponza, Sibenik, Conference and both
+// Cornell boxes, at 96 x 54 untextured and at 960 x 540 textured (200: +1.74 % on textured
+// Sibenik), at an indirect relMAE within 5 % of 200's geometric mean over the five (better in the
+// three benchmark scenes, worse in the boxes). 800, the value calibrated on the built-in Cornell box
+// alone, blurs the real scenes (relMAE 23-28 % against 15-20 % in them at 96 x 54).
+constexpr double kAutoSmoothingOverlap = 100.0;
 
 // s = sqrt(overlap * scene_area / area_at_s1); 1 when the batch has no diffuse footprint area
 // (no diffuse hits: s then sizes nothing).

@@ -27,12 +27,15 @@ enum PhotonMapBuilder { kPhotonMapLbvh = 0, kPhotonMapVvh = 1 };
 // shrinking from pass to pass (progressive photon mapping, consistent).
 enum ProgressiveMode { kProgressiveAverage = 0, kProgressiveShrink = 1 };
 
-// pd's shrinking passes (--progressive shrink, the default under a budget) start from footprints a
-// quarter of one pass's area (overlap 50 instead of 200), shrink with alpha 0.3 and weigh photons
+// pd's shrinking passes (--progressive shrink, the default under a budget) start from footprints
+// half of one pass's area (overlap 50 instead of 100), shrink with alpha 0.3 and weigh photons
 // on tilted facets (facet weighting): chosen by measured error on the benchmark scenes, where the
 // one-pass defaults shrunk with alpha 2/3 made the bias grow with the passes (docs/accuracy.md,
 // "Shrink that converges"). Other estimators, and final gathering, keep alpha 2/3 (not measured).
 constexpr double kShrinkStartOverlap = 50.0;
+// Final gathering reads the map at its gather rays' hits, where the blur of larger footprints
+// averages out: its map keeps the overlap it was measured at (docs/final-gathering.md).
+constexpr double kFinalGatherOverlap = 200.0;
 constexpr float kShrinkAlphaPd = 0.3f;
 constexpr float kShrinkAlpha = 2.0f / 3.0f;
 
@@ -42,7 +45,8 @@ class PhotonSettings final : public MethodSettings {
   int bounces = 2;            // diffuse bounces of indirect light
   float smoothing = 0.0f;     // s of section 4.3, diffusely reflected photons; 0: automatic per pass
   // The automatic s: footprints per surface point (render/footprint_scale.h); 0: by the mode
-  // (kAutoSmoothingOverlap, or kShrinkStartOverlap for pd's shrinking passes).
+  // (kAutoSmoothingOverlap; kShrinkStartOverlap for pd's shrinking passes, kFinalGatherOverlap for
+  // final gathering's map).
   double overlap = 0;
   float rmax = 0.0f;          // footprint semiaxis clamp (knn: search radius), metres; 0: 10 % of the scene diagonal
   int estimator = PM_ESTIMATOR_PD;
@@ -94,7 +98,9 @@ class PhotonSettings final : public MethodSettings {
   // alpha and overlap as given, or their defaults for this mode when 0 (auto).
   float alpha_or_default() const { return alpha > 0 ? alpha : shrinking_pd() ? kShrinkAlphaPd : kShrinkAlpha; }
   double overlap_or_default() const {
-    return overlap > 0 ? overlap : shrinking_pd() ? kShrinkStartOverlap : kAutoSmoothingOverlap;
+    if (overlap > 0) return overlap;
+    if (shrinking_pd()) return kShrinkStartOverlap;
+    return final_gather > 0 ? kFinalGatherOverlap : kAutoSmoothingOverlap;
   }
   // The defaults that depend on the scene (rmax, radius) or on the mode (overlap, alpha, facet
   // weighting) filled in.

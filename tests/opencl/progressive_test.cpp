@@ -103,8 +103,9 @@ TEST(ProgressiveSettings, ShrinkFollowsKnausZwicker) {
 }
 
 // pd's shrinking passes have their own defaults (docs/accuracy.md, "Shrink that converges"): a
-// first pass at a quarter of one pass's footprint area, alpha 0.3 and facet weighting; averaged
-// passes, the other estimators and final gathering keep theirs; values given are kept.
+// first pass at half of one pass's footprint area (overlap 50), alpha 0.3 and facet weighting;
+// averaged passes and the other estimators keep theirs, final gathering's map its overlap 200;
+// values given are kept.
 TEST(ProgressiveSettings, PdShrinkingPassesHaveTheirOwnDefaults) {
   SceneMeasures measures;
   measures.diagonal = 10;
@@ -122,7 +123,7 @@ TEST(ProgressiveSettings, PdShrinkingPassesHaveTheirOwnDefaults) {
   PhotonSettings gathered = shrink;
   gathered.final_gather = 4;
   r = gathered.resolved(measures);
-  EXPECT_EQ(r.overlap, kAutoSmoothingOverlap);
+  EXPECT_EQ(r.overlap, kFinalGatherOverlap);
   EXPECT_EQ(r.alpha, kShrinkAlpha);
   EXPECT_EQ(r.facet_weighting, 0);
   PhotonSettings knn = shrink;
