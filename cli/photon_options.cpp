@@ -2,6 +2,7 @@
 // own help group, and the settings they describe. Values are checked by
 // PhotonSettings::validate (one layer); names come from the library's name tables.
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -21,24 +22,20 @@ std::vector<std::string> with_auto(std::vector<std::string> names) {
   return names;
 }
 
-// An option that is "auto" (0: the settings choose) or a finite number above 0 and, where
-// `below` > 0, below it.
-double auto_or_positive(const char* setting, const std::string& text, double auto_value, double below) {
-  if (text == "auto") return auto_value;
-  size_t used = 0;
-  double v = 0;
+// An option that is "auto" (0: the settings choose) or a number that `read` accepts (it throws
+// InputError otherwise); any other text is refused with "expected auto or <expected>", naming the
+// setting.
+template <class Read>
+double auto_or(const char* setting, const std::string& text, const char* expected, Read read) {
+  if (text == "auto") return 0;
   try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
+    return read(text);
+  } catch (const InputError&) {
   }
-  if (used != text.size() || !(v > 0) || !std::isfinite(v) || (below > 0 && !(v < below)))
-    throw SettingError(setting, std::string(below > 0 ? "expected auto or a number between 0 and " + std::to_string(int(below)) +
-                                                            " (exclusive)"
-                                                      : "expected auto or a positive number") +
-                                    ", got '" + text + "'");
-  return v;
+  throw SettingError(setting, std::string("expected auto or ") + expected + ", got '" + text + "'");
 }
+
+double positive(const std::string& text) { return parse_positive("", text, std::numeric_limits<float>::max()); }
 
 class PhotonOptions final : public MethodOptions {
  public:
@@ -72,22 +69,16 @@ class PhotonOptions final : public MethodOptions {
     value_of(kFootprintClipNames, footprint_coverage, &coverage);
     s->footprint_coverage = coverage != 0;
     if (facet_weighting != "auto") value_of(kFootprintClipNames, facet_weighting, &s->facet_weighting);
-    s->smoothing = float(auto_or_positive("smoothing", smoothing, 0, 0));
-    s->overlap = auto_or_positive("overlap", overlap, 0, 0);
-    s->alpha = float(auto_or_positive("alpha", alpha, 0, 1));
-    if (leaf == "auto") {
-      s->leaf_threshold = 0;
-    } else {
-      size_t used = 0;
-      int t = 0;
-      try {
-        t = std::stoi(leaf, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != leaf.size() || t < 1) throw SettingError("leaf", "expected auto or a positive integer, got '" + leaf + "'");
-      s->leaf_threshold = t;
-    }
+    s->smoothing = float(auto_or("smoothing", smoothing, "a positive number", positive));
+    s->overlap = auto_or("overlap", overlap, "a positive number", positive);
+    s->alpha = float(auto_or("alpha", alpha, "a number between 0 and 1 (exclusive)", [](const std::string& text) {
+      const double v = parse_positive("", text, 1);
+      if (!(v < 1)) throw InputError("alpha: 1 is not below 1");
+      return v;
+    }));
+    s->leaf_threshold = int(auto_or("leaf", leaf, "a positive integer", [](const std::string& text) {
+      return double(parse_unsigned("", text, 1, uint64_t(std::numeric_limits<int>::max())));
+    }));
     s->validate();
     return s;
   }
