@@ -33,11 +33,11 @@ enum ProgressiveMode { kProgressiveAverage = 0, kProgressiveShrink = 1 };
 // one-pass defaults shrunk with alpha 2/3 made the bias grow with the passes (docs/accuracy.md,
 // "Shrink that converges"). Other estimators, and final gathering, keep alpha 2/3 (not measured).
 constexpr double kShrinkStartOverlap = 50.0;
+constexpr float kShrinkAlphaPd = 0.3f;
+constexpr float kShrinkAlpha = 2.0f / 3.0f;
 // Final gathering reads the map at its gather rays' hits, where the blur of larger footprints
 // averages out: its map keeps the overlap it was measured at (docs/final-gathering.md).
 constexpr double kFinalGatherOverlap = 200.0;
-constexpr float kShrinkAlphaPd = 0.3f;
-constexpr float kShrinkAlpha = 2.0f / 3.0f;
 
 class PhotonSettings final : public MethodSettings {
  public:
