@@ -117,15 +117,16 @@ RenderSettings TradeoffSetting::render_settings(const RenderSettings& base, int 
 
 namespace {
 
-// The alpha a photon estimator's shrinking passes run with: the one given, or the renderer's
-// default for that estimator (0.3 for pd, 2/3 for the others) where 0.
-float shrink_alpha(const std::string& estimator, float given) {
+// The settings a photon estimator's shrinking passes start from, as the renderer resolves them:
+// their alpha (the one given, or the estimator's default where 0) and whether one shrink pass
+// differs from one averaged pass (pd's shrinking passes have defaults of their own).
+PhotonSettings shrinking(const std::string& estimator, float alpha) {
   PhotonSettings probe;
   value_of(kEstimatorNames, estimator == "fg" ? "pd" : estimator, &probe.estimator);
   probe.final_gather = estimator == "fg" ? 1 : 0;
   probe.progressive = kProgressiveShrink;
-  probe.alpha = given;
-  return probe.alpha_or_default();
+  probe.alpha = alpha;
+  return probe;
 }
 
 }  // namespace
@@ -178,10 +179,12 @@ std::vector<TradeoffSetting> expand_tradeoff_grid(const TradeoffGridLists& lists
         for (uint64_t p : passes)
           for (const std::string& mode : photon_mapping ? modes : std::vector<std::string>{"average"}) {
             // Shrinking starts at the first pass's footprints: one shrink pass is the average pass,
-            // but for pd, whose shrinking passes weigh photons on tilted facets (PhotonSettings).
-            if (mode == "shrink" && p == 1 && modes.size() > 1 && estimator != "pd") continue;
+            // unless the shrinking passes have defaults of their own (pd's weigh photons on tilted
+            // facets; PhotonSettings::shrinking_pd).
+            const PhotonSettings shrink = shrinking(estimator, lists.alpha);
+            if (mode == "shrink" && p == 1 && modes.size() > 1 && !shrink.shrinking_pd()) continue;
             grid.push_back(TradeoffSetting{estimator, count, uint32_t(p), parameter, mode,
-                                           mode == "shrink" ? shrink_alpha(estimator, lists.alpha) : lists.alpha});
+                                           mode == "shrink" ? shrink.alpha_or_default() : lists.alpha});
           }
   }
   return grid;
