@@ -106,13 +106,14 @@ Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& set
   settings_.validate();
   width_ = settings.width > 0 ? settings.width : scene.camera.width;
   height_ = settings.height > 0 ? settings.height : scene.camera.height;
+  mirror_depth_ = scene.has_mirrors() ? settings_.mirror_depth : 0;
   StepClock clock;
   measures_ = measure_scene(scene);
   setup_steps_.push_back({"scene measures", clock.lap_ms(), "bounds, ray epsilon"});
   upload_scene(clock);
   BufferExtents extents;
   extents.pixels = uint64_t(width_) * uint64_t(height_);
-  extents.shading_points = extents.pixels * uint64_t(settings_.mirror_depth + 1);
+  extents.shading_points = extents.pixels * uint64_t(mirror_depth_ + 1);
   extents.error_tiles = (extents.pixels + PM_FILM_ERROR_TILE - 1) / PM_FILM_ERROR_TILE;
   extents.layer_pixels = settings_.layers.empty() ? 0 : extents.pixels;
   extents.control_pixels = control_grid(width_, height_).pixels();
@@ -250,7 +251,7 @@ void Renderer::begin_frame(int frame) {
   set_environment_params(environment_, scene_.environment, measures_, &p);
   p.path_mis = 1u;  // paths of the error estimate's bias control; the path method sets its own
   p.ray_epsilon = measures_.ray_epsilon;
-  p.mirror_depth = uint32_t(settings_.mirror_depth);
+  p.mirror_depth = uint32_t(mirror_depth_);
   p.seed = settings_.seed;
   p.frame = uint32_t(frame);
   p.collect_stats = frame_.collect_stats ? 1u : 0u;

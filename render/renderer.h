@@ -137,6 +137,8 @@ class Renderer {
 
   const FilmLayers& layers() const { return settings_.layers; }
   int width() const { return width_; }
+  // The mirror bounces eye rays take here: the settings', or 0 where the scene has no mirror.
+  int mirror_depth() const { return mirror_depth_; }
   int height() const { return height_; }
   Device& device() const { return device_; }
   // Every device buffer of the pipeline, for tests and tools that inspect intermediate results.
@@ -166,6 +168,9 @@ class Renderer {
   RenderSettings settings_;
   int width_ = 0;
   int height_ = 0;
+  // The mirror bounces eye rays can take here: settings' mirror_depth, or 0 in a scene without
+  // mirrors, whose shading points then take a record a pixel rather than mirror_depth + 1.
+  int mirror_depth_ = 0;
   SceneMeasures measures_;
   BufferTable buffers_;
   std::unique_ptr<IndirectMethod> method_;

@@ -65,6 +65,7 @@ struct MaterialDesc {
   // front face (the side of (p1 - p0) x (p2 - p0)); zero: not a light.
   Float3 emission{0, 0, 0};
   bool emits() const { return emission.x > 0 || emission.y > 0 || emission.z > 0; }
+  bool has_mirror() const { return mirror.x > 0 || mirror.y > 0 || mirror.z > 0; }
 };
 
 enum class LightType : uint8_t { point, spot };
@@ -176,6 +177,12 @@ struct Scene {
   bool has_textures() const {
     for (const MaterialDesc& m : materials)
       if (m.base_color_texture >= 0 || m.alpha_mask) return true;
+    return false;
+  }
+  // True when some material reflects as a perfect mirror: eye rays may continue past a hit.
+  bool has_mirrors() const {
+    for (const MaterialDesc& m : materials)
+      if (m.has_mirror()) return true;
     return false;
   }
   // True when some triangle's material emits: the scene has area lights.

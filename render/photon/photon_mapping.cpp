@@ -45,9 +45,7 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
   settings_.validate();
   scene_area_ = context.measures.surface_area;
   photons_per_pass_ = uint32_t(settings_.photons);
-  const bool mirrors = std::any_of(context.scene.materials.begin(), context.scene.materials.end(),
-                                   [](const MaterialDesc& m) { return m.mirror.x > 0 || m.mirror.y > 0 || m.mirror.z > 0; });
-  slots_per_photon_ = settings_.hit_slots_per_photon(mirrors);
+  slots_per_photon_ = settings_.hit_slots_per_photon(context.scene.has_mirrors());
   shading_points_ = context.shading_points;
   extents_.hit_slots = hit_slots();
   extents_.bounds_tiles = (extents_.hit_slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;

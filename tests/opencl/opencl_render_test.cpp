@@ -60,5 +60,40 @@ TEST(OpenclRender, CornellBoxWallsHaveTheirColours) {
   EXPECT_GT(pixel(10, 61, 0), 0.0f);
 }
 
+// A scene without mirrors keeps one shading point a pixel whatever --mirror-depth says (the
+// frame's largest buffers); one with mirrors keeps mirror_depth + 1, and its mirrors show the
+// coloured walls where depth 0 shades the mirrors themselves (black: no diffuse part).
+TEST(OpenclRender, ShadingPointsAreKeptForTheMirrorsTheSceneHas) {
+  std::unique_ptr<Device> device = test::open_first_device("opencl");
+  ASSERT_NE(device, nullptr);
+  RenderSettings settings;
+  settings.width = settings.height = 32;
+  settings.mirror_depth = 2;
+  const uint64_t record_bytes = 32 * 32 * sizeof(float4);
+  const Scene plain = builtin_cornell_box();
+  {
+    Renderer renderer(*device, plain, settings);
+    EXPECT_EQ(renderer.mirror_depth(), 0);
+    EXPECT_EQ(renderer.buffers()[BufferSlot::shade_position].bytes(), record_bytes);
+    EXPECT_EQ(renderer.buffers()[BufferSlot::shade_weight].bytes(), record_bytes);
+  }
+  Scene mirrored = plain;
+  MaterialDesc& white = mirrored.materials.at(0);  // floor, ceiling, back wall and blocks
+  ASSERT_EQ(white.name, "white");
+  white.diffuse = Float3{0, 0, 0};
+  white.mirror = Float3{0.9f, 0.9f, 0.9f};
+  double means[2] = {0, 0};
+  for (int depth : {0, 2}) {
+    settings.mirror_depth = depth;
+    Renderer renderer(*device, mirrored, settings);
+    EXPECT_EQ(renderer.mirror_depth(), depth);
+    EXPECT_EQ(renderer.buffers()[BufferSlot::shade_position].bytes(), uint64_t(depth + 1) * record_bytes);
+    const ImageLayer* direct = renderer.render_frame(0).find("direct");
+    ASSERT_NE(direct, nullptr);
+    for (float v : direct->rgb) means[depth / 2] += v;
+  }
+  EXPECT_GT(means[1], 1.2 * means[0]) << "the mirror reflected nothing at depth 2";
+}
+
 }  // namespace
 }  // namespace pm

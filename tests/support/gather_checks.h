@@ -64,7 +64,7 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   auto cut = read_slot<float4>(device, renderer, BufferSlot::map_cut, n);
   auto power = read_slot<float4>(device, renderer, BufferSlot::map_power, n);
   auto incident = read_slot<float4>(device, renderer, BufferSlot::map_incident, n);
-  const size_t pixels = size_t(width) * height, records = 2 * pixels;
+  const size_t pixels = size_t(width) * height, depths = size_t(renderer.mirror_depth()) + 1, records = depths * pixels;
   auto sp = read_slot<float4>(device, renderer, BufferSlot::shade_position, records);
   auto sn = read_slot<float4>(device, renderer, BufferSlot::shade_normal, records);
   auto so = read_slot<float4>(device, renderer, BufferSlot::shade_outgoing, records);
@@ -89,7 +89,7 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   size_t nonzero = 0;
   for (size_t px = 0; px < pixels; ++px) {
     double sum[3] = {0, 0, 0};
-    for (size_t depth = 0; depth < 2; ++depth) {
+    for (size_t depth = 0; depth < depths; ++depth) {
       size_t r = depth * pixels + px;
       int mat_index = PM_AS_INT(sp[r].w);
       if (mat_index < 0) break;
