@@ -44,10 +44,18 @@ class RadiosityOptions final : public MethodOptions {
   }
   // Radiosity as its options say, and beside it the same with final gathering over its solution
   // (or without, when --final-gather asked for it). 16 rays a pass: a pass over the solution
-  // costs a few tens of milliseconds at 960 x 540 on the GPU (docs/final-gathering.md).
+  // costs a few tens of milliseconds at 960 x 540 on the GPU (docs/final-gathering.md). Without
+  // --directions both trace the solution's own directions, so that one mesh and one set of links
+  // serve the two (the race copies them: VertexLinkRadiosity::adopt_setup) where final gathering
+  // alone would trace its fewer own.
   std::vector<RaceCandidate> candidates(const std::string& name) const override {
-    return with_and_without_final_gather(name, std::static_pointer_cast<const RadiositySettings>(settings(true)),
-                                         kRacedFinalGatherRays);
+    auto given = std::static_pointer_cast<const RadiositySettings>(settings(true));
+    if (directions == "auto") {
+      auto shared = std::make_shared<RadiositySettings>(*given);
+      shared->directions = RadiositySettings::kDirections;
+      given = shared;
+    }
+    return with_and_without_final_gather(name, given, kRacedFinalGatherRays);
   }
   static constexpr uint32_t kRacedFinalGatherRays = 16;
 };

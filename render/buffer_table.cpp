@@ -69,6 +69,14 @@ void BufferTable::upload(BufferSlot slot, const void* data, size_t bytes) {
   device_.upload(buffer, data, bytes);
 }
 
+void BufferTable::copy_from(BufferSlot slot, const DeviceBuffer& source) {
+  DeviceBuffer& buffer = (*this)[slot];
+  buffer.reset();
+  if (!source || source.bytes() == 0) return;
+  buffer = device_.allocate(source.bytes(), buffer_slot_name(slot));
+  device_.copy(source, buffer, source.bytes());
+}
+
 void BufferTable::bind_all() const {
   for (size_t s = 0; s < kBufferSlotCount; ++s) {
     if (!bound_by_renderer(layout(s).group)) continue;

@@ -55,6 +55,9 @@ class BufferTable {
   void release(BufferGroup group);
   // Copies bytes into slot's buffer, reallocating it first when it is too small.
   void upload(BufferSlot slot, const void* data, size_t bytes);
+  // Copies the contents of another table's buffer (same device) into slot, sized as it; an empty
+  // source frees slot's buffer.
+  void copy_from(BufferSlot slot, const DeviceBuffer& source);
   template <typename T>
   void upload(BufferSlot slot, const std::vector<T>& data) {
     upload(slot, data.data(), data.size() * sizeof(T));

@@ -95,6 +95,13 @@ class IndirectMethod {
   // its bias as they go (--method auto forecasts them more slowly; render/method_race.h).
   virtual bool passes_are_samples() const { return true; }
 
+  // Takes over what `other`, a method on the same device and scene that has begun a frame, built
+  // that does not depend on the frame and that this method would build the same (radiosity's
+  // mesh and links), by copies on the device, rather than building it again in begin_frame.
+  // Returns whether it did; the image is the same either way. --method auto's race shares work
+  // between its candidates so (render/method_race.h).
+  virtual bool adopt_setup(const IndirectMethod& /*other*/) { return false; }
+
   // Once per frame, before its passes. change says what differs from the previous frame.
   virtual void begin_frame(const FrameContext& frame, const FrameChange& change) = 0;
   // Pass `pass` (0, 1, ...) of the frame: adds its estimate, weighted 1, into film_indirect_sum

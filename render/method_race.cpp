@@ -168,9 +168,15 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
   choice.setup_seconds = seconds_since(setup_begun);
   const Clock::time_point race_begun = Clock::now();
   // The frame begins on each, timed as its own: a method may do much of its work there (radiosity
-  // solves its links for the frame's lights before its one pass).
-  for (Runner& r : runners) {
+  // solves its links for the frame's lights before its one pass). What an earlier candidate built
+  // and this one would build the same (radiosity's mesh and links) is copied rather than rebuilt.
+  for (size_t i = 0; i < runners.size(); ++i) {
+    Runner& r = runners[i];
     const Clock::time_point begun = Clock::now();
+    for (size_t j = 0; j < i; ++j)
+      if (r.renderer->method() && runners[j].renderer->method() &&
+          r.renderer->method()->adopt_setup(*runners[j].renderer->method()))
+        break;
     r.renderer->begin_frame(frame);
     r.renderer->wait();
     r.own_seconds = r.start_seconds = seconds_since(begun);

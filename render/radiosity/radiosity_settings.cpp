@@ -67,6 +67,15 @@ uint32_t RadiositySettings::batch_elements(uint64_t elements) const {
   return uint32_t(std::max<uint64_t>(1, std::min(batch, std::max<uint64_t>(elements, 1))));
 }
 
+bool RadiositySettings::same_links_as(const RadiositySettings& o) const {
+  // The refinement (max_edge), the elements (feature_angle, sides) and the link rays (their
+  // directions, origins and the hidden origins' distance); the link rays' random numbers do not
+  // depend on the seed (radiosity_links.h), the batches do not change a link.
+  return max_edge == o.max_edge && feature_angle == o.feature_angle && sides == o.sides &&
+         resolved_directions() == o.resolved_directions() && link_origins == o.link_origins &&
+         hidden_origins == o.hidden_origins;
+}
+
 std::string RadiositySettings::describe() const {
   std::ostringstream s;
   s << "directions=" << resolved_directions() << " bounces=" << bounces << " max_edge=" << max_edge

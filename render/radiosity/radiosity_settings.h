@@ -58,6 +58,9 @@ class RadiositySettings final : public MethodSettings {
   // Gathering bounces of the solution: bounces, or one fewer when final gathering reads it a
   // bounce away from the shading point.
   int solution_bounces() const { return final_gather > 0 ? bounces - 1 : bounces; }
+  // Whether the two (as resolved) refine the scene into the same elements and trace the same
+  // links: the settings of the mesh and of the link rays agree.
+  bool same_links_as(const RadiositySettings& other) const;
   // One line: every setting, as resolved.
   std::string describe() const;
 };

@@ -63,11 +63,7 @@ void VertexLinkRadiosity::prepare(StageTimer* timer) {
       build_radiosity_elements(scene_, mesh, settings_.feature_angle, settings_.sides == 2);
   element_count_ = uint32_t(elements.count());
   ranges_ = elements.ranges;
-  light_samples_ = 0;
-  for (size_t e = 0; e < elements.count(); ++e) {
-    const uint64_t ring = ranges_[e + 1].x - ranges_[e].x;
-    light_samples_ += settings_.light_samples == PM_RADIOSITY_LIGHT_VERTEX ? 1 : 4 * ring;
-  }
+  count_light_samples();
   buffers_.upload(BufferSlot::rad_elements, elements.data);
   buffers_.upload(BufferSlot::rad_tree, mesh.tree);
   buffers_.upload(BufferSlot::rad_triangles, elements.triangles);
@@ -92,6 +88,44 @@ void VertexLinkRadiosity::prepare(StageTimer* timer) {
   mesh_stats_.set("scene_vertices", double(mesh.welded_vertices));
   mesh_stats_.set("refined_triangles", double(mesh.triangle_count()));
   mesh_stats_.set("tree_depth", mesh.depth);
+}
+
+// Light-link shadow rays per light and run: one per element, or four per one-ring triangle.
+void VertexLinkRadiosity::count_light_samples() {
+  light_samples_ = 0;
+  for (uint32_t e = 0; e < element_count_; ++e) {
+    const uint64_t ring = ranges_[e + 1].x - ranges_[e].x;
+    light_samples_ += settings_.light_samples == PM_RADIOSITY_LIGHT_VERTEX ? 1 : 4 * ring;
+  }
+}
+
+// The mesh and links of another renderer's radiosity, copied on the device: what prepare() and
+// build_links() would have made here (same_links_as), without refining or tracing again.
+bool VertexLinkRadiosity::adopt_setup(const IndirectMethod& other_method) {
+  const auto* other = dynamic_cast<const VertexLinkRadiosity*>(&other_method);
+  if (!other || other == this || prepared_ || !other->prepared_ || &other->device_ != &device_ ||
+      &other->scene_ != &scene_ || !settings_.same_links_as(other->settings_))
+    return false;
+  for (BufferSlot slot : {BufferSlot::rad_elements, BufferSlot::rad_tree, BufferSlot::rad_triangles,
+                          BufferSlot::rad_adjacency, BufferSlot::rad_smooth_weights, BufferSlot::rad_element_ranges,
+                          BufferSlot::rad_texture_tint, BufferSlot::rad_links})
+    buffers_.copy_from(slot, other->buffers_[slot]);
+  element_count_ = other->element_count_;
+  ranges_ = other->ranges_;
+  count_light_samples();
+  link_capacity_ = other->link_capacity_;
+  links_ = other->links_;
+  link_words_ = other->link_words_;
+  raw_links_ = other->raw_links_;
+  link_batches_ = other->link_batches_;
+  batch_elements_ = other->batch_elements_;
+  mesh_stats_ = other->mesh_stats_;
+  BufferExtents extents;
+  extents.elements = element_count_;
+  buffers_.allocate(BufferGroup::radiosity, extents);
+  buffers_.bind_all();
+  prepared_ = adopted_ = true;
+  return true;
 }
 
 // Grows rad_links to hold `words`, keeping the first `used` (a device copy).
@@ -239,6 +273,7 @@ void VertexLinkRadiosity::update_stats(bool built, bool lit) {
   stats_.set("link_builds", double(link_builds_));
   stats_.set("light_link_runs", double(light_link_runs_));
   stats_.set("links_built", built ? 1 : 0);
+  stats_.set("links_adopted", adopted_ ? 1 : 0);
   stats_.set("light_links_run", lit ? 1 : 0);
   stats_.set("radiosity_bytes", double(buffers_.bytes(BufferGroup::radiosity)));
 }

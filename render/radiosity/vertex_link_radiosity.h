@@ -29,6 +29,7 @@ class VertexLinkRadiosity final : public IndirectMethod {
   uint32_t max_passes() const override { return settings_.final_gather > 0 ? 0 : 1; }
   uint32_t light_bounces() const override { return uint32_t(settings_.bounces); }
   bool may_be_biased() const override { return true; }
+  bool adopt_setup(const IndirectMethod& other) override;
   void begin_frame(const FrameContext& frame, const FrameChange& change) override;
   void run_pass(const FrameContext& frame, uint32_t pass) override;
   MethodStats stats() const override { return stats_; }
@@ -46,6 +47,7 @@ class VertexLinkRadiosity final : public IndirectMethod {
  private:
   LaunchParams launch_params(const FrameContext& frame) const;
   void prepare(StageTimer* timer);
+  void count_light_samples();
   void build_links(LaunchParams params, StageTimer* timer);
   void resize_links(uint64_t words, uint64_t used);
   void solve(LaunchParams params, StageTimer* timer);
@@ -59,6 +61,7 @@ class VertexLinkRadiosity final : public IndirectMethod {
   int ray_frame_ = 0;               // the key of the gather rays of the frame begun last
 
   bool prepared_ = false;
+  bool adopted_ = false;            // the mesh and links are copies of another renderer's (adopt_setup)
   bool solved_ = false;
   uint32_t element_count_ = 0;
   uint32_t final_source_ = 0;       // the half of rad_irradiance the interpolation reads

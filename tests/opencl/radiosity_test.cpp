@@ -123,6 +123,53 @@ TEST_F(Radiosity, FinalGatherRaysFollowTheLightRun) {
   EXPECT_GT(test::mean(b14.find("indirect")->rgb), 0.0);
 }
 
+// --method auto's race lets its final-gathering candidate take the plain candidate's mesh and
+// links (VertexLinkRadiosity::adopt_setup): copied, not rebuilt, and the image is the one it
+// renders on its own, bit for bit. Other link settings are not adopted.
+TEST_F(Radiosity, AdoptedLinksRenderAsBuiltOnes) {
+  Scene scene = moving_room();
+  const RenderSettings plain = small_radiosity(24, 18, 16);
+  RadiositySettings gathering;
+  gathering.directions = 16;
+  gathering.final_gather = 4;
+  RenderSettings gathered = small_radiosity(24, 18, 16);
+  gathered.method = std::make_shared<RadiositySettings>(gathering);
+  gathered.control_paths = 0;
+
+  Renderer first(*device_, scene, plain);
+  first.render_frame(0);
+  Renderer adopting(*device_, scene, gathered);
+  ASSERT_TRUE(adopting.method()->adopt_setup(*first.method()));
+  FrameStats stats;
+  const FrameImage adopted = adopting.render_frame(0, &stats);
+  EXPECT_EQ(stat(stats, "links_built"), 0);
+  EXPECT_EQ(stat(stats, "links_adopted"), 1);
+  EXPECT_EQ(stat(stats, "light_links_run"), 1) << "the solution is its own (one bounce fewer)";
+  EXPECT_EQ(stat(stats, "links"), first.method()->stats().get("links"));
+
+  Renderer alone(*device_, scene, gathered);
+  FrameStats alone_stats;
+  const FrameImage built = alone.render_frame(0, &alone_stats);
+  EXPECT_EQ(stat(alone_stats, "links_built"), 1);
+  EXPECT_GT(test::mean(built.find("indirect")->rgb), 0.0);
+  for (const char* layer : {"", "indirect"})
+    EXPECT_TRUE(adopted.find(layer)->rgb == built.find(layer)->rgb) << "layer '" << layer << "'";
+
+  // Links of other directions or another mesh are the adopter's own to build.
+  RadiositySettings fewer = gathering;
+  fewer.directions = 8;
+  RadiositySettings coarser = gathering;
+  coarser.max_edge = 1.0f;
+  for (const RadiositySettings& other : {fewer, coarser}) {
+    RenderSettings s = gathered;
+    s.method = std::make_shared<RadiositySettings>(other);
+    Renderer renderer(*device_, scene, s);
+    EXPECT_FALSE(renderer.method()->adopt_setup(*first.method())) << other.describe();
+  }
+  Renderer unbegun(*device_, scene, plain), late(*device_, scene, gathered);
+  EXPECT_FALSE(late.method()->adopt_setup(*unbegun.method())) << "a renderer that has not begun a frame has nothing to share";
+}
+
 // Both methods estimate the same indirect light (bounces 1 and 2, all diffuse). Their biases
 // differ: radiosity interpolates vertex values linearly over 3.8 cm triangles and samples
 // visibility with nC rays per vertex, and reads 2.7 % under the path-traced reference in this box
