@@ -5,7 +5,7 @@
 #include <sstream>
 
 #include "cli/memory.h"
-#include "render/device_threads.h"
+#include "render/host_threads.h"
 #include "render/errors.h"
 
 namespace pm::cli {

@@ -35,7 +35,7 @@ struct FrameDevices {
 std::vector<Device*> device_pointers(const FrameDevices& opened);
 std::vector<const Renderer*> renderer_pointers(const FrameDevices& opened);
 
-// Opens the devices (each on its own thread, render/device_threads.h); nothing runs on them yet.
+// Opens the devices (each on its own thread, render/host_threads.h); nothing runs on them yet.
 FrameDevices open_devices(const DeviceChoice& choice, bool sequence, uint32_t checkpoint_every);
 
 // Uploads the scene to each opened device, checks each device's memory for a frame of width x

@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "kernels/opencl/opencl_device.h"
-#include "render/device_threads.h"
+#include "render/host_threads.h"
 #include "render/errors.h"
 #if PMRENDER_HAVE_CUDA
 #include "kernels/cuda/cuda_device.h"

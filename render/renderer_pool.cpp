@@ -8,7 +8,7 @@
 #include <mutex>
 #include <thread>
 
-#include "render/device_threads.h"
+#include "render/host_threads.h"
 #include "render/errors.h"
 #include "render/interruption.h"
 

@@ -32,7 +32,7 @@ struct DeviceEntry {
 };
 
 std::vector<DeviceEntry> enumerate() {
-  // One enumeration at a time: devices open on threads of their own (render/device_threads.h), and
+  // One enumeration at a time: devices open on threads of their own (render/host_threads.h), and
   // PoCL counted only one of its devices when two threads made the process's first call at once.
   static std::mutex enumerating;
   std::lock_guard<std::mutex> lock(enumerating);

@@ -9,6 +9,7 @@
 #include "kernels/common/compat_host.h"
 #include "kernels/common/brdf.h"
 #include "render/errors.h"
+#include "render/host_threads.h"
 
 namespace pm {
 
@@ -43,6 +44,10 @@ uint32_t morton3(const Float3& p, const Dvec& lo, const Dvec& extent) {
   const uint32_t z = cell(extent.z > 0 ? (p.z - lo.z) / extent.z : 0);
   return (spread(x) << 2) | (spread(y) << 1) | spread(z);
 }
+
+// Work per thread below which a chunk is not worth a thread of its own.
+constexpr size_t kMinVerticesPerChunk = 16384;
+constexpr size_t kMinElementsPerChunk = 16384;
 
 // One element as grouped at its vertex, before Morton ordering.
 struct Group {
@@ -87,39 +92,65 @@ RadiosityElements build_radiosity_elements(const Scene& scene, const RefinedMesh
   }
 
   // Greedy grouping per vertex and side: a corner joins the first group of its material whose
-  // seed normal is within alpha_f, else it starts a group.
+  // seed normal is within alpha_f, else it starts a group. Vertices are independent: chunks of
+  // them group on threads of their own (render/host_threads.h), each numbering its groups from
+  // zero; joined in vertex order, the groups are numbered as one loop over all vertices would.
   std::vector<uint32_t> corner_element(2 * 3 * tris, PM_RADIOSITY_NONE);  // [side][3 r + k]
+  const int sides = two_sided ? 2 : 1;
+  const std::vector<IndexRange> vertex_chunks = split_into_chunks(verts, kMinVerticesPerChunk);
+  std::vector<std::vector<Group>> chunk_groups(vertex_chunks.size());
+  std::vector<std::vector<uint32_t>> chunk_group_vertex(vertex_chunks.size());
+  std::vector<size_t> chunk_vertices_with_elements(vertex_chunks.size(), 0);
+  for_each_chunk(vertex_chunks, [&](size_t c, IndexRange range) {
+    std::vector<Group>& groups = chunk_groups[c];
+    for (size_t v = range.begin; v < range.end; ++v) {
+      const size_t base = groups.size();
+      for (uint32_t i = first[v]; i < first[v + 1]; ++i) {
+        const uint32_t r = corners[i] >> 2, k = corners[i] & 3u;
+        const uint32_t* tri = &mesh.indices[3 * r];
+        // Corner angle weight (normals weighted by the angle a triangle spans at the vertex).
+        const Dvec e1 = sub(mesh.positions[tri[(k + 1) % 3]], mesh.positions[v]);
+        const Dvec e2 = sub(mesh.positions[tri[(k + 2) % 3]], mesh.positions[v]);
+        const double angle = std::atan2(length(cross(e1, e2)), dot(e1, e2));
+        const uint32_t material = scene.triangle_material[mesh.source[r]];
+        for (int side = 0; side < sides; ++side) {
+          const Dvec n = scaled(face[mesh.source[r]], side ? -1.0 : 1.0);
+          size_t g = base;
+          while (g < groups.size() &&
+                 !(groups[g].material == material && groups[g].back == bool(side) && dot(groups[g].seed, n) >= cos_feature))
+            ++g;
+          if (g == groups.size()) {
+            groups.push_back(Group{n, Dvec{}, material, bool(side)});
+            chunk_group_vertex[c].push_back(uint32_t(v));
+          }
+          Group& group = groups[g];
+          group.sum = {group.sum.x + angle * n.x, group.sum.y + angle * n.y, group.sum.z + angle * n.z};
+          corner_element[size_t(side) * 3 * tris + 3 * r + k] = uint32_t(g);  // the chunk's own number
+        }
+      }
+      if (groups.size() > base) ++chunk_vertices_with_elements[c];
+    }
+  });
+  // The chunks' own group numbers made global: each vertex's corners belong to its chunk alone.
   std::vector<Group> groups_all;
   std::vector<uint32_t> group_vertex;
-  const int sides = two_sided ? 2 : 1;
+  std::vector<uint32_t> chunk_first_group(vertex_chunks.size());
   RadiosityElements out;
-  for (size_t v = 0; v < verts; ++v) {
-    const size_t base = groups_all.size();
-    for (uint32_t i = first[v]; i < first[v + 1]; ++i) {
-      const uint32_t r = corners[i] >> 2, k = corners[i] & 3u;
-      const uint32_t* tri = &mesh.indices[3 * r];
-      // Corner angle weight (normals weighted by the angle a triangle spans at the vertex).
-      const Dvec e1 = sub(mesh.positions[tri[(k + 1) % 3]], mesh.positions[v]);
-      const Dvec e2 = sub(mesh.positions[tri[(k + 2) % 3]], mesh.positions[v]);
-      const double angle = std::atan2(length(cross(e1, e2)), dot(e1, e2));
-      const uint32_t material = scene.triangle_material[mesh.source[r]];
-      for (int s = 0; s < sides; ++s) {
-        const Dvec n = scaled(face[mesh.source[r]], s ? -1.0 : 1.0);
-        size_t g = base;
-        while (g < groups_all.size() &&
-               !(groups_all[g].material == material && groups_all[g].back == bool(s) && dot(groups_all[g].seed, n) >= cos_feature))
-          ++g;
-        if (g == groups_all.size()) {
-          groups_all.push_back(Group{n, Dvec{}, material, bool(s)});
-          group_vertex.push_back(uint32_t(v));
-        }
-        Group& group = groups_all[g];
-        group.sum = {group.sum.x + angle * n.x, group.sum.y + angle * n.y, group.sum.z + angle * n.z};
-        corner_element[size_t(s) * 3 * tris + 3 * r + k] = uint32_t(g);
-      }
-    }
-    if (groups_all.size() > base) ++out.vertices_with_elements;
+  for (size_t c = 0; c < vertex_chunks.size(); ++c) {
+    chunk_first_group[c] = uint32_t(groups_all.size());
+    groups_all.insert(groups_all.end(), chunk_groups[c].begin(), chunk_groups[c].end());
+    group_vertex.insert(group_vertex.end(), chunk_group_vertex[c].begin(), chunk_group_vertex[c].end());
+    out.vertices_with_elements += chunk_vertices_with_elements[c];
   }
+  for_each_chunk(vertex_chunks, [&](size_t c, IndexRange range) {
+    if (chunk_first_group[c] == 0) return;
+    for (size_t v = range.begin; v < range.end; ++v)
+      for (uint32_t i = first[v]; i < first[v + 1]; ++i)
+        for (int side = 0; side < sides; ++side) {
+          uint32_t& e = corner_element[size_t(side) * 3 * tris + 3 * (corners[i] >> 2) + (corners[i] & 3u)];
+          if (e != PM_RADIOSITY_NONE) e += chunk_first_group[c];
+        }
+  });
   const size_t count = groups_all.size();
   if (count >= size_t(PM_RADIOSITY_NONE) / 4)
     throw InputError(scene.source + ": " + std::to_string(count) + " radiosity elements are too many for 32-bit links");
@@ -198,32 +229,46 @@ RadiosityElements build_radiosity_elements(const Scene& scene, const RefinedMesh
   // (six equal triangles around each vertex) that is eq. 5's 1 / 7 per neighbour; on any mesh the
   // weights of an element's neighbours add up to 6 / 7. Eq. 5's plain mean over the corners
   // does not keep the power where elements differ in size or valence (docs/accuracy.md).
-  std::vector<std::pair<uint32_t, double>> shared;  // (neighbour, triangle area it shares)
+  // Elements are independent: chunks of them on threads of their own, joined in element order.
+  const std::vector<IndexRange> element_chunks = split_into_chunks(count, kMinElementsPerChunk);
+  std::vector<std::vector<uint32_t>> chunk_neighbours(element_chunks.size());
+  std::vector<std::vector<float>> chunk_weights(element_chunks.size());
+  for_each_chunk(element_chunks, [&](size_t c, IndexRange range) {
+    std::vector<std::pair<uint32_t, double>> shared;  // (neighbour, triangle area it shares)
+    std::vector<uint32_t>& neighbours = chunk_neighbours[c];
+    std::vector<float>& weights = chunk_weights[c];
+    for (size_t e = range.begin; e < range.end; ++e) {
+      out.ranges[e].x = ring_first[e];
+      out.ranges[e].y = uint32_t(neighbours.size());  // within the chunk until joined
+      const size_t side_base = out.back[e] ? 3 * tris : 0;
+      shared.clear();
+      double ring_area = 0;
+      for (uint32_t i = ring_first[e]; i < ring_first[e + 1]; ++i) {
+        const uint32_t r = out.adjacency[i] >> 2, k = out.adjacency[i] & 3u;
+        const double area = refined_triangle_area(mesh, r);
+        ring_area += area;
+        for (uint32_t step = 1; step < 3; ++step) {
+          const uint32_t other = corner_element[side_base + 3 * r + (k + step) % 3];
+          if (other != PM_RADIOSITY_NONE && other != e) shared.emplace_back(other, area);
+        }
+      }
+      std::sort(shared.begin(), shared.end());
+      for (size_t i = 0; i < shared.size(); ++i) {
+        if (i > 0 && shared[i].first == shared[i - 1].first) {
+          weights.back() += float(3.0 / 7.0 * shared[i].second / ring_area);
+          continue;
+        }
+        neighbours.push_back(shared[i].first);
+        weights.push_back(ring_area > 0 ? float(3.0 / 7.0 * shared[i].second / ring_area) : 0.0f);
+      }
+    }
+  });
   std::vector<uint32_t> neighbours;
-  for (size_t e = 0; e < count; ++e) {
-    out.ranges[e].x = ring_first[e];
-    out.ranges[e].y = uint32_t(ring_first[count] + neighbours.size());
-    const size_t side_base = out.back[e] ? 3 * tris : 0;
-    shared.clear();
-    double ring_area = 0;
-    for (uint32_t i = ring_first[e]; i < ring_first[e + 1]; ++i) {
-      const uint32_t r = out.adjacency[i] >> 2, k = out.adjacency[i] & 3u;
-      const double area = refined_triangle_area(mesh, r);
-      ring_area += area;
-      for (uint32_t step = 1; step < 3; ++step) {
-        const uint32_t other = corner_element[side_base + 3 * r + (k + step) % 3];
-        if (other != PM_RADIOSITY_NONE && other != e) shared.emplace_back(other, area);
-      }
-    }
-    std::sort(shared.begin(), shared.end());
-    for (size_t i = 0; i < shared.size(); ++i) {
-      if (i > 0 && shared[i].first == shared[i - 1].first) {
-        out.smooth_weights.back() += float(3.0 / 7.0 * shared[i].second / ring_area);
-        continue;
-      }
-      neighbours.push_back(shared[i].first);
-      out.smooth_weights.push_back(ring_area > 0 ? float(3.0 / 7.0 * shared[i].second / ring_area) : 0.0f);
-    }
+  for (size_t c = 0; c < element_chunks.size(); ++c) {
+    const uint32_t first_neighbour = uint32_t(ring_first[count] + neighbours.size());
+    for (size_t e = element_chunks[c].begin; e < element_chunks[c].end; ++e) out.ranges[e].y += first_neighbour;
+    neighbours.insert(neighbours.end(), chunk_neighbours[c].begin(), chunk_neighbours[c].end());
+    out.smooth_weights.insert(out.smooth_weights.end(), chunk_weights[c].begin(), chunk_weights[c].end());
   }
   out.ranges[count].x = ring_first[count];
   out.ranges[count].y = uint32_t(ring_first[count] + neighbours.size());
