@@ -8,6 +8,7 @@
 
 #include "render/errors.h"
 #include "render/interruption.h"
+#include "render/scene_upload.h"
 
 namespace pm {
 
@@ -156,11 +157,15 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
   MethodChoice choice;
   std::vector<Runner> runners(candidates.size());
   const Clock::time_point setup_begun = Clock::now();
+  // One BVH, one set of packed textures for all the candidates' renderers.
+  StepClock clock;
+  std::vector<StartupStep> steps;
+  const std::shared_ptr<const SceneUpload> upload = prepare_scene_upload(scene, clock, &steps);
   for (size_t i = 0; i < candidates.size(); ++i) {
     RenderSettings s = settings;
     s.method = candidates[i].method;
     runners[i].entry.label = candidates[i].label;
-    runners[i].renderer = std::make_unique<Renderer>(device, scene, s);
+    runners[i].renderer = std::make_unique<Renderer>(device, scene, s, upload);
     const uint32_t method_cap = runners[i].renderer->method()->max_passes();
     runners[i].cap = method_cap > 0 ? std::min(budget.max_passes, method_cap) : budget.max_passes;
   }

@@ -18,6 +18,7 @@
 #include "render/scene_frame.h"
 #include "render/scene_scale.h"
 #include "render/scene_textures.h"
+#include "render/scene_upload.h"
 
 namespace pm {
 
@@ -101,7 +102,8 @@ std::vector<PointLight> to_device_lights(const std::vector<LightDesc>& scene_lig
   return lights;
 }
 
-Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& settings)
+Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& settings,
+                   std::shared_ptr<const SceneUpload> upload)
     : device_(device), scene_(scene), settings_(settings), buffers_(device) {
   settings_.validate();
   width_ = settings.width > 0 ? settings.width : scene.camera.width;
@@ -110,7 +112,7 @@ Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& set
   StepClock clock;
   measures_ = measure_scene(scene);
   setup_steps_.push_back({"scene measures", clock.lap_ms(), "bounds, ray epsilon"});
-  upload_scene(clock);
+  upload_scene(clock, std::move(upload));
   BufferExtents extents;
   extents.pixels = uint64_t(width_) * uint64_t(height_);
   extents.shading_points = extents.pixels * uint64_t(mirror_depth_ + 1);
@@ -131,22 +133,21 @@ Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& set
 // Freeing a buffer unbinds it from the device's slot table (DeviceBuffer::reset).
 Renderer::~Renderer() = default;
 
-void Renderer::upload_scene(StepClock& clock) {
-  SceneBvh bvh = build_scene_bvh(scene_);
-  setup_steps_.push_back({"BVH build", clock.lap_ms(), std::to_string(bvh.nodes.size()) + " nodes"});
-  // Textures once per scene; an untextured scene leaves the three buffers unallocated (null).
-  const DeviceTextures textures = pack_scene_textures(scene_, bvh);
-  const std::vector<Material> materials = to_device_materials(scene_);
-  setup_steps_.push_back({"textures and materials", clock.lap_ms(), std::to_string(scene_.images.size()) + " images"});
+void Renderer::upload_scene(StepClock& clock, std::shared_ptr<const SceneUpload> upload) {
+  if (!upload) upload = prepare_scene_upload(scene_, clock, &setup_steps_);
+  else setup_steps_.push_back({"BVH build", clock.lap_ms(), "shared with the renderers of this scene"});
+  const SceneBvh& bvh = upload->bvh;
+  const DeviceTextures& textures = upload->textures;
   buffers_.upload(BufferSlot::scene_nodes, bvh.nodes);
   buffers_.upload(BufferSlot::triangles, bvh.triangles);
-  buffers_.upload(BufferSlot::materials, materials);
+  buffers_.upload(BufferSlot::materials, upload->materials);
+  // Textures once per scene; an untextured scene leaves the three buffers unallocated (null).
   if (!textures.info.empty()) buffers_.upload(BufferSlot::texture_info, textures.info);
   if (!textures.texels.empty()) buffers_.upload(BufferSlot::texels, textures.texels);
   if (!textures.uvs.empty()) buffers_.upload(BufferSlot::triangle_uvs, textures.uvs);
   if (!textures.srgb_table.empty()) buffers_.upload(BufferSlot::texture_srgb_table, textures.srgb_table);
   // Area lights likewise: a scene without emitting materials allocates neither buffer.
-  const SceneEmitters emitters = build_scene_emitters(scene_);
+  const SceneEmitters& emitters = upload->emitters;
   if (emitters.count > 0) {
     buffers_.upload(BufferSlot::emitters, emitters.records);
     buffers_.upload(BufferSlot::material_emission, emitters.material_emission);
@@ -154,13 +155,14 @@ void Renderer::upload_scene(StepClock& clock) {
   emitter_count_ = emitters.count;
   emitter_power_ = float(emitters.power);
   // The environment map likewise, once per scene; the constant environment needs no buffer.
-  environment_ = build_environment_distribution(scene_.environment);
-  if (environment_.type == PM_ENVIRONMENT_MAP) {
-    buffers_.upload(BufferSlot::environment_texels, environment_.texels);
-    buffers_.upload(BufferSlot::environment_cdf, environment_.cdf);
+  if (upload->environment.type == PM_ENVIRONMENT_MAP) {
+    buffers_.upload(BufferSlot::environment_texels, upload->environment.texels);
+    buffers_.upload(BufferSlot::environment_cdf, upload->environment.cdf);
   }
-  environment_.texels = {};  // on the device now; the launch parameters need the sizes only
-  environment_.cdf = {};
+  // On the device now; the launch parameters need the type and sizes only.
+  environment_.type = upload->environment.type;
+  environment_.width = upload->environment.width;
+  environment_.height = upload->environment.height;
   set_lights(scene_.lights);
   setup_steps_.push_back({"scene upload", clock.lap_ms(), "BVH, triangles, materials, textures, lights, environment"});
 }

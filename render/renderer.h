@@ -24,6 +24,8 @@
 
 namespace pm {
 
+struct SceneUpload;
+
 struct RenderSettings {
   int mirror_depth = 1;  // eye-ray perfect-mirror bounces followed
   uint32_t seed = 1;
@@ -71,7 +73,10 @@ struct FilmSums {
 
 class Renderer {
  public:
-  Renderer(Device& device, const Scene& scene, const RenderSettings& settings);
+  // upload: the scene's host-side upload when another renderer of the same scene prepared it
+  // (render/scene_upload.h); null: this renderer prepares its own.
+  Renderer(Device& device, const Scene& scene, const RenderSettings& settings,
+           std::shared_ptr<const SceneUpload> upload = nullptr);
   ~Renderer();
 
   // Renders the scene as it is at `frame` (its tracks evaluated at frame / frame_rate): the
@@ -159,7 +164,7 @@ class Renderer {
   StartupClock::time_point first_frame_begun() const { return first_frame_begun_; }
 
  private:
-  void upload_scene(StepClock& clock);
+  void upload_scene(StepClock& clock, std::shared_ptr<const SceneUpload> upload);
   void set_lights(const std::vector<LightDesc>& lights);
   int light_run_start(int frame, const std::vector<LightDesc>& lights);
 

@@ -19,6 +19,7 @@
 #include "render/path/path_settings.h"
 #include "render/renderer.h"
 #include "render/scene_textures.h"
+#include "render/scene_upload.h"
 #include "support/device_checks.h"
 #include "support/image_stats.h"
 #include "support/render_settings.h"
@@ -347,6 +348,39 @@ TEST(TextureRender, PhotonMappingAndPathTracingAgreeInACheckeredRoom) {
   // low. 5 % is four sigma; an albedo missed at the photon hits or the path vertices (white
   // instead of the checker, whose mean is about half) would double the indirect light.
   EXPECT_NEAR(mapped_mean / traced_mean, 1.0, 0.05);
+}
+
+// Renderers of one scene may share its host-side upload (render/scene_upload.h, as --method
+// auto's candidates do): the BVH, textures and materials prepared once render what a renderer
+// that prepared its own renders, to the bit.
+TEST(TextureRender, ASharedSceneUploadRendersAsAnOwnOne) {
+  Device& device = test::shared_opencl_device();
+  const Scene scene = checkered_room();
+  PhotonSettings photons;
+  photons.photons = 20000;
+  RenderSettings settings = test::photon_render_settings(photons);
+  settings.width = 24;
+  settings.height = 18;
+  StepClock clock;
+  std::vector<StartupStep> steps;
+  const std::shared_ptr<const SceneUpload> upload = prepare_scene_upload(scene, clock, &steps);
+  ASSERT_EQ(steps.size(), 2u);
+  EXPECT_FALSE(upload->textures.texels.empty());
+  Renderer own(device, scene, settings), shared(device, scene, settings, upload), again(device, scene, settings, upload);
+  auto step = [](const Renderer& r) {
+    for (const StartupStep& s : r.setup_steps())
+      if (s.name == "BVH build") return s.detail;
+    return std::string();
+  };
+  EXPECT_EQ(step(shared), "shared with the renderers of this scene");
+  EXPECT_NE(step(own), step(shared));
+  EXPECT_EQ(shared.texture_bytes(), own.texture_bytes());
+  const FrameImage a = own.render_frame(0), b = shared.render_frame(0), c = again.render_frame(0);
+  for (const char* layer : {"", "direct", "indirect"}) {
+    EXPECT_GT(test::mean(a.find(layer)->rgb), 0.0) << layer;
+    EXPECT_TRUE(a.find(layer)->rgb == b.find(layer)->rgb) << "layer '" << layer << "'";
+    EXPECT_TRUE(a.find(layer)->rgb == c.find(layer)->rgb) << "layer '" << layer << "'";
+  }
 }
 
 }  // namespace
