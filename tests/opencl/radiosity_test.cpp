@@ -31,6 +31,18 @@ RenderSettings small_radiosity(int width, int height, uint32_t directions) {
   return settings;
 }
 
+// Final gathering over a 16-direction solution, 4 rays a pass, at 24 x 18, without the error
+// control.
+RenderSettings small_final_gathering() {
+  RadiositySettings radiosity;
+  radiosity.directions = 16;
+  radiosity.final_gather = 4;
+  RenderSettings settings = small_radiosity(24, 18, 16);
+  settings.method = std::make_shared<RadiositySettings>(radiosity);
+  settings.control_paths = 0;
+  return settings;
+}
+
 Scene moving_room() { return load_scene_file(test::test_data_dir() + "/animation/moving_room.json"); }
 
 double stat(const FrameStats& s, const char* name) { return s.method.get(name, -1); }
@@ -107,12 +119,7 @@ TEST_F(Radiosity, CameraOnlyFramesOnlyInterpolate) {
 TEST_F(Radiosity, FinalGatherRaysFollowTheLightRun) {
   Scene scene = moving_room();
   scene.animation.camera = CameraAnimation{};  // the lamp stops at frame 12, the camera stands
-  RadiositySettings radiosity;
-  radiosity.directions = 16;
-  radiosity.final_gather = 4;
-  RenderSettings settings = small_radiosity(24, 18, 16);
-  settings.method = std::make_shared<RadiositySettings>(radiosity);
-  settings.control_paths = 0;
+  RenderSettings settings = small_final_gathering();
   Renderer reused(*device_, scene, settings);
   const FrameImage a13 = reused.render_frame(13), a14 = reused.render_frame(14);
   EXPECT_TRUE(a13.find("indirect")->rgb == a14.find("indirect")->rgb) << "one run of still lights: the same rays";
@@ -128,13 +135,8 @@ TEST_F(Radiosity, FinalGatherRaysFollowTheLightRun) {
 // renders on its own, bit for bit. Other link settings are not adopted.
 TEST_F(Radiosity, AdoptedLinksRenderAsBuiltOnes) {
   Scene scene = moving_room();
-  const RenderSettings plain = small_radiosity(24, 18, 16);
-  RadiositySettings gathering;
-  gathering.directions = 16;
-  gathering.final_gather = 4;
-  RenderSettings gathered = small_radiosity(24, 18, 16);
-  gathered.method = std::make_shared<RadiositySettings>(gathering);
-  gathered.control_paths = 0;
+  const RenderSettings plain = small_radiosity(24, 18, 16), gathered = small_final_gathering();
+  const RadiositySettings& gathering = static_cast<const RadiositySettings&>(*gathered.method);
 
   Renderer first(*device_, scene, plain);
   first.render_frame(0);
