@@ -94,9 +94,12 @@ RadiosityElements build_radiosity_elements(const Scene& scene, const RefinedMesh
   // Greedy grouping per vertex and side: a corner joins the first group of its material whose
   // seed normal is within alpha_f, else it starts a group. Vertices are independent: chunks of
   // them group on threads of their own (render/host_threads.h), each numbering its groups from
-  // zero; joined in vertex order, the groups are numbered as one loop over all vertices would.
-  std::vector<uint32_t> corner_element(2 * 3 * tris, PM_RADIOSITY_NONE);  // [side][3 r + k]
+  // zero and writing them in the order of the vertices' corner lists (contiguous per chunk, so
+  // that threads do not share cache lines); joined in vertex order, the groups are numbered as
+  // one loop over all vertices would.
   const int sides = two_sided ? 2 : 1;
+  const size_t listed = corners.size();
+  std::vector<uint32_t> corner_group(size_t(sides) * listed);  // [side][corner list entry]
   const std::vector<IndexRange> vertex_chunks = split_into_chunks(verts, kMinVerticesPerChunk);
   std::vector<std::vector<Group>> chunk_groups(vertex_chunks.size());
   std::vector<std::vector<uint32_t>> chunk_group_vertex(vertex_chunks.size());
@@ -125,32 +128,27 @@ RadiosityElements build_radiosity_elements(const Scene& scene, const RefinedMesh
           }
           Group& group = groups[g];
           group.sum = {group.sum.x + angle * n.x, group.sum.y + angle * n.y, group.sum.z + angle * n.z};
-          corner_element[size_t(side) * 3 * tris + 3 * r + k] = uint32_t(g);  // the chunk's own number
+          corner_group[size_t(side) * listed + i] = uint32_t(g);  // the chunk's own number
         }
       }
       if (groups.size() > base) ++chunk_vertices_with_elements[c];
     }
   });
-  // The chunks' own group numbers made global: each vertex's corners belong to its chunk alone.
+  // The chunks' groups in vertex order, and each corner's group by its global number.
   std::vector<Group> groups_all;
   std::vector<uint32_t> group_vertex;
-  std::vector<uint32_t> chunk_first_group(vertex_chunks.size());
+  std::vector<uint32_t> corner_element(2 * 3 * tris, PM_RADIOSITY_NONE);  // [side][3 r + k]
   RadiosityElements out;
   for (size_t c = 0; c < vertex_chunks.size(); ++c) {
-    chunk_first_group[c] = uint32_t(groups_all.size());
+    const uint32_t first_group = uint32_t(groups_all.size());
+    for (size_t i = first[vertex_chunks[c].begin]; i < first[vertex_chunks[c].end]; ++i)
+      for (int side = 0; side < sides; ++side)
+        corner_element[size_t(side) * 3 * tris + 3 * (corners[i] >> 2) + (corners[i] & 3u)] =
+            corner_group[size_t(side) * listed + i] + first_group;
     groups_all.insert(groups_all.end(), chunk_groups[c].begin(), chunk_groups[c].end());
     group_vertex.insert(group_vertex.end(), chunk_group_vertex[c].begin(), chunk_group_vertex[c].end());
     out.vertices_with_elements += chunk_vertices_with_elements[c];
   }
-  for_each_chunk(vertex_chunks, [&](size_t c, IndexRange range) {
-    if (chunk_first_group[c] == 0) return;
-    for (size_t v = range.begin; v < range.end; ++v)
-      for (uint32_t i = first[v]; i < first[v + 1]; ++i)
-        for (int side = 0; side < sides; ++side) {
-          uint32_t& e = corner_element[size_t(side) * 3 * tris + 3 * (corners[i] >> 2) + (corners[i] & 3u)];
-          if (e != PM_RADIOSITY_NONE) e += chunk_first_group[c];
-        }
-  });
   const size_t count = groups_all.size();
   if (count >= size_t(PM_RADIOSITY_NONE) / 4)
     throw InputError(scene.source + ": " + std::to_string(count) + " radiosity elements are too many for 32-bit links");
