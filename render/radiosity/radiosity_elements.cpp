@@ -134,21 +134,26 @@ RadiosityElements build_radiosity_elements(const Scene& scene, const RefinedMesh
       if (groups.size() > base) ++chunk_vertices_with_elements[c];
     }
   });
-  // The chunks' groups in vertex order, and each corner's group by its global number.
-  std::vector<Group> groups_all;
-  std::vector<uint32_t> group_vertex;
-  std::vector<uint32_t> corner_element(2 * 3 * tris, PM_RADIOSITY_NONE);  // [side][3 r + k]
+  // The chunks' groups in vertex order, and each corner's group by its global number (each
+  // chunk copies and scatters its own, at the offset of the groups before it).
+  std::vector<uint32_t> chunk_first_group(vertex_chunks.size() + 1, 0);
   RadiosityElements out;
   for (size_t c = 0; c < vertex_chunks.size(); ++c) {
-    const uint32_t first_group = uint32_t(groups_all.size());
-    for (size_t i = first[vertex_chunks[c].begin]; i < first[vertex_chunks[c].end]; ++i)
+    chunk_first_group[c + 1] = chunk_first_group[c] + uint32_t(chunk_groups[c].size());
+    out.vertices_with_elements += chunk_vertices_with_elements[c];
+  }
+  std::vector<Group> groups_all(chunk_first_group.back());
+  std::vector<uint32_t> group_vertex(chunk_first_group.back());
+  std::vector<uint32_t> corner_element(2 * 3 * tris, PM_RADIOSITY_NONE);  // [side][3 r + k]
+  for_each_chunk(vertex_chunks, [&](size_t c, IndexRange range) {
+    const uint32_t first_group = chunk_first_group[c];
+    std::copy(chunk_groups[c].begin(), chunk_groups[c].end(), groups_all.begin() + first_group);
+    std::copy(chunk_group_vertex[c].begin(), chunk_group_vertex[c].end(), group_vertex.begin() + first_group);
+    for (size_t i = first[range.begin]; i < first[range.end]; ++i)
       for (int side = 0; side < sides; ++side)
         corner_element[size_t(side) * 3 * tris + 3 * (corners[i] >> 2) + (corners[i] & 3u)] =
             corner_group[size_t(side) * listed + i] + first_group;
-    groups_all.insert(groups_all.end(), chunk_groups[c].begin(), chunk_groups[c].end());
-    group_vertex.insert(group_vertex.end(), chunk_group_vertex[c].begin(), chunk_group_vertex[c].end());
-    out.vertices_with_elements += chunk_vertices_with_elements[c];
-  }
+  });
   const size_t count = groups_all.size();
   if (count >= size_t(PM_RADIOSITY_NONE) / 4)
     throw InputError(scene.source + ": " + std::to_string(count) + " radiosity elements are too many for 32-bit links");
@@ -161,12 +166,16 @@ RadiosityElements build_radiosity_elements(const Scene& scene, const RefinedMesh
   }
   const Dvec extent{hi.x - lo.x, hi.y - lo.y, hi.z - lo.z};
   std::vector<uint32_t> code(count), order(count), rank(count);
-  for (size_t g = 0; g < count; ++g) code[g] = morton3(mesh.positions[group_vertex[g]], lo, extent);
+  parallel_for(count, kMinElementsPerChunk, [&](size_t begin, size_t end) {
+    for (size_t g = begin; g < end; ++g) code[g] = morton3(mesh.positions[group_vertex[g]], lo, extent);
+  });
   std::iota(order.begin(), order.end(), 0u);
   std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return code[a] < code[b]; });
   for (size_t i = 0; i < count; ++i) rank[order[i]] = uint32_t(i);
-  for (uint32_t& e : corner_element)
-    if (e != PM_RADIOSITY_NONE) e = rank[e];
+  parallel_for(corner_element.size(), kMinElementsPerChunk, [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i)
+      if (corner_element[i] != PM_RADIOSITY_NONE) corner_element[i] = rank[corner_element[i]];
+  });
 
   // Per material, the glossy lobe's albedo for light arriving uniformly from the hemisphere:
   // brdf_glossy_albedo averaged over theta_o with weight 2 mu (midpoint rule, 64 points).
@@ -185,26 +194,30 @@ RadiosityElements build_radiosity_elements(const Scene& scene, const RefinedMesh
   out.data.resize(2 * count);
   out.vertex.resize(count);
   out.back.resize(count);
-  for (size_t g = 0; g < count; ++g) {
-    const Group& group = groups_all[g];
-    const size_t e = rank[g];
-    const double len = length(group.sum);
-    const Dvec n = len > 0 ? scaled(group.sum, 1.0 / len) : group.seed;
-    const Float3& p = mesh.positions[group_vertex[g]];
-    out.data[2 * e] = float4{p.x, p.y, p.z, PM_AS_FLOAT(group.material)};
-    out.data[2 * e + 1] = float4{float(n.x), float(n.y), float(n.z),
-                                 group.material < glossy_albedo.size() ? glossy_albedo[group.material] : 0.0f};
-    out.vertex[e] = group_vertex[g];
-    out.back[e] = group.back;
-  }
+  parallel_for(count, kMinElementsPerChunk, [&](size_t begin, size_t end) {
+    for (size_t g = begin; g < end; ++g) {
+      const Group& group = groups_all[g];
+      const size_t e = rank[g];
+      const double len = length(group.sum);
+      const Dvec n = len > 0 ? scaled(group.sum, 1.0 / len) : group.seed;
+      const Float3& p = mesh.positions[group_vertex[g]];
+      out.data[2 * e] = float4{p.x, p.y, p.z, PM_AS_FLOAT(group.material)};
+      out.data[2 * e + 1] = float4{float(n.x), float(n.y), float(n.z),
+                                   group.material < glossy_albedo.size() ? glossy_albedo[group.material] : 0.0f};
+      out.vertex[e] = group_vertex[g];
+      out.back[e] = group.back;
+    }
+  });
 
   out.triangles.resize(2 * tris);
-  for (size_t r = 0; r < tris; ++r) {
-    const uint32_t* f = &corner_element[3 * r];
-    const uint32_t* b = &corner_element[3 * tris + 3 * r];
-    out.triangles[2 * r] = uint4{f[0], f[1], f[2], mesh.source[r]};
-    out.triangles[2 * r + 1] = uint4{b[0], b[1], b[2], 0};
-  }
+  parallel_for(tris, kMinElementsPerChunk, [&](size_t begin, size_t end) {
+    for (size_t r = begin; r < end; ++r) {
+      const uint32_t* f = &corner_element[3 * r];
+      const uint32_t* b = &corner_element[3 * tris + 3 * r];
+      out.triangles[2 * r] = uint4{f[0], f[1], f[2], mesh.source[r]};
+      out.triangles[2 * r + 1] = uint4{b[0], b[1], b[2], 0};
+    }
+  });
 
   // One-ring entries grouped by element, then the deduplicated smoothing neighbours.
   std::vector<uint32_t> ring_first(count + 1, 0);
@@ -261,16 +274,21 @@ RadiosityElements build_radiosity_elements(const Scene& scene, const RefinedMesh
       }
     }
   });
-  std::vector<uint32_t> neighbours;
-  for (size_t c = 0; c < element_chunks.size(); ++c) {
-    const uint32_t first_neighbour = uint32_t(ring_first[count] + neighbours.size());
-    for (size_t e = element_chunks[c].begin; e < element_chunks[c].end; ++e) out.ranges[e].y += first_neighbour;
-    neighbours.insert(neighbours.end(), chunk_neighbours[c].begin(), chunk_neighbours[c].end());
-    out.smooth_weights.insert(out.smooth_weights.end(), chunk_weights[c].begin(), chunk_weights[c].end());
-  }
+  // Joined in element order: each chunk copies its own at the offset of the chunks before it.
+  std::vector<size_t> chunk_first_neighbour(element_chunks.size() + 1, 0);
+  for (size_t c = 0; c < element_chunks.size(); ++c)
+    chunk_first_neighbour[c + 1] = chunk_first_neighbour[c] + chunk_neighbours[c].size();
+  const size_t neighbour_count = chunk_first_neighbour.back();
+  out.adjacency.resize(ring_first[count] + neighbour_count);
+  out.smooth_weights.resize(neighbour_count);
+  for_each_chunk(element_chunks, [&](size_t c, IndexRange range) {
+    const size_t offset = chunk_first_neighbour[c];
+    for (size_t e = range.begin; e < range.end; ++e) out.ranges[e].y += uint32_t(ring_first[count] + offset);
+    std::copy(chunk_neighbours[c].begin(), chunk_neighbours[c].end(), out.adjacency.begin() + ring_first[count] + offset);
+    std::copy(chunk_weights[c].begin(), chunk_weights[c].end(), out.smooth_weights.begin() + offset);
+  });
   out.ranges[count].x = ring_first[count];
-  out.ranges[count].y = uint32_t(ring_first[count] + neighbours.size());
-  out.adjacency.insert(out.adjacency.end(), neighbours.begin(), neighbours.end());
+  out.ranges[count].y = uint32_t(ring_first[count] + neighbour_count);
   return out;
 }
 
