@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -13,22 +14,29 @@ void for_each_device(size_t count, const std::function<void(size_t)>& work) {
   if (count == 0) return;
   if (count == 1) return work(0);
   std::vector<std::exception_ptr> failures(count);
+  auto run = [&](size_t d) {
+    try {
+      work(d);
+    } catch (...) {
+      failures[d] = std::current_exception();
+    }
+  };
+  // Where the system gives no more threads (a process or cgroup limit), the calling thread runs
+  // the rest itself after its own.
   std::vector<std::thread> threads;
-  for (size_t d = 1; d < count; ++d)
-    threads.emplace_back([&, d] {
-      try {
-        work(d);
-      } catch (...) {
-        failures[d] = std::current_exception();
-      }
-    });
-  try {
-    work(0);
-  } catch (...) {
-    failures[0] = std::current_exception();
+  size_t inline_from = count;
+  for (size_t d = 1; d < count; ++d) {
+    try {
+      threads.emplace_back(run, d);
+    } catch (const std::system_error&) {
+      inline_from = d;
+      break;
+    }
   }
+  run(0);
+  for (size_t d = inline_from; d < count; ++d) run(d);
   for (std::thread& t : threads) t.join();
-  for (const std::exception_ptr& failure : failures)  // the first device's failure first
+  for (const std::exception_ptr& failure : failures)  // the lowest index's failure first
     if (failure) std::rethrow_exception(failure);
 }
 
