@@ -88,7 +88,8 @@ TEST(OpenclRender, ShadingPointsAreKeptForTheMirrorsTheSceneHas) {
     Renderer renderer(*device, mirrored, settings);
     EXPECT_EQ(renderer.mirror_depth(), depth);
     EXPECT_EQ(renderer.buffers()[BufferSlot::shade_position].bytes(), uint64_t(depth + 1) * record_bytes);
-    const ImageLayer* direct = renderer.render_frame(0).find("direct");
+    const FrameImage image = renderer.render_frame(0);
+    const ImageLayer* direct = image.find("direct");
     ASSERT_NE(direct, nullptr);
     for (float v : direct->rgb) means[depth / 2] += v;
   }
