@@ -24,11 +24,12 @@ void set_host_thread_limit(unsigned threads);
 unsigned host_thread_count();
 
 // [0, count) cut into contiguous chunks of at least min_chunk iterations, at most one per host
-// thread (host_thread_count), in order. A loop whose chunks write their own results and whose results are joined in
-// chunk order computes the same as the plain loop, however many chunks there are.
+// thread (host_thread_count), in order. A loop whose chunks write their own results, joined in
+// chunk order, computes the same as the plain loop however many chunks there are.
 std::vector<IndexRange> split_into_chunks(size_t count, size_t min_chunk);
 
-// work(c, chunks[c]) for every chunk, each on a thread of its own (for_each_device's rules).
+// work(c, chunks[c]) for every chunk, each on a thread of its own (for_each_device runs them:
+// the same threads, fallback and failure rules).
 void for_each_chunk(const std::vector<IndexRange>& chunks, const std::function<void(size_t, IndexRange)>& work);
 
 // The loop body for i in [0, count), in chunks of at least min_chunk: body(begin, end).
