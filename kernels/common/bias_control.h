@@ -47,7 +47,6 @@ PM_DEVICE void kernel_bias_control(const KernelGlobals* kg, const LaunchParams* 
   uint c = item / lanes, lane = item % lanes;
   uint pixel;
   if (!control_pixel(p, c, &pixel)) return;
-  uint pixels = p->width * p->height;
   LaunchParams q = *p;
   q.seed = p->seed ^ PM_STREAM_CONTROL;
   q.path_frame = p->frame;
@@ -55,9 +54,9 @@ PM_DEVICE void kernel_bias_control(const KernelGlobals* kg, const LaunchParams* 
   float squares = 0.0f;
   for (uint s = lane; s < p->control_samples; s += lanes) {
     Vec3 path = vec3_splat(0.0f);
-    for (uint depth = 0; depth <= p->mirror_depth; ++depth) {
-      ShadingPoint sp;
-      if (!shading_point_load(kg, depth * pixels + pixel, &sp)) break;
+    EyePath eye = eye_path_begin(p, pixel);
+    ShadingPoint sp;
+    for (uint depth = 0; eye_path_next(kg, p, &eye, &sp); ++depth) {
       Vec3 l = path_radiance(kg, &q, &sp.material, sp.position, sp.normal, sp.outgoing, pixel, depth,
                              p->control_first_sample + s);
       path = vec3_add(path, vec3_mul(sp.weight, l));

@@ -38,8 +38,7 @@
   X(frame, float4, shade_position, shading_points, 1) /* xyz, w = material index as int bits, -1: none */  \
   X(frame, float4, shade_normal, shading_points, 1)   /* xyz geometric normal facing the viewer, w = the */ \
                                                       /* hit triangle (leaf order) as int bits, -1: none */ \
-  X(frame, float4, shade_outgoing, shading_points, 1) /* xyz direction towards the viewer */               \
-  X(frame, float4, shade_weight, shading_points, 1)   /* rgb product of mirror reflectances on the path */ \
+  /* (the direction towards the viewer and the mirrors' product are replayed: eye_path_next) */           \
   /* S7 film: direct light once per frame; indirect and caustic summed over passes (rgb, w unused) */      \
   X(frame, float4, film_direct, pixels, 1)                                                                  \
   X(frame, float4, film_indirect_sum, pixels, 1)                                                            \

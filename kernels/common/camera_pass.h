@@ -66,10 +66,33 @@ typedef struct ShadingPoint {
   Vec3 weight;                     /* product of the eye path's mirror reflectances */
 } ShadingPoint;
 
-/* The shading point of record (depth * pixels + pixel); 0 when the eye path ended before it
-   (every deeper record is empty too). */
-PM_DEVICE int shading_point_load(const KernelGlobals* kg, uint record, ShadingPoint* sp)
+/* A pixel's eye path, replayed from its shading points. The frame keeps per shading point only
+   its position and normal (and material and triangle); the direction towards the viewer and the
+   mirrors' product are replayed from the camera ray as the camera pass traced them, by the same
+   operations, so they come out as the same bits: a frame without mirrors keeps 2 float4 a pixel
+   instead of 4. Read the points in order: eye_path_begin, then eye_path_next until it returns 0. */
+typedef struct EyePath {
+  Vec3 direction; /* of the ray arriving at the next shading point */
+  Vec3 weight;    /* the mirror reflectances' product before it */
+  uint pixel, depth;
+} EyePath;
+
+PM_DEVICE EyePath eye_path_begin(const LaunchParams* p, uint pixel)
 {
+  EyePath e;
+  e.direction = camera_primary_ray(&p->camera, pixel % p->width, pixel / p->width, p->width, p->height).direction;
+  e.weight = vec3_splat(1.0f);
+  e.pixel = pixel;
+  e.depth = 0u;
+  return e;
+}
+
+/* The eye path's next shading point in *sp (its mirror depth: e->depth before the call); 0 when
+   the path ended before it (every deeper record is empty too). */
+PM_DEVICE int eye_path_next(const KernelGlobals* kg, const LaunchParams* p, EyePath* e, ShadingPoint* sp)
+{
+  if (e->depth > p->mirror_depth) return 0;
+  uint record = e->depth * p->width * p->height + e->pixel;
   float4 pos = kg->shade_position[record];
   int material_index = PM_AS_INT(pos.w);
   if (material_index < 0) return 0;
@@ -77,8 +100,12 @@ PM_DEVICE int shading_point_load(const KernelGlobals* kg, uint record, ShadingPo
   sp->position = vec3_from_float4(pos);
   sp->material = surface_material(kg, material_index, PM_AS_INT(normal.w), sp->position);
   sp->normal = vec3_from_float4(normal);
-  sp->outgoing = vec3_from_float4(kg->shade_outgoing[record]);
-  sp->weight = vec3_from_float4(kg->shade_weight[record]);
+  sp->outgoing = vec3_neg(e->direction);
+  sp->weight = e->weight;
+  /* The camera pass's next ray, off this point's mirror (kernel_camera_pass). */
+  e->weight = vec3_mul(e->weight, material_mirror(&sp->material));
+  e->direction = vec3_reflect(e->direction, sp->normal);
+  ++e->depth;
   return 1;
 }
 
@@ -120,10 +147,9 @@ PM_DEVICE void kernel_camera_pass(const KernelGlobals* kg, const LaunchParams* p
       direct = vec3_add(direct, sampled_light_direct(kg, p, kind, &m, pos, n, wo, offset, p->area_light_samples, pixel,
                                                      depth * p->area_light_samples, 0u));
     radiance = vec3_add(radiance, vec3_mul(throughput, direct));
+    /* wo and throughput are not kept: the readers replay them (eye_path_next). */
     kg->shade_position[record] = vec3_to_float4(pos, PM_AS_FLOAT(material_index));
     kg->shade_normal[record] = vec3_to_float4(n, PM_AS_FLOAT(hit.triangle)); /* radiosity interpolates on it */
-    kg->shade_outgoing[record] = vec3_to_float4(wo, 0.0f);
-    kg->shade_weight[record] = vec3_to_float4(throughput, 0.0f);
 
     if (!material_has_mirror(&m) || depth == p->mirror_depth) { ++depth; break; }
     throughput = vec3_mul(throughput, material_mirror(&m));

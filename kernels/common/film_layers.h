@@ -15,6 +15,7 @@
 #define PM_FILM_LAYERS_H
 
 #include "brdf.h"
+#include "camera_pass.h"
 #include "kernel_globals.h"
 #include "scene_traverse.h"
 
@@ -41,7 +42,6 @@ PM_DEVICE int scene_triangle_object(PM_GLOBAL const float4* triangles, int tri)
 
 PM_DEVICE void kernel_film_layers(const KernelGlobals* kg, const LaunchParams* p, uint pixel)
 {
-  uint pixels = p->width * p->height;
   float4 first = kg->shade_position[pixel];
   int first_material = PM_AS_INT(first.w);
   if (first_material < 0) {
@@ -58,15 +58,12 @@ PM_DEVICE void kernel_film_layers(const KernelGlobals* kg, const LaunchParams* p
      the scene after one): no surface to describe, black albedo and a zero normal, as for the
      background. */
   Vec3 albedo = vec3_splat(0.0f), normal = vec3_splat(0.0f);
-  for (uint depth_index = 0; depth_index <= p->mirror_depth; ++depth_index) {
-    uint record = depth_index * pixels + pixel;
-    float4 position = kg->shade_position[record];
-    int material_index = PM_AS_INT(position.w);
-    if (material_index < 0) break;
-    Material m = surface_material(kg, material_index, PM_AS_INT(kg->shade_normal[record].w), vec3_from_float4(position));
-    if (material_is_pure_mirror(&m)) continue;
-    albedo = vec3_mul(vec3_from_float4(kg->shade_weight[record]), material_layer_albedo(&m));
-    normal = vec3_from_float4(kg->shade_normal[record]);
+  EyePath eye = eye_path_begin(p, pixel);
+  ShadingPoint sp;
+  while (eye_path_next(kg, p, &eye, &sp)) {
+    if (material_is_pure_mirror(&sp.material)) continue;
+    albedo = vec3_mul(sp.weight, material_layer_albedo(&sp.material));
+    normal = sp.normal;
     break;
   }
   kg->film_albedo[pixel] = vec3_to_float4(albedo, PM_AS_FLOAT(first_material));

@@ -100,13 +100,12 @@ PM_DEVICE void final_gather_pixel(const KernelGlobals* kg, const LaunchParams* p
 {
   uint pixel;
   if (!pixel_of_work_item(item, p->width, p->height, &pixel)) return;
-  uint pixels = p->width * p->height;
   uint rays = p->final_gather_rays > 0u ? p->final_gather_rays : 1u;
   Vec3 indirect = vec3_splat(0.0f), caustic = vec3_splat(0.0f);
   uint accepted = 0, points = 0;
-  for (uint depth = 0; depth <= p->mirror_depth; ++depth) {
-    ShadingPoint sp;
-    if (!shading_point_load(kg, depth * pixels + pixel, &sp)) break;
+  EyePath eye = eye_path_begin(p, pixel);
+  ShadingPoint sp;
+  for (uint depth = 0; eye_path_next(kg, p, &eye, &sp); ++depth) {
     const Material* m = &sp.material;
     float p_diffuse = channel_mean(material_diffuse(m)), p_glossy = channel_mean(material_glossy(m));
     if (p_diffuse + p_glossy <= 0.0f) continue;

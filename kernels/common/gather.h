@@ -56,12 +56,11 @@ PM_DEVICE void gather_pixel(const KernelGlobals* kg, const LaunchParams* p, uint
 {
   uint pixel;
   if (!pixel_of_work_item(item, p->width, p->height, &pixel)) return;
-  uint pixels = p->width * p->height;
   Vec3 indirect = vec3_splat(0.0f), caustic = vec3_splat(0.0f);
   uint accepted = 0, points = 0;
-  for (uint depth = 0; depth <= p->mirror_depth; ++depth) {
-    ShadingPoint sp;
-    if (!shading_point_load(kg, depth * pixels + pixel, &sp)) break;
+  EyePath eye = eye_path_begin(p, pixel);
+  ShadingPoint sp;
+  for (uint depth = 0; eye_path_next(kg, p, &eye, &sp); ++depth) {
     const Material* m = &sp.material;
     if (channel_mean(material_diffuse(m)) + channel_mean(material_glossy(m)) <= 0.0f) continue;
     Vec3 point_indirect = vec3_splat(0.0f), point_caustic = vec3_splat(0.0f);

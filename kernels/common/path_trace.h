@@ -180,12 +180,11 @@ PM_DEVICE void kernel_path_trace(const KernelGlobals* kg, const LaunchParams* p,
 {
   uint pixel;
   if (!pixel_of_work_item(item, p->width, p->height, &pixel)) return;
-  uint pixels = p->width * p->height;
   Vec3 indirect = vec3_splat(0.0f);
   float inv_samples = 1.0f / (float)(p->path_samples > 0u ? p->path_samples : 1u);
-  for (uint depth = 0; depth <= p->mirror_depth; ++depth) {
-    ShadingPoint sp;
-    if (!shading_point_load(kg, depth * pixels + pixel, &sp)) break;
+  EyePath eye = eye_path_begin(p, pixel);
+  ShadingPoint sp;
+  for (uint depth = 0; eye_path_next(kg, p, &eye, &sp); ++depth) {
     Vec3 sum = vec3_splat(0.0f);
     for (uint s = 0; s < p->path_samples; ++s)
       sum = vec3_add(sum, path_radiance(kg, p, &sp.material, sp.position, sp.normal, sp.outgoing, pixel, depth,

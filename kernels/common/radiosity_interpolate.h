@@ -1,7 +1,7 @@
 /* Vertex link radiosity, the image (section 3.4): at every shading point of the camera pass the
    gathered indirect irradiance is interpolated barycentrically from the corner elements of the
    refined triangle the point lies on, on the side the viewer sees, and reflected diffusely:
-   L_indirect = shade_weight * rho_d / pi * sum_k w_k I_total(element_k). Direct light stays the
+   L_indirect = weight * rho_d / pi * sum_k w_k I_total(element_k). Direct light stays the
    camera pass's exact ray-traced direct light (the paper used shadow maps). A glossy lobe
    reflects the interpolated irradiance as if it arrived uniformly from the hemisphere: rho_d
    becomes rho_d + rho_s a_n(cos theta_o) (brdf_glossy_albedo), the light the lobe sends towards
@@ -11,6 +11,7 @@
 #ifndef PM_RADIOSITY_INTERPOLATE_H
 #define PM_RADIOSITY_INTERPOLATE_H
 
+#include "camera_pass.h"
 #include "film.h"
 #include "pixel_order.h"
 #include "radiosity_mesh.h"
@@ -46,18 +47,14 @@ PM_DEVICE void kernel_radiosity_interpolate(const KernelGlobals* kg, const Launc
   if (!pixel_of_work_item(item, p->width, p->height, &pixel)) return;
   uint pixels = p->width * p->height;
   Vec3 indirect = vec3_splat(0.0f);
-  for (uint depth = 0; depth <= p->mirror_depth; ++depth) {
-    uint record = depth * pixels + pixel;
-    float4 pos = kg->shade_position[record];
-    int material_index = PM_AS_INT(pos.w);
-    if (material_index < 0) break;
-    float4 normal = kg->shade_normal[record];
-    int leaf = PM_AS_INT(normal.w);
-    /* The texture at the pixel's own point: the elements carry irradiance, the image its detail. */
-    Material m = surface_material(kg, material_index, leaf, vec3_from_float4(pos));
-    float cos_o = pm_fabsf(vec3_dot(vec3_from_float4(kg->shade_outgoing[record]), vec3_from_float4(normal)));
-    Vec3 l = radiosity_reflected(kg, p, &m, leaf, vec3_from_float4(pos), vec3_from_float4(normal), cos_o);
-    indirect = vec3_add(indirect, vec3_mul(vec3_from_float4(kg->shade_weight[record]), l));
+  EyePath eye = eye_path_begin(p, pixel);
+  ShadingPoint sp; /* its material: the texture at the pixel's own point (the elements carry
+                      irradiance, the image its detail) */
+  while (eye_path_next(kg, p, &eye, &sp)) {
+    int leaf = PM_AS_INT(kg->shade_normal[(eye.depth - 1u) * pixels + pixel].w);
+    float cos_o = pm_fabsf(vec3_dot(sp.outgoing, sp.normal));
+    Vec3 l = radiosity_reflected(kg, p, &sp.material, leaf, sp.position, sp.normal, cos_o);
+    indirect = vec3_add(indirect, vec3_mul(sp.weight, l));
   }
   film_add(kg, p, pixel, indirect, vec3_splat(0.0f));
 }

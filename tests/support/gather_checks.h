@@ -12,6 +12,7 @@
 
 #include "kernels/common/compat_host.h"
 #include "kernels/common/brdf.h"
+#include "kernels/common/camera_pass.h"
 #include "kernels/common/footprint_clip.h"
 #include "kernels/common/gather_reach.h"
 #include "kernels/common/knn_gather.h"
@@ -67,8 +68,6 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   const size_t pixels = size_t(width) * height, depths = size_t(renderer.mirror_depth()) + 1, records = depths * pixels;
   auto sp = read_slot<float4>(device, renderer, BufferSlot::shade_position, records);
   auto sn = read_slot<float4>(device, renderer, BufferSlot::shade_normal, records);
-  auto so = read_slot<float4>(device, renderer, BufferSlot::shade_outgoing, records);
-  auto sw = read_slot<float4>(device, renderer, BufferSlot::shade_weight, records);
   auto indirect = read_slot<float4>(device, renderer, BufferSlot::film_indirect, pixels);
   auto caustic = read_slot<float4>(device, renderer, BufferSlot::film_caustic, pixels);
   std::vector<Material> materials = to_device_materials(scene);
@@ -82,6 +81,11 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   KernelGlobals scene_globals{};
   scene_globals.scene_nodes = scene_nodes.data();
   scene_globals.triangles = triangles.data();
+  // The shading points' directions towards the viewer and mirror weights, replayed as the kernels
+  // replay them (eye_path_next).
+  scene_globals.shade_position = sp.data();
+  scene_globals.shade_normal = sn.data();
+  scene_globals.materials = materials.data();
   const LaunchParams& gather_params = method->last_gather_params();
   const double region_stretch = 1.0 / std::pow(double(knn_region_thickness(&gather_params)), 2) - 1.0;
 
@@ -89,12 +93,12 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   size_t nonzero = 0;
   for (size_t px = 0; px < pixels; ++px) {
     double sum[3] = {0, 0, 0};
-    for (size_t depth = 0; depth < depths; ++depth) {
-      size_t r = depth * pixels + px;
-      int mat_index = PM_AS_INT(sp[r].w);
-      if (mat_index < 0) break;
-      const Material& m = materials[mat_index];
-      Vec3 x = v3(sp[r]), nrm = v3(sn[r]), wo = v3(so[r]);
+    EyePath eye = eye_path_begin(&gather_params, uint(px));
+    ShadingPoint point;
+    while (eye_path_next(&scene_globals, &gather_params, &eye, &point)) {
+      const size_t depth = eye.depth - 1;
+      const Material& m = point.material;
+      const Vec3 x = point.position, nrm = point.normal, wo = point.outgoing, weight = point.weight;
       std::vector<std::pair<double, size_t>> near;  // knn: (distance^2, index)
       for (size_t k = 0; k < n; ++k) {
         Vec3 d = vec3_sub(x, v3(center[k]));
@@ -132,9 +136,9 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
           w *= own > 0 && there > 0 ? std::min(there / own, double(PM_GATHER_MAX_TILT_GAIN)) : 0.0;
         }
         Vec3 f = brdf_eval(&m, nrm, v3(incident[k]), wo);
-        sum[0] += sw[r].x * w * f.x * power[k].x;
-        sum[1] += sw[r].y * w * f.y * power[k].y;
-        sum[2] += sw[r].z * w * f.z * power[k].z;
+        sum[0] += weight.x * w * f.x * power[k].x;
+        sum[1] += weight.y * w * f.y * power[k].y;
+        sum[2] += weight.z * w * f.z * power[k].z;
       }
       if (used.estimator == PM_ESTIMATOR_KNN && !near.empty()) {
         std::sort(near.begin(), near.end());
@@ -159,9 +163,9 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
           double w = used.kernel_shape == PM_KERNEL_EPANECHNIKOV ? 2.0 * (1.0 - r2) : 1.0;
           Vec3 f = brdf_eval(&m, nrm, v3(incident[k]), wo);
           double scale = w / area;
-          sum[0] += sw[r].x * scale * f.x * power[k].x;
-          sum[1] += sw[r].y * scale * f.y * power[k].y;
-          sum[2] += sw[r].z * scale * f.z * power[k].z;
+          sum[0] += weight.x * scale * f.x * power[k].x;
+          sum[1] += weight.y * scale * f.y * power[k].y;
+          sum[2] += weight.z * scale * f.z * power[k].z;
         }
       }
     }

@@ -23,8 +23,6 @@ struct HostCameraPass {
     const size_t records = pixels * size_t(mirror_depth + 1);
     position.resize(records);
     normal.resize(records);
-    outgoing.resize(records);
-    weight.resize(records);
     direct.resize(pixels);
     kg.scene_nodes = bvh.nodes.data();
     kg.triangles = bvh.triangles.data();
@@ -32,8 +30,6 @@ struct HostCameraPass {
     kg.lights = lights.data();
     kg.shade_position = position.data();
     kg.shade_normal = normal.data();
-    kg.shade_outgoing = outgoing.data();
-    kg.shade_weight = weight.data();
     kg.film_direct = direct.data();
     p.camera = make_camera_params(scene.camera, width, height);
     p.width = uint32_t(width);
@@ -53,7 +49,7 @@ struct HostCameraPass {
   std::vector<Material> materials;
   std::vector<PointLight> lights;
   size_t pixels;
-  std::vector<float4> position, normal, outgoing, weight, direct;
+  std::vector<float4> position, normal, direct;
   KernelGlobals kg{};
   LaunchParams p{};
 };
