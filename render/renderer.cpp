@@ -467,14 +467,23 @@ FrameImage Renderer::read_image(FrameStats* stats) {
   const std::vector<float4> combined = layer(BufferSlot::film_combined);
   int repaired = 0;
   for (const float4& px : combined) repaired += px.w != 0.0f;
+  // The indirect and caustic layers resolved here, as the resolve resolves them (film.h), black
+  // where it repaired the pixel.
+  const uint32_t passes = passes_done_ > 0 ? passes_done_ : 1u;
+  auto resolved = [&](BufferSlot sum_slot) {
+    std::vector<float4> sums = layer(sum_slot);
+    for (size_t i = 0; i < pixels; ++i)
+      sums[i] = combined[i].w != 0.0f ? float4{0, 0, 0, 0} : vec3_to_float4(film_resolved(sums[i], passes), 0.0f);
+    return sums;
+  };
 
   FrameImage image;
   image.width = width_;
   image.height = height_;
   image.layers.push_back(ImageLayer{"", rgb_from_float4(combined)});
   image.layers.push_back(ImageLayer{"direct", rgb_from_float4(layer(BufferSlot::film_direct))});
-  image.layers.push_back(ImageLayer{"indirect", rgb_from_float4(layer(BufferSlot::film_indirect))});
-  image.layers.push_back(ImageLayer{"caustic", rgb_from_float4(layer(BufferSlot::film_caustic))});
+  image.layers.push_back(ImageLayer{"indirect", rgb_from_float4(resolved(BufferSlot::film_indirect_sum))});
+  image.layers.push_back(ImageLayer{"caustic", rgb_from_float4(resolved(BufferSlot::film_caustic_sum))});
   if (!settings_.layers.empty())
     add_film_layers(image, settings_.layers, layer(BufferSlot::film_albedo), layer(BufferSlot::film_normal),
                     layer(BufferSlot::film_position));

@@ -4,7 +4,7 @@
 // tiny and huge r_max and smoothing, a single photon, degenerate triangles, photon counts near
 // 2^32, and photons emitted at the poles. Every render must give finite layers with no repaired
 // pixel and bounded energy; what cannot be rendered must be refused with a message naming the
-// option.
+// option; a pixel whose film sums are not finite is repaired black in every layer.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -438,6 +438,48 @@ TEST(ExtremesKernels, GrazingTransferAndDegenerateDifferentialsStayFinite) {
   }
   EXPECT_TRUE(std::isfinite(photon_spacing(0)));
   EXPECT_TRUE(std::isfinite(photon_spacing(0xffffffffu)));
+}
+
+}  // namespace
+}  // namespace pm
+
+namespace pm {
+namespace {
+
+// The film's last guard: a pixel whose sums are not finite comes out black in every layer and
+// counted, the other pixels resolved as sums over passes (the host resolves the indirect and
+// caustic layers, Renderer::read_image; the device the combined one, film.h).
+TEST(Extremes, ANonFiniteFilmSumIsRepairedBlackInEveryLayer) {
+  RenderSettings settings = photons(20000);
+  settings.width = settings.height = 8;
+  Renderer renderer(device(), builtin_cornell_box(), settings);
+  renderer.render_frame(0);
+  FilmSums sums = renderer.film_sums();
+  ASSERT_EQ(sums.indirect.size(), 64u);
+  for (size_t i = 0; i < sums.indirect.size(); ++i) {
+    sums.indirect[i] = float4{0.5f, 0.25f, 1.0f, 0.0f};
+    sums.caustic[i] = float4{0.125f, 0.0f, 0.0f, 0.0f};
+  }
+  sums.indirect[9].y = std::nanf("");
+  sums.caustic[20].z = INFINITY;
+  sums.passes = 2;
+  sums.odd_passes = 1;
+  renderer.set_film_sums(sums);
+  renderer.resolve();
+  FrameStats stats;
+  const FrameImage image = renderer.read_image(&stats);
+  EXPECT_EQ(stats.repaired_pixels, 2);
+  for (const char* name : {"", "direct", "indirect", "caustic"}) {
+    const ImageLayer* layer = image.find(name);
+    ASSERT_NE(layer, nullptr) << name;
+    for (size_t px : {size_t(9), size_t(20)})
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(layer->rgb[3 * px + c], 0.0f) << "layer '" << name << "' pixel " << px;
+  }
+  const ImageLayer* indirect = image.find("indirect");
+  const ImageLayer* caustic = image.find("caustic");
+  EXPECT_EQ(indirect->rgb[3 * 10 + 0], 0.25f);  // the sums over 2 passes
+  EXPECT_EQ(indirect->rgb[3 * 10 + 2], 0.5f);
+  EXPECT_EQ(caustic->rgb[3 * 10 + 0], 0.0625f);
 }
 
 }  // namespace

@@ -68,8 +68,8 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   const size_t pixels = size_t(width) * height, depths = size_t(renderer.mirror_depth()) + 1, records = depths * pixels;
   auto sp = read_slot<float4>(device, renderer, BufferSlot::shade_position, records);
   auto sn = read_slot<float4>(device, renderer, BufferSlot::shade_normal, records);
-  auto indirect = read_slot<float4>(device, renderer, BufferSlot::film_indirect, pixels);
-  auto caustic = read_slot<float4>(device, renderer, BufferSlot::film_caustic, pixels);
+  auto indirect = read_slot<float4>(device, renderer, BufferSlot::film_indirect_sum, pixels);  // one pass: the sums are the image
+  auto caustic = read_slot<float4>(device, renderer, BufferSlot::film_caustic_sum, pixels);
   std::vector<Material> materials = to_device_materials(scene);
   // knn's region (its clip at the walls and its covered area) is measured on the host by the
   // kernels' own function over the device's scene BVH; what is checked is the search and the sum.
