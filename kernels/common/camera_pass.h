@@ -70,25 +70,26 @@ typedef struct ShadingPoint {
    its position and normal (and material and triangle); the direction towards the viewer and the
    mirrors' product are replayed from the camera ray as the camera pass traced them, by the same
    operations, so they come out as the same bits: a frame without mirrors keeps 2 float4 a pixel
-   instead of 4. Read the points in order: eye_path_begin, then eye_path_next until it returns 0. */
+   instead of 4. Read the points in order: eye_path_begin, then eye_path_next with the same
+   ShadingPoint until it returns 0; each step continues from the point before it (its outgoing
+   direction, normal, weight and mirror), so the path keeps no state of its own beside the
+   ShadingPoint the reader holds anyway (the gather's registers: docs/benchmarks.md). */
 typedef struct EyePath {
-  Vec3 direction; /* of the ray arriving at the next shading point */
-  Vec3 weight;    /* the mirror reflectances' product before it */
-  uint pixel, depth;
+  uint pixel, depth; /* depth: of the next shading point */
 } EyePath;
 
 PM_DEVICE EyePath eye_path_begin(const LaunchParams* p, uint pixel)
 {
+  (void)p;
   EyePath e;
-  e.direction = camera_primary_ray(&p->camera, pixel % p->width, pixel / p->width, p->width, p->height).direction;
-  e.weight = vec3_splat(1.0f);
   e.pixel = pixel;
   e.depth = 0u;
   return e;
 }
 
-/* The eye path's next shading point in *sp (its mirror depth: e->depth before the call); 0 when
-   the path ended before it (every deeper record is empty too). */
+/* The eye path's next shading point in *sp, which holds the point before it (mirror depth
+   e->depth - 1) from the last call; 0 when the path ended before it (every deeper record is
+   empty too). */
 PM_DEVICE int eye_path_next(const KernelGlobals* kg, const LaunchParams* p, EyePath* e, ShadingPoint* sp)
 {
   if (e->depth > p->mirror_depth) return 0;
@@ -96,15 +97,20 @@ PM_DEVICE int eye_path_next(const KernelGlobals* kg, const LaunchParams* p, EyeP
   float4 pos = kg->shade_position[record];
   int material_index = PM_AS_INT(pos.w);
   if (material_index < 0) return 0;
+  Vec3 direction, weight;
+  if (e->depth == 0u) {
+    direction = camera_primary_ray(&p->camera, e->pixel % p->width, e->pixel / p->width, p->width, p->height).direction;
+    weight = vec3_splat(1.0f);
+  } else { /* the camera pass's ray off the point before's mirror (kernel_camera_pass) */
+    direction = vec3_reflect(vec3_neg(sp->outgoing), sp->normal);
+    weight = vec3_mul(sp->weight, material_mirror(&sp->material));
+  }
   float4 normal = kg->shade_normal[record];
   sp->position = vec3_from_float4(pos);
   sp->material = surface_material(kg, material_index, PM_AS_INT(normal.w), sp->position);
   sp->normal = vec3_from_float4(normal);
-  sp->outgoing = vec3_neg(e->direction);
-  sp->weight = e->weight;
-  /* The camera pass's next ray, off this point's mirror (kernel_camera_pass). */
-  e->weight = vec3_mul(e->weight, material_mirror(&sp->material));
-  e->direction = vec3_reflect(e->direction, sp->normal);
+  sp->outgoing = vec3_neg(direction);
+  sp->weight = weight;
   ++e->depth;
   return 1;
 }
