@@ -54,7 +54,7 @@ PM_DEVICE void kernel_bias_control(const KernelGlobals* kg, const LaunchParams* 
   float squares = 0.0f;
   for (uint s = lane; s < p->control_samples; s += lanes) {
     Vec3 path = vec3_splat(0.0f);
-    EyePath eye = eye_path_begin(p, pixel);
+    EyePath eye = eye_path_begin(pixel);
     ShadingPoint sp;
     for (uint depth = 0; eye_path_next(kg, p, &eye, &sp); ++depth) {
       Vec3 l = path_radiance(kg, &q, &sp.material, sp.position, sp.normal, sp.outgoing, pixel, depth,

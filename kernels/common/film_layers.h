@@ -58,7 +58,7 @@ PM_DEVICE void kernel_film_layers(const KernelGlobals* kg, const LaunchParams* p
      the scene after one): no surface to describe, black albedo and a zero normal, as for the
      background. */
   Vec3 albedo = vec3_splat(0.0f), normal = vec3_splat(0.0f);
-  EyePath eye = eye_path_begin(p, pixel);
+  EyePath eye = eye_path_begin(pixel);
   ShadingPoint sp;
   while (eye_path_next(kg, p, &eye, &sp)) {
     if (material_is_pure_mirror(&sp.material)) continue;

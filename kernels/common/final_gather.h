@@ -103,7 +103,7 @@ PM_DEVICE void final_gather_pixel(const KernelGlobals* kg, const LaunchParams* p
   uint rays = p->final_gather_rays > 0u ? p->final_gather_rays : 1u;
   Vec3 indirect = vec3_splat(0.0f), caustic = vec3_splat(0.0f);
   uint accepted = 0, points = 0;
-  EyePath eye = eye_path_begin(p, pixel);
+  EyePath eye = eye_path_begin(pixel);
   ShadingPoint sp;
   for (uint depth = 0; eye_path_next(kg, p, &eye, &sp); ++depth) {
     const Material* m = &sp.material;

@@ -58,7 +58,7 @@ PM_DEVICE void gather_pixel(const KernelGlobals* kg, const LaunchParams* p, uint
   if (!pixel_of_work_item(item, p->width, p->height, &pixel)) return;
   Vec3 indirect = vec3_splat(0.0f), caustic = vec3_splat(0.0f);
   uint accepted = 0, points = 0;
-  EyePath eye = eye_path_begin(p, pixel);
+  EyePath eye = eye_path_begin(pixel);
   ShadingPoint sp;
   for (uint depth = 0; eye_path_next(kg, p, &eye, &sp); ++depth) {
     const Material* m = &sp.material;

@@ -182,7 +182,7 @@ PM_DEVICE void kernel_path_trace(const KernelGlobals* kg, const LaunchParams* p,
   if (!pixel_of_work_item(item, p->width, p->height, &pixel)) return;
   Vec3 indirect = vec3_splat(0.0f);
   float inv_samples = 1.0f / (float)(p->path_samples > 0u ? p->path_samples : 1u);
-  EyePath eye = eye_path_begin(p, pixel);
+  EyePath eye = eye_path_begin(pixel);
   ShadingPoint sp;
   for (uint depth = 0; eye_path_next(kg, p, &eye, &sp); ++depth) {
     Vec3 sum = vec3_splat(0.0f);

@@ -47,7 +47,7 @@ PM_DEVICE void kernel_radiosity_interpolate(const KernelGlobals* kg, const Launc
   if (!pixel_of_work_item(item, p->width, p->height, &pixel)) return;
   uint pixels = p->width * p->height;
   Vec3 indirect = vec3_splat(0.0f);
-  EyePath eye = eye_path_begin(p, pixel);
+  EyePath eye = eye_path_begin(pixel);
   ShadingPoint sp; /* its material: the texture at the pixel's own point (the elements carry
                       irradiance, the image its detail) */
   while (eye_path_next(kg, p, &eye, &sp)) {

@@ -93,7 +93,7 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   size_t nonzero = 0;
   for (size_t px = 0; px < pixels; ++px) {
     double sum[3] = {0, 0, 0};
-    EyePath eye = eye_path_begin(&gather_params, uint(px));
+    EyePath eye = eye_path_begin(uint(px));
     ShadingPoint point;
     while (eye_path_next(&scene_globals, &gather_params, &eye, &point)) {
       const size_t depth = eye.depth - 1;

@@ -26,7 +26,7 @@ TEST(EyePath, ReplaysTheDirectionsAndMirrorWeightsOfTheCameraPass) {
   const Vec3 camera = vec3_from_float4(pass.p.camera.position);
   int points_behind_mirrors = 0;
   for (uint32_t pixel = 0; pixel < uint32_t(pass.pixels); ++pixel) {
-    EyePath eye = eye_path_begin(&pass.p, pixel);
+    EyePath eye = eye_path_begin(pixel);
     ShadingPoint sp;
     Vec3 previous = camera, weight = vec3_splat(1.0f);
     while (eye_path_next(&pass.kg, &pass.p, &eye, &sp)) {
