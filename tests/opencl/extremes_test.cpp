@@ -452,7 +452,8 @@ namespace {
 TEST(Extremes, ANonFiniteFilmSumIsRepairedBlackInEveryLayer) {
   RenderSettings settings = photons(20000);
   settings.width = settings.height = 8;
-  Renderer renderer(device(), builtin_cornell_box(), settings);
+  const Scene scene = builtin_cornell_box();  // the renderer reads it for as long as it lives
+  Renderer renderer(device(), scene, settings);
   renderer.render_frame(0);
   FilmSums sums = renderer.film_sums();
   ASSERT_EQ(sums.indirect.size(), 64u);
