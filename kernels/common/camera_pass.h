@@ -64,6 +64,7 @@ typedef struct ShadingPoint {
   Material material;
   Vec3 position, normal, outgoing; /* normal and outgoing face the viewer */
   Vec3 weight;                     /* product of the eye path's mirror reflectances */
+  int triangle;                    /* the scene triangle it lies on (leaf order) */
 } ShadingPoint;
 
 /* A pixel's eye path, replayed from its shading points. The frame keeps per shading point only
@@ -109,7 +110,8 @@ PM_DEVICE int eye_path_next(const KernelGlobals* kg, const LaunchParams* p, EyeP
   }
   float4 normal = kg->shade_normal[e->depth * pixels + e->pixel];
   sp->position = vec3_from_float4(pos);
-  sp->material = surface_material(kg, material_index, PM_AS_INT(normal.w), sp->position);
+  sp->triangle = PM_AS_INT(normal.w);
+  sp->material = surface_material(kg, material_index, sp->triangle, sp->position);
   sp->normal = vec3_from_float4(normal);
   sp->outgoing = vec3_neg(direction);
   sp->weight = weight;

@@ -45,15 +45,13 @@ PM_DEVICE void kernel_radiosity_interpolate(const KernelGlobals* kg, const Launc
 {
   uint pixel;
   if (!pixel_of_work_item(item, p->width, p->height, &pixel)) return;
-  uint pixels = p->width * p->height;
   Vec3 indirect = vec3_splat(0.0f);
   EyePath eye = eye_path_begin(pixel);
   ShadingPoint sp; /* its material: the texture at the pixel's own point (the elements carry
                       irradiance, the image its detail) */
   while (eye_path_next(kg, p, &eye, &sp)) {
-    int leaf = PM_AS_INT(kg->shade_normal[(eye.depth - 1u) * pixels + pixel].w);
     float cos_o = pm_fabsf(vec3_dot(sp.outgoing, sp.normal));
-    Vec3 l = radiosity_reflected(kg, p, &sp.material, leaf, sp.position, sp.normal, cos_o);
+    Vec3 l = radiosity_reflected(kg, p, &sp.material, sp.triangle, sp.position, sp.normal, cos_o);
     indirect = vec3_add(indirect, vec3_mul(sp.weight, l));
   }
   film_add(kg, p, pixel, indirect, vec3_splat(0.0f));

@@ -440,12 +440,6 @@ TEST(ExtremesKernels, GrazingTransferAndDegenerateDifferentialsStayFinite) {
   EXPECT_TRUE(std::isfinite(photon_spacing(0xffffffffu)));
 }
 
-}  // namespace
-}  // namespace pm
-
-namespace pm {
-namespace {
-
 // The film's last guard: a pixel whose sums are not finite comes out black in every layer and
 // counted, the other pixels resolved as sums over passes (the host resolves the indirect and
 // caustic layers, Renderer::read_image; the device the combined one, film.h).
