@@ -69,7 +69,7 @@ void make_frame_jobs(FrameDevices& opened, bool sequence, const Scene& scene, co
     opened.pools.push_back(std::make_unique<RendererPool>(all, scene, settings, std::move(first)));
   }
   for (auto& d : opened.devices)  // before PoCL commits the buffers: a refusal instead of an abort
-    check_device_memory(d->allocated_bytes(), d->info(), width, height, !settings.layers.empty());
+    check_device_memory(d->needed_bytes(), d->info(), width, height, !settings.layers.empty());
   for (auto& pool : opened.pools) opened.jobs.push_back(std::make_unique<FrameJob>(*pool, scene, job_options));
 }
 

@@ -102,6 +102,9 @@ class Device {
     if (allocated_ > peak_) peak_ = allocated_;
   }
   void note_freed(size_t bytes) { allocated_ -= bytes; }
+  // What a render may come to hold: what it holds and what its methods have promised to allocate
+  // when a pass needs it (DeviceMemoryPromise). The checks before the first frame count this.
+  uint64_t needed_bytes() const { return allocated_ + promised_; }
 
  protected:
   const std::array<void*, kBufferSlotCount>& slots() const { return slots_; }
@@ -121,6 +124,29 @@ class Device {
   std::array<void*, kBufferSlotCount> slots_{};
   uint64_t slots_version_ = 1;
   uint64_t allocated_ = 0, peak_ = 0;
+  uint64_t promised_ = 0;
+  friend class DeviceMemoryPromise;
+};
+
+// Device memory a method does not hold yet but may come to (the photon map grown to the most hits
+// a pass may record): the memory checks before the first frame count it as held, so a request
+// that could not fit is refused up front, while the buffers themselves are sized by what the
+// passes record. Set to what is still missing; the destructor withdraws it.
+class DeviceMemoryPromise {
+ public:
+  explicit DeviceMemoryPromise(Device& device) : device_(&device) {}
+  DeviceMemoryPromise(const DeviceMemoryPromise&) = delete;
+  DeviceMemoryPromise& operator=(const DeviceMemoryPromise&) = delete;
+  ~DeviceMemoryPromise() { set(0); }
+  void set(uint64_t bytes) {
+    device_->promised_ = device_->promised_ - bytes_ + bytes;
+    bytes_ = bytes;
+  }
+  uint64_t bytes() const { return bytes_; }
+
+ private:
+  Device* device_;
+  uint64_t bytes_ = 0;
 };
 
 // Every device of every compiled-in backend that can be opened on this machine.

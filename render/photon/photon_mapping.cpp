@@ -41,7 +41,10 @@ std::vector<uint32_t> share_photons_by_power(const std::vector<LightDesc>& light
 }
 
 PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings& settings)
-    : device_(context.device), buffers_(context.buffers), settings_(settings.resolved(context.measures)) {
+    : device_(context.device),
+      buffers_(context.buffers),
+      settings_(settings.resolved(context.measures)),
+      map_promise_(context.device) {
   settings_.validate();
   scene_area_ = context.measures.surface_area;
   photons_per_pass_ = uint32_t(settings_.photons);
@@ -50,7 +53,9 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
   extents_.hit_slots = hit_slots();
   extents_.bounds_tiles = (extents_.hit_slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
   buffers_.allocate(BufferGroup::photon, extents_);
-  reserve_map(photons_per_pass_);
+  // The map is allocated by the first pass, for the hits it records (reserve_map); until then the
+  // memory checks count it at the size it had to be when it was reserved for the photons.
+  map_promise_.set(map_bytes(expected_most_hits()));
   area_power_ = build_scene_emitters(context.scene).power_rgb_sum;
   environment_power_ = environment_power_rgb_sum(context.scene.environment, context.measures);
   share_photons(context.scene.lights);
@@ -174,15 +179,30 @@ void PhotonMapping::gather(const LaunchParams& params, StageTimer* timer) {
   device_.launch(gather, pixel_work_items(params.width, params.height), params);
 }
 
+uint64_t PhotonMapping::map_bytes(uint64_t hits) const {
+  BufferExtents with = extents_, without = extents_;
+  with.map_hits = hits;
+  without.map_hits = 0;
+  return buffer_group_bytes(BufferGroup::photon, with) - buffer_group_bytes(BufferGroup::photon, without);
+}
+
+uint32_t PhotonMapping::expected_most_hits() const {
+  return uint32_t(std::min<uint64_t>(uint64_t(photons_per_pass_) * 5 / 4, hit_slots()));
+}
+
 void PhotonMapping::reserve_map(uint32_t hits) {
   if (hits <= map_capacity_) return;
-  // Room for the valid hits of a pass, grown with a margin so that passes of about the same
-  // count do not reallocate; the hit records (slot-sized) stay as they are.
-  map_capacity_ = std::min<uint64_t>(std::max<uint64_t>(uint64_t(hits) * 5 / 4, photons_per_pass_), hit_slots());
+  // Room for the valid hits of this pass, with a margin so that passes of about the same count
+  // do not reallocate; the hit records (slot-sized) stay as they are. Sized by the hits, not the
+  // photons: most photons of a pass record fewer hits than their slots (Sponza about one valid
+  // hit per two photons, docs/benchmarks.md).
+  map_capacity_ = uint32_t(std::min<uint64_t>(uint64_t(hits) * 5 / 4, hit_slots()));
   BufferExtents extents = extents_;
   extents.map_hits = map_capacity_;
   buffers_.allocate(BufferGroup::photon, extents);
   buffers_.bind_all();
+  const uint64_t held = map_bytes(map_capacity_), expected = map_bytes(expected_most_hits());
+  map_promise_.set(expected > held ? expected - held : 0);
 }
 
 // The VVH alternative to the device LBVH: the hits' footprints, computed in slot order, go to

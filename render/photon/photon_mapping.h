@@ -50,6 +50,10 @@ class PhotonMapping final : public IndirectMethod {
   void build_vvh_map(const LaunchParams& params);
   // Photon map buffers (sorted hits, footprints, nodes) for at least `hits` valid hits.
   void reserve_map(uint32_t hits);
+  // Bytes of the photon map's buffers with room for `hits` valid hits.
+  uint64_t map_bytes(uint64_t hits) const;
+  // The most valid hits a pass is expected to record: the map the memory checks count.
+  uint32_t expected_most_hits() const;
   void gather(const LaunchParams& params, StageTimer* timer);
 
   Device& device_;
@@ -61,6 +65,8 @@ class PhotonMapping final : public IndirectMethod {
   uint32_t shading_points_ = 0;
   BufferExtents extents_;      // the photon group's sizes; map_hits grows with reserve_map
   uint32_t map_capacity_ = 0;  // valid hits the photon map buffers hold room for
+  // The map at the most hits a pass is expected to record (reserve_map), less what it holds.
+  DeviceMemoryPromise map_promise_;
 
   int photon_frame_ = 0;  // the frame number keying this frame's photons
   // The photon map on the device: valid after a pass went through, for the photons of

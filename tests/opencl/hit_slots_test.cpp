@@ -1,9 +1,12 @@
-// Hit records sized by what the scene's materials allow (render/photon/photon_settings.h): a photon
-// records a hit after each bounce, so without mirror reflectance `bounces` records per photon hold
-// every hit, and mirrors add two. Proved by rendering the built-in Cornell box (no mirrors) and the
-// same box with a mirror reflectance of 1e-7 on every material, which no photon of the seed
-// chooses: the second reserves two more records per photon, and both must record the same hits
-// and give the same image, bit for bit (fixed smoothing: no reduction over the record layout).
+// The photon group's memory sized by what a pass needs. Hit records by what the scene's materials
+// allow (render/photon/photon_settings.h): a photon records a hit after each bounce, so without
+// mirror reflectance `bounces` records per photon hold every hit, and mirrors add two. Proved by
+// rendering the built-in Cornell box (no mirrors) and the same box with a mirror reflectance of
+// 1e-7 on every material, which no photon of the seed chooses: the second reserves two more
+// records per photon, and both must record the same hits and give the same image, bit for bit
+// (fixed smoothing: no reduction over the record layout). And the photon map by the valid hits a
+// pass records, not by its photons, while the memory checks before the first frame still count
+// the map at the most hits a pass is expected to record (DeviceMemoryPromise).
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -62,6 +65,40 @@ TEST(HitSlots, AMirrorFreeSceneLosesNoHitInBounceManyRecords) {
   EXPECT_GE(b.peak_bytes, a.peak_bytes + uint64_t(65536) * 2 * 96);
   std::printf("peak device memory: %.1f MiB without mirrors, %.1f MiB with\n", a.peak_bytes / 1048576.0,
               b.peak_bytes / 1048576.0);
+}
+
+// A photon map entry: the tree's nodes (4 float4), its three parent and visit words, nine float4 of
+// footprint and gather data, the Morton keys and slots before and after the sort (kernels/common/
+// buffers.h): 64 + 12 + 144 + 16 bytes.
+constexpr uint64_t kMapBytesPerHit = 236;
+
+TEST(HitSlots, ThePhotonMapIsSizedByTheHitsAPassRecords) {
+  std::unique_ptr<Device> device = test::open_first_device("opencl");
+  ASSERT_NE(device, nullptr);
+  PhotonSettings photons;
+  photons.photons = 65536;
+  photons.bounces = 2;
+  photons.smoothing = 8;
+  RenderSettings settings = test::photon_render_settings(photons);
+  settings.width = settings.height = 32;
+  const Scene scene = builtin_cornell_box();
+  Renderer renderer(*device, scene, settings);
+  // Before the first pass no map is held; the checks count one for 5/4 of the photons (no more
+  // than the 2 records of each photon).
+  const uint64_t held_before = device->allocated_bytes();
+  EXPECT_EQ(device->needed_bytes() - held_before, 81920 * kMapBytesPerHit);
+  FrameStats stats;
+  renderer.render_frame(0, &stats);
+  const uint64_t hits = uint64_t(stats.method.get("hits"));
+  ASSERT_GT(hits, 20000u);
+  ASSERT_LT(hits, 65536u) << "the box's photons record fewer valid hits than there are photons";
+  // Room for 5/4 of the hits recorded, and the sort's scratch beside it.
+  const uint64_t map = hits * 5 / 4 * kMapBytesPerHit;
+  const uint64_t grown = device->allocated_bytes() - held_before;
+  EXPECT_GE(grown, map);
+  EXPECT_LT(grown, map + (1u << 20));
+  // The checks still count the map the photons could need.
+  EXPECT_EQ(device->needed_bytes() - device->allocated_bytes(), 81920 * kMapBytesPerHit - map);
 }
 
 }  // namespace
