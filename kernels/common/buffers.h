@@ -58,12 +58,11 @@
   /* photon mapping, S1 emitters: per light (first photon of the pass, photon count, 0, 0) */              \
   X(photon, uint4, photon_emitters, uploaded, 1)                                                            \
   /* photon mapping, S2 hits: slot order [photon * hit_slots_per_photon + k] */                            \
-  X(photon, float4, hit_position, hit_slots, 1)  /* xyz, w = PM_HIT_* flags as uint bits */             \
-  X(photon, float4, hit_normal, hit_slots, 1)    /* xyz facing the photon's side, w = PM_HIT_* flags */     \
+  X(photon, float4, hit_position, hit_slots, 1)  /* xyz, w = PM_HIT_* flags as uint bits, 0: no hit */    \
+  X(photon, float4, hit_normal, hit_slots, 1)    /* xyz facing the photon's side, w = flux red (watts) */   \
   X(photon, float4, hit_incident, hit_slots, 1)  /* xyz unit direction back to its origin, w = Delta */     \
-  X(photon, float4, hit_flux, hit_slots, 1)      /* rgb watts */                                            \
-  X(photon, float4, hit_dp_u, hit_slots, 1)      /* positional differentials (eq. 8 scaling) */             \
-  X(photon, float4, hit_dp_v, hit_slots, 1)                                                                 \
+  X(photon, float4, hit_dp_u, hit_slots, 1)      /* positional differentials (eq. 8 scaling), w = green */  \
+  X(photon, float4, hit_dp_v, hit_slots, 1)      /* w = flux blue */                                        \
   /* photon mapping, S3 footprints and S4 photon map: the valid hits in sorted order */                     \
   X(photon, float4, map_partials, bounds_tiles, 2) /* per tile: (lo, area sum), (hi, count) */              \
   X(photon, float4, map_nodes, map_hits, 4)   /* 4 float4 per inner node, photon_map.h */                  \

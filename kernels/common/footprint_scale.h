@@ -20,7 +20,7 @@ PM_DEVICE void kernel_photon_footprint_scale(const KernelGlobals* kg, const Laun
   uint end = pm_min_u(begin + PM_PHOTON_MAP_BOUNDS_TILE, slots);
   float area = 0.0f;
   for (uint i = begin; i < end; ++i) {
-    uint flags = PM_AS_UINT(kg->hit_normal[i].w);
+    uint flags = PM_AS_UINT(kg->hit_position[i].w);
     if ((flags & PM_HIT_VALID) == 0u || (flags & PM_HIT_CAUSTIC) != 0u) continue;
     float delta = kg->hit_incident[i].w;
     Vec3 a_u = footprint_semiaxis(vec3_from_float4(kg->hit_dp_u[i]), delta, 1.0f, PM_FOOTPRINT_FAR, 0);

@@ -36,7 +36,7 @@ PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p
     f.axis_n = vec3_scale(n, radius ? r : PM_FOOTPRINT_NORMAL_RATIO * r);
     return f;
   }
-  int caustic = (PM_AS_UINT(n4.w) & PM_HIT_CAUSTIC) != 0u;
+  int caustic = (PM_AS_UINT(kg->hit_position[slot].w) & PM_HIT_CAUSTIC) != 0u;
   float delta = kg->hit_incident[slot].w;
   Footprint f = footprint_from_differentials(vec3_from_float4(kg->hit_dp_u[slot]), vec3_from_float4(kg->hit_dp_v[slot]),
                                              n, delta, p->smoothing, p->rmax, caustic);
@@ -54,8 +54,9 @@ PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p
 PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchParams* p, uint k)
 {
   uint slot = kg->sorted_slots[k];
-  float4 n4 = kg->hit_normal[slot];
-  Vec3 center = vec3_from_float4(kg->hit_position[slot]);
+  float4 position = kg->hit_position[slot];
+  Vec3 center = vec3_from_float4(position);
+  Vec3 normal = vec3_normalize(vec3_from_float4(kg->hit_normal[slot]));
   Footprint f = hit_footprint(kg, p, slot);
   /* Progressive shrink (docs/progressive.md): every footprint of this pass scaled alike (knn's
      reach is r_max, which the host already shrank). */
@@ -67,7 +68,7 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
   FootprintCut cut = footprint_uncut();
   /* knn's region is clipped about each shading point instead (knn_gather.h). */
   if (p->footprint_clip && p->estimator != PM_ESTIMATOR_KNN)
-    cut = footprint_clip(kg, &f, center, vec3_normalize(vec3_from_float4(n4)),
+    cut = footprint_clip(kg, &f, center, normal,
                          ray_offset_distance(center, 0.0f, p->ray_epsilon), p->kernel_shape);
   float coverage = 1.0f;
   if (p->footprint_coverage && p->estimator != PM_ESTIMATOR_KNN) {
@@ -78,7 +79,7 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     float turn = PM_TWO_PI * rng_to_unit(rng_bits4(p->seed, frame, p->photon_offset + slot / per_photon,
                                                    slot % per_photon, PM_STREAM_FOOTPRINT_PROBE,
                                                    p->photon_offset_hi).b0);
-    coverage = footprint_covered_share(kg, &f, &cut, center, vec3_normalize(vec3_from_float4(n4)),
+    coverage = footprint_covered_share(kg, &f, &cut, center, normal,
                                        ray_offset_distance(center, 0.0f, p->ray_epsilon), turn, p->kernel_shape,
                                        p->facet_weighting ? PM_COVERAGE_LIT_AREA : PM_COVERAGE_CELLS,
                                        vec3_from_float4(kg->hit_incident[slot]));
@@ -95,7 +96,7 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
   Vec3 c_vn = vec3_cross(f.axis_v, f.axis_n), c_nu = vec3_cross(f.axis_n, f.axis_u), c_uv = vec3_cross(f.axis_u, f.axis_v);
   float det = vec3_dot(f.axis_u, c_vn);
   float inv_det = det != 0.0f && pm_isfinite(det) ? 1.0f / det : 0.0f; /* singular: contains nothing */
-  Vec3 flux = vec3_from_float4(kg->hit_flux[slot]);
+  Vec3 flux = photon_hit_flux(kg, slot);
   Vec3 power = area > 0.0f && spread > 0.0f ? vec3_scale(flux, 1.0f / spread) : vec3_splat(0.0f);
   if (inv_det == 0.0f || !pm_isfinite(power.x + power.y + power.z)) {
     power = vec3_splat(0.0f);
@@ -107,7 +108,7 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     power = flux;
     area = 0.0f; /* no footprint area: T_auto stays at 1 for the knn map, as before clipping */
   }
-  uint flags = PM_AS_UINT(n4.w) | (cut.t[1] < 1.0f ? PM_HIT_SECOND_CUT : 0u);
+  uint flags = PM_AS_UINT(position.w) | (cut.t[1] < 1.0f ? PM_HIT_SECOND_CUT : 0u);
   kg->map_lo[k] = vec3_to_float4(lo, area);
   kg->map_hi[k] = vec3_to_float4(hi, 0.0f);
   kg->map_center[k] = vec3_to_float4(center, PM_UINT_AS_FLOAT(flags));

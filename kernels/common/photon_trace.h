@@ -57,12 +57,18 @@ PM_DEVICE void photon_store_hit(const KernelGlobals* kg, uint slot, const Photon
                                 uint flags)
 {
   if (vec3_dot(n, ray->direction) > 0.0f) n = vec3_neg(n); /* the side the photon arrived on */
+  /* Five float4: the flux rides in the w of the normal and the differentials (buffers.h). */
   kg->hit_position[slot] = vec3_to_float4(ray->origin, PM_UINT_AS_FLOAT(flags));
-  kg->hit_normal[slot] = vec3_to_float4(n, PM_UINT_AS_FLOAT(flags));
+  kg->hit_normal[slot] = vec3_to_float4(n, flux.x);
   kg->hit_incident[slot] = vec3_to_float4(vec3_neg(ray->direction), delta);
-  kg->hit_flux[slot] = vec3_to_float4(flux, 0.0f);
-  kg->hit_dp_u[slot] = vec3_to_float4(ray->dp_u, 0.0f);
-  kg->hit_dp_v[slot] = vec3_to_float4(ray->dp_v, 0.0f);
+  kg->hit_dp_u[slot] = vec3_to_float4(ray->dp_u, flux.y);
+  kg->hit_dp_v[slot] = vec3_to_float4(ray->dp_v, flux.z);
+}
+
+/* The flux a hit record carries (photon_store_hit). */
+PM_DEVICE Vec3 photon_hit_flux(const KernelGlobals* kg, uint slot)
+{
+  return vec3(kg->hit_normal[slot].w, kg->hit_dp_u[slot].w, kg->hit_dp_v[slot].w);
 }
 
 PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* p, uint photon)
@@ -179,10 +185,8 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
       start = offset_ray_origin(ray.origin, side, ray_offset_distance(start, hit.t, p->ray_epsilon));
     }
   }
-  for (uint k = stored; k < p->hit_slots_per_photon; ++k) {
-    kg->hit_position[first_slot + k] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_UINT_AS_FLOAT(0u));
-    kg->hit_normal[first_slot + k] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_UINT_AS_FLOAT(0u));
-  }
+  for (uint k = stored; k < p->hit_slots_per_photon; ++k)
+    kg->hit_position[first_slot + k] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_UINT_AS_FLOAT(0u)); /* no flags */
 }
 
 #endif

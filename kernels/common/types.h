@@ -67,7 +67,7 @@ typedef struct CameraParams {
   float4 up;
 } CameraParams;
 
-/* Photon hit flags, stored as uint bits in the w of hit_normal and footprint/map_center. */
+/* Photon hit flags, stored as uint bits in the w of hit_position and map_center. */
 #define PM_HIT_VALID 1u
 #define PM_HIT_CAUSTIC 2u /* path from the light was specular only */
 #define PM_HIT_SECOND_CUT 4u /* footprint data: the footprint has a second cut (footprint_clip.h) */

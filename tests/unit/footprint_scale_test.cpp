@@ -19,7 +19,7 @@ namespace {
 
 // A batch of hit records held on the host, with the kernel's view of them.
 struct HostHits {
-  std::vector<float4> normal, incident, dp_u, dp_v, partials;
+  std::vector<float4> position, incident, dp_u, dp_v, partials;  // position.w: the flags
   LaunchParams params{};
   KernelGlobals kg{};
 
@@ -32,7 +32,7 @@ struct HostHits {
       if (i % 11 == 5) flags |= PM_HIT_CAUSTIC;          // some caustic hits
       float bits;
       std::memcpy(&bits, &flags, 4);
-      normal.push_back({0, 0, 1, bits});
+      position.push_back({0, 0, 0, bits});
       incident.push_back({0, 0, 1, 0.01f + 0.001f * float(i % 5)});  // w: Delta
       dp_u.push_back({scale * u(rng), scale * u(rng), 0, 0});
       dp_v.push_back({scale * u(rng), scale * u(rng), 0, 0});
@@ -40,7 +40,7 @@ struct HostHits {
     partials.resize(2 * ((slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE));
     params.photon_count = photons;
     params.hit_slots_per_photon = slots_per_photon;
-    kg.hit_normal = normal.data();
+    kg.hit_position = position.data();
     kg.hit_incident = incident.data();
     kg.hit_dp_u = dp_u.data();
     kg.hit_dp_v = dp_v.data();
@@ -60,9 +60,9 @@ struct HostHits {
   // Independent: pi Delta^2 |dp_u|^(1/4) |dp_v|^(1/4) sin(angle) over valid diffuse hits, in double.
   double reference_area() const {
     double sum = 0;
-    for (size_t i = 0; i < normal.size(); ++i) {
+    for (size_t i = 0; i < position.size(); ++i) {
       uint32_t flags;
-      std::memcpy(&flags, &normal[i].w, 4);
+      std::memcpy(&flags, &position[i].w, 4);
       if (!(flags & PM_HIT_VALID) || (flags & PM_HIT_CAUSTIC)) continue;
       const double ax = dp_u[i].x, ay = dp_u[i].y, bx = dp_v[i].x, by = dp_v[i].y;
       const double la = std::hypot(ax, ay), lb = std::hypot(bx, by);
@@ -76,9 +76,9 @@ struct HostHits {
   // Total area of the batch's diffuse footprints at smoothing s, unclamped, as S3 builds them.
   double footprint_area_at(float s) const {
     double sum = 0;
-    for (size_t i = 0; i < normal.size(); ++i) {
+    for (size_t i = 0; i < position.size(); ++i) {
       uint32_t flags;
-      std::memcpy(&flags, &normal[i].w, 4);
+      std::memcpy(&flags, &position[i].w, 4);
       if (!(flags & PM_HIT_VALID) || (flags & PM_HIT_CAUSTIC)) continue;
       Footprint f = footprint_from_differentials(vec3_from_float4(dp_u[i]), vec3_from_float4(dp_v[i]), vec3(0, 0, 1),
                                                  incident[i].w, s, 1e30f, 0);
