@@ -35,10 +35,10 @@
   X(scene, uint, texels, uploaded, 1)         /* RGBA8 of every image, top row first; rgb sRGB-encoded */   \
   X(scene, float, texture_srgb_table, uploaded, 1) /* 256: the linear value of each 8-bit sRGB code */      \
   /* S5 camera: one shading point per pixel and mirror depth, [depth * pixels + pixel] */                  \
-  X(frame, float4, shade_position, shading_points, 1) /* xyz, w = material index as int bits, -1: none */  \
-  X(frame, float4, shade_normal, shading_points, 1)   /* xyz geometric normal facing the viewer, w = the */ \
-                                                      /* hit triangle (leaf order) as int bits, -1: none */ \
-  /* (the direction towards the viewer and the mirrors' product are replayed: eye_path_next) */           \
+  X(frame, float4, shade_position, shading_points, 1) /* xyz, w = the hit triangle (leaf order) as int */  \
+                                                      /* bits, -1: none */                                  \
+  /* (the normal, the material, the direction towards the viewer and the mirrors' product are */          \
+  /* replayed: eye_path_next) */                                                                           \
   /* S7 film: direct light once per frame; indirect and caustic summed over passes (rgb, w unused) */      \
   X(frame, float4, film_direct, pixels, 1)                                                                  \
   X(frame, float4, film_indirect_sum, pixels, 1)                                                            \

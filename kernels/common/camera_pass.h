@@ -68,10 +68,11 @@ typedef struct ShadingPoint {
 } ShadingPoint;
 
 /* A pixel's eye path, replayed from its shading points. The frame keeps per shading point only
-   its position and normal (and material and triangle); the direction towards the viewer and the
-   mirrors' product are replayed from the camera ray through the mirrors before the point, as the
-   camera pass traced them and by the same operations, so they come out as the same bits: a frame
-   without mirrors keeps 2 float4 a pixel instead of 4. Each point replays its path from the
+   its position and triangle, one float4; the direction towards the viewer and the mirrors'
+   product are replayed from the camera ray through the mirrors before the point, and the normal
+   and material read from the triangle, as the camera pass computed them and by the same
+   operations, so they come out as the same bits: a frame without mirrors keeps 1 float4 a pixel
+   for its shading point instead of 4. Each point replays its path from the
    camera (a mirror depth of d reads the d points before it again), so a reader holds nothing
    across its points but the pixel and the depth: carrying the last point's direction and
    mirror from one point to the next instead cost the footprint gather 8 registers (72 -> 80 on
@@ -89,6 +90,20 @@ PM_DEVICE EyePath eye_path_begin(uint pixel)
   return e;
 }
 
+/* The normal the camera pass shades a point of `triangle` with: the triangle's, on the side the
+   ray travelling along `direction` arrives from. */
+PM_DEVICE Vec3 shading_normal_facing(const KernelGlobals* kg, int triangle, Vec3 direction)
+{
+  Vec3 n = scene_triangle_normal(kg->triangles, triangle);
+  return vec3_dot(n, direction) > 0.0f ? vec3_neg(n) : n;
+}
+
+/* The material of a shading point, textured (texture.h). */
+PM_DEVICE Material shading_point_material(const KernelGlobals* kg, int triangle, Vec3 position)
+{
+  return surface_material(kg, scene_triangle_material(kg->triangles, triangle), triangle, position);
+}
+
 /* The eye path's next shading point in *sp; 0 when the path ended before it (every deeper record
    is empty too). */
 PM_DEVICE int eye_path_next(const KernelGlobals* kg, const LaunchParams* p, EyePath* e, ShadingPoint* sp)
@@ -96,23 +111,21 @@ PM_DEVICE int eye_path_next(const KernelGlobals* kg, const LaunchParams* p, EyeP
   if (e->depth > p->mirror_depth) return 0;
   uint pixels = p->width * p->height;
   float4 pos = kg->shade_position[e->depth * pixels + e->pixel];
-  int material_index = PM_AS_INT(pos.w);
-  if (material_index < 0) return 0;
+  int triangle = PM_AS_INT(pos.w);
+  if (triangle < 0) return 0;
   Vec3 direction = camera_primary_ray(&p->camera, e->pixel % p->width, e->pixel / p->width, p->width, p->height).direction;
   Vec3 weight = vec3_splat(1.0f);
   for (uint depth = 0u; depth < e->depth; ++depth) { /* the mirrors before it (kernel_camera_pass) */
-    uint record = depth * pixels + e->pixel;
-    float4 mirror_position = kg->shade_position[record], mirror_normal = kg->shade_normal[record];
-    Material mirror = surface_material(kg, PM_AS_INT(mirror_position.w), PM_AS_INT(mirror_normal.w),
-                                       vec3_from_float4(mirror_position));
+    float4 mirror_position = kg->shade_position[depth * pixels + e->pixel];
+    int mirror_triangle = PM_AS_INT(mirror_position.w);
+    Material mirror = shading_point_material(kg, mirror_triangle, vec3_from_float4(mirror_position));
     weight = vec3_mul(weight, material_mirror(&mirror));
-    direction = vec3_reflect(direction, vec3_from_float4(mirror_normal));
+    direction = vec3_reflect(direction, shading_normal_facing(kg, mirror_triangle, direction));
   }
-  float4 normal = kg->shade_normal[e->depth * pixels + e->pixel];
   sp->position = vec3_from_float4(pos);
-  sp->triangle = PM_AS_INT(normal.w);
-  sp->material = surface_material(kg, material_index, sp->triangle, sp->position);
-  sp->normal = vec3_from_float4(normal);
+  sp->triangle = triangle;
+  sp->material = shading_point_material(kg, triangle, sp->position);
+  sp->normal = shading_normal_facing(kg, triangle, direction);
   sp->outgoing = vec3_neg(direction);
   sp->weight = weight;
   ++e->depth;
@@ -157,9 +170,9 @@ PM_DEVICE void kernel_camera_pass(const KernelGlobals* kg, const LaunchParams* p
       direct = vec3_add(direct, sampled_light_direct(kg, p, kind, &m, pos, n, wo, offset, p->area_light_samples, pixel,
                                                      depth * p->area_light_samples, 0u));
     radiance = vec3_add(radiance, vec3_mul(throughput, direct));
-    /* wo and throughput are not kept: the readers replay them (eye_path_next). */
-    kg->shade_position[record] = vec3_to_float4(pos, PM_AS_FLOAT(material_index));
-    kg->shade_normal[record] = vec3_to_float4(n, PM_AS_FLOAT(hit.triangle)); /* radiosity interpolates on it */
+    /* wo, throughput, the normal and the material are not kept: the readers replay them
+       (eye_path_next); the triangle also tells radiosity what to interpolate on. */
+    kg->shade_position[record] = vec3_to_float4(pos, PM_AS_FLOAT(hit.triangle));
 
     if (!material_has_mirror(&m) || depth == p->mirror_depth) { ++depth; break; }
     throughput = vec3_mul(throughput, material_mirror(&m));

@@ -43,14 +43,14 @@ PM_DEVICE int scene_triangle_object(PM_GLOBAL const float4* triangles, int tri)
 PM_DEVICE void kernel_film_layers(const KernelGlobals* kg, const LaunchParams* p, uint pixel)
 {
   float4 first = kg->shade_position[pixel];
-  int first_material = PM_AS_INT(first.w);
-  if (first_material < 0) {
+  int first_triangle = PM_AS_INT(first.w);
+  if (first_triangle < 0) {
     kg->film_albedo[pixel] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_AS_FLOAT(-1));
     kg->film_normal[pixel] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_LAYER_MISS_DEPTH);
     kg->film_position[pixel] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_AS_FLOAT(-1));
     return;
   }
-  int first_triangle = PM_AS_INT(kg->shade_normal[pixel].w);
+  int first_material = scene_triangle_material(kg->triangles, first_triangle);
   float depth = vec3_length(vec3_sub(vec3_from_float4(first), vec3_from_float4(p->camera.position)));
   kg->film_position[pixel] = vec3_to_float4(vec3_from_float4(first), PM_AS_FLOAT(scene_triangle_object(kg->triangles, first_triangle)));
 

@@ -67,7 +67,6 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   auto incident = read_slot<float4>(device, renderer, BufferSlot::map_incident, n);
   const size_t pixels = size_t(width) * height, depths = size_t(renderer.mirror_depth()) + 1, records = depths * pixels;
   auto sp = read_slot<float4>(device, renderer, BufferSlot::shade_position, records);
-  auto sn = read_slot<float4>(device, renderer, BufferSlot::shade_normal, records);
   auto indirect = read_slot<float4>(device, renderer, BufferSlot::film_indirect_sum, pixels);  // one pass: the sums are the image
   auto caustic = read_slot<float4>(device, renderer, BufferSlot::film_caustic_sum, pixels);
   std::vector<Material> materials = to_device_materials(scene);
@@ -84,7 +83,6 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   // The shading points' directions towards the viewer and mirror weights, replayed as the kernels
   // replay them (eye_path_next).
   scene_globals.shade_position = sp.data();
-  scene_globals.shade_normal = sn.data();
   scene_globals.materials = materials.data();
   const LaunchParams& gather_params = method->last_gather_params();
   const double region_stretch = 1.0 / std::pow(double(knn_region_thickness(&gather_params)), 2) - 1.0;

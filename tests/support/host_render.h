@@ -22,14 +22,12 @@ struct HostCameraPass {
         pixels(size_t(width) * size_t(height)) {
     const size_t records = pixels * size_t(mirror_depth + 1);
     position.resize(records);
-    normal.resize(records);
     direct.resize(pixels);
     kg.scene_nodes = bvh.nodes.data();
     kg.triangles = bvh.triangles.data();
     kg.materials = materials.data();
     kg.lights = lights.data();
     kg.shade_position = position.data();
-    kg.shade_normal = normal.data();
     kg.film_direct = direct.data();
     p.camera = make_camera_params(scene.camera, width, height);
     p.width = uint32_t(width);
@@ -49,7 +47,7 @@ struct HostCameraPass {
   std::vector<Material> materials;
   std::vector<PointLight> lights;
   size_t pixels;
-  std::vector<float4> position, normal, direct;
+  std::vector<float4> position, direct;
   KernelGlobals kg{};
   LaunchParams p{};
 };
