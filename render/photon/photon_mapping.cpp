@@ -193,10 +193,13 @@ uint32_t PhotonMapping::expected_most_hits() const {
 void PhotonMapping::reserve_map(uint32_t hits) {
   if (hits <= map_capacity_) return;
   // Room for the valid hits of this pass, with a margin so that passes of about the same count
-  // do not reallocate; the hit records (slot-sized) stay as they are. Sized by the hits, not the
-  // photons: most photons of a pass record fewer hits than their slots (Sponza about one valid
-  // hit per two photons, docs/benchmarks.md).
-  map_capacity_ = uint32_t(std::min<uint64_t>(uint64_t(hits) * 5 / 4, hit_slots()));
+  // do not reallocate, but no more than the map the checks counted while the hits fit in it; the
+  // hit records (slot-sized) stay as they are. Sized by the hits, not the photons: most photons
+  // of a pass record fewer hits than their slots (Sponza about one valid hit per two photons,
+  // docs/benchmarks.md).
+  uint64_t room = uint64_t(hits) * 5 / 4;
+  if (hits <= expected_most_hits()) room = std::min<uint64_t>(room, expected_most_hits());
+  map_capacity_ = uint32_t(std::min<uint64_t>(room, hit_slots()));
   BufferExtents extents = extents_;
   extents.map_hits = map_capacity_;
   buffers_.allocate(BufferGroup::photon, extents);

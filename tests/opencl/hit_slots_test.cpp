@@ -9,6 +9,7 @@
 // the map at the most hits a pass is expected to record (DeviceMemoryPromise).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
@@ -72,33 +73,61 @@ TEST(HitSlots, AMirrorFreeSceneLosesNoHitInBounceManyRecords) {
 // buffers.h): 64 + 12 + 144 + 16 bytes.
 constexpr uint64_t kMapBytesPerHit = 236;
 
-TEST(HitSlots, ThePhotonMapIsSizedByTheHitsAPassRecords) {
+// Renders the built-in box (every diffuse reflectance set to `albedo` when given) with 65536
+// photons of two bounces; returns the valid hits and the map's room, in hits.
+struct MapRoom {
+  uint64_t hits = 0, room = 0;
+};
+
+MapRoom render_and_measure_map(float albedo) {
   std::unique_ptr<Device> device = test::open_first_device("opencl");
-  ASSERT_NE(device, nullptr);
+  if (!device) throw std::runtime_error("no OpenCL device");
   PhotonSettings photons;
   photons.photons = 65536;
   photons.bounces = 2;
   photons.smoothing = 8;
   RenderSettings settings = test::photon_render_settings(photons);
   settings.width = settings.height = 32;
-  const Scene scene = builtin_cornell_box();
+  Scene scene = builtin_cornell_box();
+  if (albedo > 0)
+    for (MaterialDesc& m : scene.materials) m.diffuse = Float3{albedo, albedo, albedo};
   Renderer renderer(*device, scene, settings);
   // Before the first pass no map is held; the checks count one for 5/4 of the photons (no more
-  // than the 2 records of each photon).
-  const uint64_t held_before = device->allocated_bytes();
-  EXPECT_EQ(device->needed_bytes() - held_before, 81920 * kMapBytesPerHit);
+  // than the records of each photon).
+  const uint64_t counted = 81920 * kMapBytesPerHit;
+  EXPECT_EQ(renderer.buffers()[BufferSlot::map_center].bytes(), 0u);
+  EXPECT_EQ(device->needed_bytes() - device->allocated_bytes(), counted);
   FrameStats stats;
   renderer.render_frame(0, &stats);
-  const uint64_t hits = uint64_t(stats.method.get("hits"));
-  ASSERT_GT(hits, 20000u);
-  ASSERT_LT(hits, 65536u) << "the box's photons record fewer valid hits than there are photons";
-  // Room for 5/4 of the hits recorded, and the sort's scratch beside it.
-  const uint64_t map = hits * 5 / 4 * kMapBytesPerHit;
-  const uint64_t grown = device->allocated_bytes() - held_before;
-  EXPECT_GE(grown, map);
-  EXPECT_LT(grown, map + (1u << 20));
-  // The checks still count the map the photons could need.
-  EXPECT_EQ(device->needed_bytes() - device->allocated_bytes(), 81920 * kMapBytesPerHit - map);
+  MapRoom r;
+  r.hits = uint64_t(stats.method.get("hits"));
+  r.room = renderer.buffers()[BufferSlot::map_center].bytes() / sizeof(float4);
+  // The checks still count the map the photons could need, less what is held.
+  const uint64_t held = r.room * kMapBytesPerHit;
+  EXPECT_EQ(device->needed_bytes() - device->allocated_bytes(), held < counted ? counted - held : 0);
+  return r;
+}
+
+TEST(HitSlots, ThePhotonMapIsSizedByTheHitsAPassRecords) {
+  // The box as it is: fewer valid hits than photons, room for 5/4 of them.
+  const MapRoom dark = render_and_measure_map(0);
+  ASSERT_GT(dark.hits, 20000u);
+  ASSERT_LT(dark.hits, 65536u) << "the box's photons record fewer valid hits than there are photons";
+  EXPECT_EQ(dark.room, dark.hits * 5 / 4);
+  // Brighter walls: more valid hits than photons but within the 5/4 of them the checks counted:
+  // the map keeps that room and no more.
+  const MapRoom bright = render_and_measure_map(0.85f);
+  ASSERT_GT(bright.hits, 65536u);
+  ASSERT_LE(bright.hits, 81920u);
+  EXPECT_EQ(bright.room, 81920u);
+  // Brighter still: more than 5/4 of the photons; the map grows to 5/4 of the hits, up to the
+  // two records of each photon.
+  const MapRoom brightest = render_and_measure_map(1.0f);
+  ASSERT_GT(brightest.hits, 81920u);
+  EXPECT_EQ(brightest.room, std::min<uint64_t>(brightest.hits * 5 / 4, 131072u));
+  std::printf("valid hits of 65536 photons: %llu, %llu, %llu; map room %llu, %llu, %llu\n",
+              (unsigned long long)dark.hits, (unsigned long long)bright.hits, (unsigned long long)brightest.hits,
+              (unsigned long long)dark.room, (unsigned long long)bright.room, (unsigned long long)brightest.room);
 }
 
 }  // namespace
