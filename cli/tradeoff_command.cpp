@@ -95,11 +95,11 @@ FrameImage make_reference(const TradeoffOptions& o, Device& device, const Scene&
   for (uint32_t i = 0; i < half; ++i) renderer.run_pass();
   FrameImage first_half;
   if (half > 0) {
-    renderer.resolve();
+    renderer.wait();
     first_half = renderer.read_image();
   }
   for (uint32_t i = half; i < o.reference_passes; ++i) renderer.run_pass();
-  renderer.resolve();
+  renderer.wait();
   FrameImage image = renderer.read_image();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (half > 0 && 2 * half == o.reference_passes) {

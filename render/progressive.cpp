@@ -44,11 +44,11 @@ ProgressiveResult render_progressive(Renderer& renderer, int frame, const PassBu
     }
     if (budget.checkpoint_every > 0 && report.passes % budget.checkpoint_every == 0 && report.passes < cap &&
         callbacks.checkpoint) {
-      renderer.resolve();
+      renderer.wait();
       callbacks.checkpoint(report);
     }
   }
-  renderer.resolve();
+  renderer.wait();
   result.passes = renderer.passes_done();
   result.error = renderer.estimate_error(true);  // the control topped up to its paths
   result.seconds = seconds();

@@ -1,5 +1,5 @@
 // Frame orchestration over the Device interface: scene upload once, then per frame the camera
-// pass, the method's passes into the film sums, the film resolve, and the read-back into a
+// pass, the method's passes into the film sums, and the read-back, which resolves the film, into a
 // FrameImage with its layers.
 #include "render/renderer.h"
 
@@ -206,7 +206,6 @@ std::vector<StageInfo> Renderer::stages() const {
                   "primary + one shadow ray per light per pixel (mirror rays not counted)"});
   if (method_)
     for (StageInfo& s : method_->stages(frame_)) list.push_back(std::move(s));
-  list.push_back({"film", pixels, "pixels/s", "pixels resolved (no read-back)"});
   return list;
 }
 
@@ -421,16 +420,6 @@ void Renderer::add_film_sums(const FilmSums& other) {
   next_pass_ = next;
 }
 
-void Renderer::resolve() {
-  buffers_.bind_all();  // as in run_pass
-  LaunchParams p = frame_.params;
-  p.film_passes = passes_done_ > 0 ? passes_done_ : 1u;
-  {
-    StageScope scope(frame_.timer, "film");
-    device_.launch(KernelId::film_resolve, p.width * p.height, p);
-  }
-  device_.synchronize();
-}
 
 void Renderer::render(int frame, FrameStats* stats) {
   const auto start = std::chrono::steady_clock::now();
@@ -440,7 +429,7 @@ void Renderer::render(int frame, FrameStats* stats) {
     const uint32_t passes = cap > 0 && cap < settings_.passes ? cap : settings_.passes;
     for (uint32_t i = 0; i < passes; ++i) run_pass();
   }
-  resolve();  // waits for the device: the host wall time below is the frame's real time
+  wait();  // the host wall time below is the frame's real time
   const auto end = std::chrono::steady_clock::now();
   if (stats) {
     stats->render_ms = std::chrono::duration<double, std::milli>(end - start).count();
@@ -464,26 +453,31 @@ FrameImage Renderer::read_image(FrameStats* stats) {
     device_.download(buffers_[slot], data.data(), pixels * sizeof(float4));
     return data;
   };
-  const std::vector<float4> combined = layer(BufferSlot::film_combined);
-  int repaired = 0;
-  for (const float4& px : combined) repaired += px.w != 0.0f;
-  // The indirect and caustic layers resolved here, as the resolve resolves them (film.h), black
-  // where it repaired the pixel.
+  // The film resolved here (film.h, film_combine): the sums over the passes, and a pixel whose
+  // combined value is not finite black in every layer and counted.
+  std::vector<float4> direct = layer(BufferSlot::film_direct), indirect = layer(BufferSlot::film_indirect_sum),
+                      caustic = layer(BufferSlot::film_caustic_sum), combined(pixels);
   const uint32_t passes = passes_done_ > 0 ? passes_done_ : 1u;
-  auto resolved = [&](BufferSlot sum_slot) {
-    std::vector<float4> sums = layer(sum_slot);
-    for (size_t i = 0; i < pixels; ++i)
-      sums[i] = combined[i].w != 0.0f ? float4{0, 0, 0, 0} : vec3_to_float4(film_resolved(sums[i], passes), 0.0f);
-    return sums;
-  };
+  int repaired = 0;
+  for (size_t i = 0; i < pixels; ++i) {
+    Vec3 sum;
+    if (film_combine(direct[i], indirect[i], caustic[i], passes, &sum)) {
+      combined[i] = vec3_to_float4(sum, 0.0f);
+      indirect[i] = vec3_to_float4(film_resolved(indirect[i], passes), 0.0f);
+      caustic[i] = vec3_to_float4(film_resolved(caustic[i], passes), 0.0f);
+    } else {
+      combined[i] = direct[i] = indirect[i] = caustic[i] = float4{0, 0, 0, 0};
+      ++repaired;
+    }
+  }
 
   FrameImage image;
   image.width = width_;
   image.height = height_;
   image.layers.push_back(ImageLayer{"", rgb_from_float4(combined)});
-  image.layers.push_back(ImageLayer{"direct", rgb_from_float4(layer(BufferSlot::film_direct))});
-  image.layers.push_back(ImageLayer{"indirect", rgb_from_float4(resolved(BufferSlot::film_indirect_sum))});
-  image.layers.push_back(ImageLayer{"caustic", rgb_from_float4(resolved(BufferSlot::film_caustic_sum))});
+  image.layers.push_back(ImageLayer{"direct", rgb_from_float4(direct)});
+  image.layers.push_back(ImageLayer{"indirect", rgb_from_float4(indirect)});
+  image.layers.push_back(ImageLayer{"caustic", rgb_from_float4(caustic)});
   if (!settings_.layers.empty())
     add_film_layers(image, settings_.layers, layer(BufferSlot::film_albedo), layer(BufferSlot::film_normal),
                     layer(BufferSlot::film_position));

@@ -80,18 +80,17 @@ class Renderer {
   ~Renderer();
 
   // Renders the scene as it is at `frame` (its tracks evaluated at frame / frame_rate): the
-  // camera pass, settings.passes method passes, the film resolve, and (render_frame) the
-  // read-back. The result depends on the frame number only, never on which frames this
+  // camera pass, settings.passes method passes, and (render_frame) the read-back, which
+  // resolves the film. The result depends on the frame number only, never on which frames this
   // Renderer rendered before.
   FrameImage render_frame(int frame, FrameStats* stats = nullptr);
   void render(int frame, FrameStats* stats = nullptr);
 
   // The same frame in steps, for callers that decide the pass count as they go: begin_frame
-  // (camera pass, film sums cleared), run_pass any number of times, resolve (film normalised;
-  // waits for the device). resolve may be called between passes to look at the image so far.
+  // (camera pass, film sums cleared), run_pass any number of times, read_image (the film
+  // resolved over the passes so far) at any point between passes.
   void begin_frame(int frame);
   void run_pass();
-  void resolve();
   uint32_t passes_done() const { return passes_done_; }
   // Waits until the device has finished everything launched so far.
   void wait() { device_.synchronize(); }
@@ -131,8 +130,8 @@ class Renderer {
   FilmSums film_sums();
   void set_film_sums(const FilmSums& sums);
   void add_film_sums(const FilmSums& sums);
-  // The film of the last resolve: layers combined, direct, indirect and caustic, then the
-  // extra layers settings.layers asks for (their order in film_layers.cpp).
+  // The film over the passes so far, resolved (film_combine): layers combined, direct, indirect
+  // and caustic, then the extra layers settings.layers asks for (their order in film_layers.cpp).
   FrameImage read_image(FrameStats* stats = nullptr);
 
   // Benchmarks attach a timer to get per-stage device times; null (the default) records nothing.

@@ -103,7 +103,7 @@ ProgressiveResult RendererPool::render_progressive(int frame, const PassBudget& 
   // The other devices' passes added into the first device's film, in device order.
   for (size_t d = 1; d < renderers_.size(); ++d)
     if (renderers_[d]->passes_done() > 0) first().add_film_sums(renderers_[d]->film_sums());
-  first().resolve();
+  first().wait();
   result.passes = first().passes_done();
   result.error = first().estimate_error(true);
   result.seconds = seconds();

@@ -1,5 +1,5 @@
 // Per-stage device timing for benchmarks: records device timer events around each named stage
-// of a frame and sums them per stage. Stage names are the renderer's ("camera", "film") and the
+// of a frame and sums them per stage. Stage names are the renderer's ("camera") and the
 // method's own; nothing here knows which method runs. Attached only by `pmrender bench` and
 // `tradeoff`: a render without a timer records no events and adds no synchronisation.
 #pragma once

@@ -45,8 +45,6 @@
   X(frame, float4, film_caustic_sum, pixels, 1)                                                             \
   X(frame, float4, film_odd_sum, pixels, 1)   /* indirect + caustic of the odd passes: the error estimate */\
   X(frame, float4, film_error_partials, error_tiles, 1) /* per tile: (sum |even - odd|, sum |all|, 0, 0) */ \
-  X(frame, float4, film_combined, pixels, 1)  /* resolved: direct + (indirect + caustic sums) / passes; */  \
-                                              /* w = 1: repaired pixel (the host resolves the layers) */    \
   /* extra layers (film_layers.h), allocated only when asked for: layer_pixels is 0 otherwise */            \
   X(frame, float4, film_albedo, layer_pixels, 1)   /* rgb albedo, w = first hit's material (int bits) */    \
   X(frame, float4, film_normal, layer_pixels, 1)   /* xyz normal, w = depth (camera to first hit) */        \

@@ -1,10 +1,11 @@
 /* Stage S7, the film: the direct layer is written once per frame by the camera pass; the methods'
    passes add their indirect and caustic estimates into film_indirect_sum and film_caustic_sum
-   (weight 1 each). The resolve normalises: each sum divided by the number of passes
-   (film_resolved), combined = direct + indirect + caustic. It is also the last guard of the "no
-   NaN or Inf in an image" rule: a non-finite pixel becomes black in every output layer and is
-   counted, so the host can report it instead of writing a corrupt image. The sums stay
-   untouched, so more passes can follow a resolve.
+   (weight 1 each). The host resolves the film when it reads it back (Renderer::read_image,
+   film_combine): each sum divided by the number of passes (film_resolved), combined = direct +
+   indirect + caustic, so the device keeps no resolved copy of any layer. That is also the last
+   guard of the "no NaN or Inf in an image" rule: a non-finite pixel becomes black in every
+   output layer and is counted, so the host can report it instead of writing a corrupt image. The
+   sums stay untouched, so more passes can follow a read.
 
    The error estimate: odd passes also go into film_odd_sum, so the mean of the even passes and
    the mean of the odd passes are two independent estimates of the same image. Their difference
@@ -18,26 +19,19 @@
 
 PM_DEVICE int film_finite(float4 v) { return pm_isfinite(v.x) && pm_isfinite(v.y) && pm_isfinite(v.z); }
 
-/* A film sum resolved: divided by the pass count (at least 1). The resolve combines with it here;
-   the host resolves the indirect and caustic layers with it when it reads them back
-   (Renderer::read_image), so the device keeps no resolved copy of either. */
+/* A film sum resolved: divided by the pass count (at least 1). */
 PM_DEVICE Vec3 film_resolved(float4 sum, uint passes)
 {
   return vec3_scale(vec3_from_float4(sum), 1.0f / (float)(passes > 0u ? passes : 1u));
 }
 
-PM_DEVICE void kernel_film_resolve(const KernelGlobals* kg, const LaunchParams* p, uint pixel)
+/* A pixel resolved over `passes`: its combined value direct + indirect + caustic in *combined;
+   returns 0 when that is not finite, and the pixel is then to be black in every layer. */
+PM_DEVICE int film_combine(float4 direct, float4 indirect_sum, float4 caustic_sum, uint passes, Vec3* combined)
 {
-  Vec3 direct = vec3_from_float4(kg->film_direct[pixel]);
-  Vec3 indirect = film_resolved(kg->film_indirect_sum[pixel], p->film_passes);
-  Vec3 caustic = film_resolved(kg->film_caustic_sum[pixel], p->film_passes);
-  float4 sum = vec3_to_float4(vec3_add(vec3_add(direct, indirect), caustic), 0.0f);
-  if (!film_finite(sum)) {
-    kg->film_direct[pixel] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, 0.0f);
-    sum = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, 1.0f); /* w marks the pixel as repaired: black in every
-                                                     layer, and the host counts these */
-  }
-  kg->film_combined[pixel] = sum;
+  *combined = vec3_add(vec3_add(vec3_from_float4(direct), film_resolved(indirect_sum, passes)),
+                       film_resolved(caustic_sum, passes));
+  return film_finite(vec3_to_float4(*combined, 0.0f));
 }
 
 /* A pass's estimate at a pixel added to the film sums (one work item per pixel: no atomics). */

@@ -19,7 +19,6 @@
   K(knn_gather)        /* S6 for knn: the k nearest photons over their region's covered area */ \
   K(final_gather)      /* S6 with final gathering: rays from every shading point, the map at their hits */ \
   K(path_trace)        /* path tracer: paths from every shading point into film_indirect_sum */ \
-  K(film_resolve)      /* S7: sums / passes; combined = direct + indirect + caustic, NaN guard */\
   K(film_layers)       /* S7: albedo, normal, depth, position, ids from the shading points */  \
   K(film_error_tiles)  /* S7: per-tile sums for the error estimate from even and odd passes */ \
   K(bias_control)      /* S7: paths at sparse control pixels beside the film, for the error's bias */ \

@@ -359,7 +359,7 @@ TEST(Extremes, PhotonsBeyond2To32PerFrameDrawTheirOwnRandomStreams) {
   auto pass_image = [&](uint32_t pass) {
     renderer.begin_frame(0);
     renderer.run_pass(pass);
-    renderer.resolve();
+    renderer.wait();
     return renderer.read_image().find("indirect")->rgb;
   };
   const std::vector<float> first = pass_image(0), wrapped = pass_image(65536), next = pass_image(1);
@@ -441,8 +441,8 @@ TEST(ExtremesKernels, GrazingTransferAndDegenerateDifferentialsStayFinite) {
 }
 
 // The film's last guard: a pixel whose sums are not finite comes out black in every layer and
-// counted, the other pixels resolved as sums over passes (the host resolves the indirect and
-// caustic layers, Renderer::read_image; the device the combined one, film.h).
+// counted, the other pixels resolved as sums over passes (the host resolves the film when it reads
+// it back: Renderer::read_image, film.h).
 TEST(Extremes, ANonFiniteFilmSumIsRepairedBlackInEveryLayer) {
   RenderSettings settings = photons(20000);
   settings.width = settings.height = 8;
@@ -460,7 +460,7 @@ TEST(Extremes, ANonFiniteFilmSumIsRepairedBlackInEveryLayer) {
   sums.passes = 2;
   sums.odd_passes = 1;
   renderer.set_film_sums(sums);
-  renderer.resolve();
+  renderer.wait();
   FrameStats stats;
   const FrameImage image = renderer.read_image(&stats);
   EXPECT_EQ(stats.repaired_pixels, 2);
