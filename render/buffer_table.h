@@ -30,7 +30,8 @@ struct BufferExtents {
   uint64_t error_tiles = 0;     // pixels / PM_FILM_ERROR_TILE, rounded up
   uint64_t layer_pixels = 0;    // pixels when the film's extra layers are asked for, else 0
   uint64_t control_pixels = 0;  // the bias control's pixels (render/bias_control.h)
-  uint64_t hit_slots = 0;       // photons per pass * hit records per photon
+  uint64_t hit_slots = 0;       // photons per pass * hit slots per photon
+  uint64_t hit_records = 0;     // valid hits whose records the trace has room for (grown as needed)
   uint64_t map_hits = 0;        // valid hits the photon map holds room for (grown as needed)
   uint64_t bounds_tiles = 0;    // hit slots / PM_PHOTON_MAP_BOUNDS_TILE, rounded up
   uint64_t counters = 1;        // small fixed-size counter arrays

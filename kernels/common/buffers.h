@@ -55,12 +55,15 @@
   X(frame, float4, control_partials, control_pixels, PM_CONTROL_LANES) /* per lane of a launch, as control_sums */ \
   /* photon mapping, S1 emitters: per light (first photon of the pass, photon count, 0, 0) */              \
   X(photon, uint4, photon_emitters, uploaded, 1)                                                            \
-  /* photon mapping, S2 hits: slot order [photon * hit_slots_per_photon + k] */                            \
-  X(photon, float4, hit_position, hit_slots, 1)  /* xyz, w = PM_HIT_* flags as uint bits, 0: no hit */    \
-  X(photon, float4, hit_normal, hit_slots, 1)    /* xyz facing the photon's side, w = flux red (watts) */   \
-  X(photon, float4, hit_incident, hit_slots, 1)  /* xyz unit direction back to its origin, w = Delta */     \
-  X(photon, float4, hit_dp_u, hit_slots, 1)      /* positional differentials (eq. 8 scaling), w = green */  \
-  X(photon, float4, hit_dp_v, hit_slots, 1)      /* w = flux blue */                                        \
+  /* photon mapping, S2 hits: per slot [photon * hit_slots_per_photon + k] the position and where the */   \
+  /* rest of the hit is recorded; per record (photon_trace.h: only valid hits have one) the rest */       \
+  X(photon, float4, hit_position, hit_slots, 1)  /* xyz, w = PM_HIT_* flags | record << PM_HIT_RECORD_SHIFT */\
+                                                 /* as uint bits, 0: no hit */                              \
+  X(photon, float4, hit_normal, hit_records, 1)  /* xyz facing the photon's side, w = flux red (watts) */   \
+  X(photon, float4, hit_incident, hit_records, 1) /* xyz unit direction back to its origin, w = Delta */    \
+  X(photon, float4, hit_dp_u, hit_records, 1)    /* positional differentials (eq. 8 scaling), w = green */  \
+  X(photon, float4, hit_dp_v, hit_records, 1)    /* w = flux blue */                                        \
+  X(photon, uint, hit_record_count, counters, 2) /* [0] records the trace took (atomic), [1] their room */ \
   /* photon mapping, S3 footprints and S4 photon map: the valid hits in sorted order */                     \
   X(photon, float4, map_partials, bounds_tiles, 2) /* per tile: (lo, area sum), (hi, count) */              \
   X(photon, float4, map_nodes, map_hits, 4)   /* 4 float4 per inner node, photon_map.h */                  \

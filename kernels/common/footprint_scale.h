@@ -10,6 +10,7 @@
 #include "footprint.h"
 #include "kernel_globals.h"
 #include "photon_map.h"
+#include "photon_trace.h"
 
 /* Work item = tile of PM_PHOTON_MAP_BOUNDS_TILE slots. Writes map_partials[2 tile] =
    (area sum at s = 1, 0, 0, 0); [2 tile + 1] is left alone. */
@@ -20,11 +21,13 @@ PM_DEVICE void kernel_photon_footprint_scale(const KernelGlobals* kg, const Laun
   uint end = pm_min_u(begin + PM_PHOTON_MAP_BOUNDS_TILE, slots);
   float area = 0.0f;
   for (uint i = begin; i < end; ++i) {
-    uint flags = PM_AS_UINT(kg->hit_position[i].w);
+    float w = kg->hit_position[i].w;
+    uint flags = PM_AS_UINT(w);
     if ((flags & PM_HIT_VALID) == 0u || (flags & PM_HIT_CAUSTIC) != 0u) continue;
-    float delta = kg->hit_incident[i].w;
-    Vec3 a_u = footprint_semiaxis(vec3_from_float4(kg->hit_dp_u[i]), delta, 1.0f, PM_FOOTPRINT_FAR, 0);
-    Vec3 a_v = footprint_semiaxis(vec3_from_float4(kg->hit_dp_v[i]), delta, 1.0f, PM_FOOTPRINT_FAR, 0);
+    uint record = photon_hit_record(w);
+    float delta = kg->hit_incident[record].w;
+    Vec3 a_u = footprint_semiaxis(vec3_from_float4(kg->hit_dp_u[record]), delta, 1.0f, PM_FOOTPRINT_FAR, 0);
+    Vec3 a_v = footprint_semiaxis(vec3_from_float4(kg->hit_dp_v[record]), delta, 1.0f, PM_FOOTPRINT_FAR, 0);
     float a = PM_PI * vec3_length(vec3_cross(a_u, a_v));
     if (!pm_isfinite(a)) continue;
     area += a;

@@ -21,10 +21,9 @@
    region is its own, knn_gather.h). (The radius
    estimator keeps its sphere: a flat disc cut by a curved surface loses the ring near its rim,
    -10 % in the closed diffuse sphere of tests/opencl/analytic_sphere_test.cpp.) */
-PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p, uint slot)
+PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p, uint flags, uint record)
 {
-  float4 n4 = kg->hit_normal[slot];
-  Vec3 n = vec3_from_float4(n4);
+  Vec3 n = vec3_from_float4(kg->hit_normal[record]);
   if (p->estimator != PM_ESTIMATOR_PD) {
     int radius = p->estimator == PM_ESTIMATOR_RADIUS;
     float r = radius ? p->gather_radius : p->rmax;
@@ -36,9 +35,9 @@ PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p
     f.axis_n = vec3_scale(n, radius ? r : PM_FOOTPRINT_NORMAL_RATIO * r);
     return f;
   }
-  int caustic = (PM_AS_UINT(kg->hit_position[slot].w) & PM_HIT_CAUSTIC) != 0u;
-  float delta = kg->hit_incident[slot].w;
-  Footprint f = footprint_from_differentials(vec3_from_float4(kg->hit_dp_u[slot]), vec3_from_float4(kg->hit_dp_v[slot]),
+  int caustic = (flags & PM_HIT_CAUSTIC) != 0u;
+  float delta = kg->hit_incident[record].w;
+  Footprint f = footprint_from_differentials(vec3_from_float4(kg->hit_dp_u[record]), vec3_from_float4(kg->hit_dp_v[record]),
                                              n, delta, p->smoothing, p->rmax, caustic);
   if (p->footprint_thickness > 0.0f) footprint_set_thickness(&f, p->footprint_thickness);
   return f;
@@ -55,9 +54,10 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
 {
   uint slot = kg->sorted_slots[k];
   float4 position = kg->hit_position[slot];
+  uint hit_flags = PM_AS_UINT(position.w) & PM_HIT_SLOT_FLAGS, record = photon_hit_record(position.w);
   Vec3 center = vec3_from_float4(position);
-  Vec3 normal = vec3_normalize(vec3_from_float4(kg->hit_normal[slot]));
-  Footprint f = hit_footprint(kg, p, slot);
+  Vec3 normal = vec3_normalize(vec3_from_float4(kg->hit_normal[record]));
+  Footprint f = hit_footprint(kg, p, hit_flags, record);
   /* Progressive shrink (docs/progressive.md): every footprint of this pass scaled alike (knn's
      reach is r_max, which the host already shrank). */
   if (p->estimator != PM_ESTIMATOR_KNN) {
@@ -82,7 +82,7 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     coverage = footprint_covered_share(kg, &f, &cut, center, normal,
                                        ray_offset_distance(center, 0.0f, p->ray_epsilon), turn, p->kernel_shape,
                                        p->facet_weighting ? PM_COVERAGE_LIT_AREA : PM_COVERAGE_CELLS,
-                                       vec3_from_float4(kg->hit_incident[slot]));
+                                       vec3_from_float4(kg->hit_incident[record]));
   }
   Vec3 lo, hi;
   footprint_bounds(f, center, &lo, &hi);
@@ -96,7 +96,7 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
   Vec3 c_vn = vec3_cross(f.axis_v, f.axis_n), c_nu = vec3_cross(f.axis_n, f.axis_u), c_uv = vec3_cross(f.axis_u, f.axis_v);
   float det = vec3_dot(f.axis_u, c_vn);
   float inv_det = det != 0.0f && pm_isfinite(det) ? 1.0f / det : 0.0f; /* singular: contains nothing */
-  Vec3 flux = photon_hit_flux(kg, slot);
+  Vec3 flux = photon_hit_flux(kg, record);
   Vec3 power = area > 0.0f && spread > 0.0f ? vec3_scale(flux, 1.0f / spread) : vec3_splat(0.0f);
   if (inv_det == 0.0f || !pm_isfinite(power.x + power.y + power.z)) {
     power = vec3_splat(0.0f);
@@ -108,7 +108,7 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     power = flux;
     area = 0.0f; /* no footprint area: T_auto stays at 1 for the knn map, as before clipping */
   }
-  uint flags = PM_AS_UINT(position.w) | (cut.t[1] < 1.0f ? PM_HIT_SECOND_CUT : 0u);
+  uint flags = hit_flags | (cut.t[1] < 1.0f ? PM_HIT_SECOND_CUT : 0u);
   kg->map_lo[k] = vec3_to_float4(lo, area);
   kg->map_hi[k] = vec3_to_float4(hi, 0.0f);
   kg->map_center[k] = vec3_to_float4(center, PM_UINT_AS_FLOAT(flags));
@@ -117,7 +117,7 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
   kg->map_row_n[k] = vec3_to_float4(vec3_scale(c_uv, inv_det), cut.t[0]);
   kg->map_cut[k] = PM_MAKE_FLOAT4(cut.mu[1], cut.mv[1], cut.t[1], 0.0f);
   kg->map_power[k] = vec3_to_float4(power, 0.0f);
-  kg->map_incident[k] = kg->hit_incident[slot];
+  kg->map_incident[k] = kg->hit_incident[record];
 }
 
 #endif

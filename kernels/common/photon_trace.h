@@ -53,22 +53,39 @@ PM_DEVICE int photon_glossy_reemit(PhotonRay* ray, Vec3 n, float exponent, float
   return vec3_dot(ray->direction, nf) > 0.0f;
 }
 
+/* A hit: its position in its slot, the rest in a record of its own. Most slots stay empty (a
+   photon is absorbed or leaves before it fills its slots: three in four on Sponza), so the
+   records are taken as hits come, by an atomic counter, and the slot says which record is its
+   own; everything after the trace reads in slot order, so the image does not depend on the
+   order the records were taken in. Four float4 a record: the flux rides in the w of the normal
+   and the differentials (buffers.h). A hit beyond the records' room keeps an empty slot: the
+   host sees the count over the room, grows the records and traces the pass again. */
 PM_DEVICE void photon_store_hit(const KernelGlobals* kg, uint slot, const PhotonRay* ray, Vec3 n, Vec3 flux, float delta,
                                 uint flags)
 {
+  uint record = pm_atomic_add_u32(&kg->hit_record_count[0], 1u);
+  if (record >= kg->hit_record_count[1]) {
+    kg->hit_position[slot] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_UINT_AS_FLOAT(0u));
+    return;
+  }
   if (vec3_dot(n, ray->direction) > 0.0f) n = vec3_neg(n); /* the side the photon arrived on */
-  /* Five float4: the flux rides in the w of the normal and the differentials (buffers.h). */
-  kg->hit_position[slot] = vec3_to_float4(ray->origin, PM_UINT_AS_FLOAT(flags));
-  kg->hit_normal[slot] = vec3_to_float4(n, flux.x);
-  kg->hit_incident[slot] = vec3_to_float4(vec3_neg(ray->direction), delta);
-  kg->hit_dp_u[slot] = vec3_to_float4(ray->dp_u, flux.y);
-  kg->hit_dp_v[slot] = vec3_to_float4(ray->dp_v, flux.z);
+  kg->hit_position[slot] = vec3_to_float4(ray->origin, PM_UINT_AS_FLOAT(flags | (record << PM_HIT_RECORD_SHIFT)));
+  kg->hit_normal[record] = vec3_to_float4(n, flux.x);
+  kg->hit_incident[record] = vec3_to_float4(vec3_neg(ray->direction), delta);
+  kg->hit_dp_u[record] = vec3_to_float4(ray->dp_u, flux.y);
+  kg->hit_dp_v[record] = vec3_to_float4(ray->dp_v, flux.z);
 }
 
-/* The flux a hit record carries (photon_store_hit). */
-PM_DEVICE Vec3 photon_hit_flux(const KernelGlobals* kg, uint slot)
+/* The record of the hit in a slot whose position's w is `position_w` (photon_store_hit). */
+PM_DEVICE uint photon_hit_record(float position_w)
 {
-  return vec3(kg->hit_normal[slot].w, kg->hit_dp_u[slot].w, kg->hit_dp_v[slot].w);
+  return PM_AS_UINT(position_w) >> PM_HIT_RECORD_SHIFT;
+}
+
+/* The flux a hit record carries. */
+PM_DEVICE Vec3 photon_hit_flux(const KernelGlobals* kg, uint record)
+{
+  return vec3(kg->hit_normal[record].w, kg->hit_dp_u[record].w, kg->hit_dp_v[record].w);
 }
 
 PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* p, uint photon)

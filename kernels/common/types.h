@@ -67,9 +67,12 @@ typedef struct CameraParams {
   float4 up;
 } CameraParams;
 
-/* Photon hit flags, stored as uint bits in the w of hit_position and map_center. */
+/* Photon hit flags, stored as uint bits in the w of hit_position and map_center; hit_position's w
+   also holds the index of the hit's record above PM_HIT_RECORD_SHIFT (photon_trace.h). */
 #define PM_HIT_VALID 1u
 #define PM_HIT_CAUSTIC 2u /* path from the light was specular only */
+#define PM_HIT_SLOT_FLAGS 3u /* the flags a hit slot carries */
+#define PM_HIT_RECORD_SHIFT 2u
 #define PM_HIT_SECOND_CUT 4u /* footprint data: the footprint has a second cut (footprint_clip.h) */
 
 /* Density estimators (--estimator) and kernel shapes (--kernel) of the gather. */

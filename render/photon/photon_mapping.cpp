@@ -44,7 +44,7 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
     : device_(context.device),
       buffers_(context.buffers),
       settings_(settings.resolved(context.measures)),
-      map_promise_(context.device) {
+      growth_promise_(context.device) {
   settings_.validate();
   scene_area_ = context.measures.surface_area;
   photons_per_pass_ = uint32_t(settings_.photons);
@@ -52,10 +52,12 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
   shading_points_ = context.shading_points;
   extents_.hit_slots = hit_slots();
   extents_.bounds_tiles = (extents_.hit_slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
-  buffers_.allocate(BufferGroup::photon, extents_);
-  // The map is allocated by the first pass, for the hits it records (reserve_map); until then the
-  // memory checks count it at the size it had to be when it was reserved for the photons.
-  map_promise_.set(map_bytes(expected_most_hits()));
+  // The hit records start with room for 5/8 of the photons' hits (Sponza and Sibenik record about
+  // half a valid hit per photon); a pass that records more traces again with more room. The map
+  // is allocated by the first pass, for the hits it records (reserve_map). Until they grow, the
+  // memory checks count both at the room of 5/4 of the photons' hits.
+  extents_.hit_records = std::min<uint64_t>(uint64_t(photons_per_pass_) * 5 / 8, hit_slots());
+  resize_growing_buffers();
   area_power_ = build_scene_emitters(context.scene).power_rgb_sum;
   environment_power_ = environment_power_rgb_sum(context.scene.environment, context.measures);
   share_photons(context.scene.lights);
@@ -179,10 +181,11 @@ void PhotonMapping::gather(const LaunchParams& params, StageTimer* timer) {
   device_.launch(gather, pixel_work_items(params.width, params.height), params);
 }
 
-uint64_t PhotonMapping::map_bytes(uint64_t hits) const {
+uint64_t PhotonMapping::growing_bytes(uint64_t map_hits, uint64_t hit_records) const {
   BufferExtents with = extents_, without = extents_;
-  with.map_hits = hits;
-  without.map_hits = 0;
+  with.map_hits = map_hits;
+  with.hit_records = hit_records;
+  without.map_hits = without.hit_records = 0;
   return buffer_group_bytes(BufferGroup::photon, with) - buffer_group_bytes(BufferGroup::photon, without);
 }
 
@@ -190,22 +193,34 @@ uint32_t PhotonMapping::expected_most_hits() const {
   return uint32_t(std::min<uint64_t>(uint64_t(photons_per_pass_) * 5 / 4, hit_slots()));
 }
 
-void PhotonMapping::reserve_map(uint32_t hits) {
-  if (hits <= map_capacity_) return;
-  // Room for the valid hits of this pass, with a margin so that passes of about the same count
-  // do not reallocate, but no more than the map the checks counted while the hits fit in it; the
-  // hit records (slot-sized) stay as they are. Sized by the hits, not the photons: most photons
-  // of a pass record fewer hits than their slots (Sponza about one valid hit per two photons,
+uint32_t PhotonMapping::room_for(uint32_t hits) const {
+  // A margin so that passes of about the same count do not reallocate, but no more than the
+  // checks counted while the hits fit in it. Sized by the hits, not the photons: most photons of
+  // a pass record fewer hits than their slots (Sponza about one valid hit per two photons,
   // docs/benchmarks.md).
   uint64_t room = uint64_t(hits) * 5 / 4;
   if (hits <= expected_most_hits()) room = std::min<uint64_t>(room, expected_most_hits());
-  map_capacity_ = uint32_t(std::min<uint64_t>(room, hit_slots()));
-  BufferExtents extents = extents_;
-  extents.map_hits = map_capacity_;
-  buffers_.allocate(BufferGroup::photon, extents);
+  return uint32_t(std::min<uint64_t>(room, hit_slots()));
+}
+
+void PhotonMapping::resize_growing_buffers() {
+  buffers_.allocate(BufferGroup::photon, extents_);
   buffers_.bind_all();
-  const uint64_t held = map_bytes(map_capacity_), expected = map_bytes(expected_most_hits());
-  map_promise_.set(expected > held ? expected - held : 0);
+  const uint64_t held = growing_bytes(extents_.map_hits, extents_.hit_records);
+  const uint64_t expected = growing_bytes(expected_most_hits(), expected_most_hits());
+  growth_promise_.set(expected > held ? expected - held : 0);
+}
+
+void PhotonMapping::reserve_map(uint32_t hits) {
+  if (hits <= extents_.map_hits) return;
+  extents_.map_hits = room_for(hits);
+  resize_growing_buffers();
+}
+
+void PhotonMapping::reserve_hit_records(uint32_t hits) {
+  if (hits <= extents_.hit_records) return;
+  extents_.hit_records = room_for(hits);
+  resize_growing_buffers();
 }
 
 // The VVH alternative to the device LBVH: the hits' footprints, computed in slot order, go to
@@ -231,24 +246,36 @@ void PhotonMapping::build_vvh_map(const LaunchParams& params) {
 // S1-S4 for one pass: leaves the photon map and its parameters in map_params_.
 void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
   const uint32_t slots = hit_slots();
-  {
-    StageScope scope(timer, "photon trace");
-    device_.launch(KernelId::photon_trace, photons_per_pass_, params);
-  }
   const uint32_t tiles = photon_map_bounds_tile_count(slots);
   std::vector<float4> partials(2 * size_t(tiles));
-  if (!(settings_.smoothing > 0)) {
-    StageScope scope(timer, "footprints");
-    params.smoothing = batch_auto_smoothing(device_, buffers_[BufferSlot::map_partials], params, tiles, scene_area_,
-                                             settings_.overlap);
-  }
-  // Bounds and count of the valid hits, per tile: one small read-back per pass.
   PhotonMapBounds bounds;
-  {
-    StageScope scope(timer, "map: morton");
-    device_.launch(KernelId::photon_reduce, tiles, params);
-    device_.download(buffers_[BufferSlot::map_partials], partials.data(), partials.size() * sizeof(float4));
-    bounds = photon_map_combine_partials(partials.data(), tiles);
+  const LaunchParams traced = params;
+  for (;;) {
+    // The records' counter and room (photon_trace.h), then the trace.
+    const uint32_t counter[2] = {0, uint32_t(extents_.hit_records)};
+    device_.upload(buffers_[BufferSlot::hit_record_count], counter, sizeof(counter));
+    {
+      StageScope scope(timer, "photon trace");
+      device_.launch(KernelId::photon_trace, photons_per_pass_, traced);
+    }
+    if (!(settings_.smoothing > 0)) {
+      StageScope scope(timer, "footprints");
+      params.smoothing = batch_auto_smoothing(device_, buffers_[BufferSlot::map_partials], traced, tiles, scene_area_,
+                                               settings_.overlap);
+    }
+    // Bounds and count of the valid hits, per tile, and the records the trace took: one small
+    // read-back per pass.
+    uint32_t records[2] = {0, 0};
+    {
+      StageScope scope(timer, "map: morton");
+      device_.launch(KernelId::photon_reduce, tiles, traced);
+      device_.download(buffers_[BufferSlot::map_partials], partials.data(), partials.size() * sizeof(float4));
+      device_.download(buffers_[BufferSlot::hit_record_count], records, sizeof(records));
+      bounds = photon_map_combine_partials(partials.data(), tiles);
+    }
+    if (records[0] <= extents_.hit_records) break;
+    // More hits than the records had room for: the same photons again, with room for them.
+    reserve_hit_records(records[0]);
   }
   params.hit_bounds_lo = bounds.lo;
   params.hit_bounds_hi = bounds.hi;

@@ -48,11 +48,16 @@ class PhotonMapping final : public IndirectMethod {
   double environment_power_ = 0;  // the environment's (render/scene_environment.h), fixed per scene
   void trace_and_build(LaunchParams params, StageTimer* timer);
   void build_vvh_map(const LaunchParams& params);
-  // Photon map buffers (sorted hits, footprints, nodes) for at least `hits` valid hits.
+  // The buffers sized by the valid hits of a pass, not its photons: the hit records and the
+  // photon map (sorted hits, footprints, nodes), each grown to room_for the hits of a pass that
+  // needs more room. Allocates extents_ and sets the promise of the growth still possible.
   void reserve_map(uint32_t hits);
-  // Bytes of the photon map's buffers with room for `hits` valid hits.
-  uint64_t map_bytes(uint64_t hits) const;
-  // The most valid hits a pass is expected to record: the map the memory checks count.
+  void reserve_hit_records(uint32_t hits);
+  void resize_growing_buffers();
+  uint32_t room_for(uint32_t hits) const;
+  // Bytes of the map and of the hit records with room for these many valid hits.
+  uint64_t growing_bytes(uint64_t map_hits, uint64_t hit_records) const;
+  // The most valid hits a pass is expected to record: the room the memory checks count.
   uint32_t expected_most_hits() const;
   void gather(const LaunchParams& params, StageTimer* timer);
 
@@ -63,10 +68,9 @@ class PhotonMapping final : public IndirectMethod {
   uint32_t photons_per_pass_ = 0;
   uint32_t slots_per_photon_ = 0;  // hit records per photon, for this scene's materials
   uint32_t shading_points_ = 0;
-  BufferExtents extents_;      // the photon group's sizes; map_hits grows with reserve_map
-  uint32_t map_capacity_ = 0;  // valid hits the photon map buffers hold room for
-  // The map at the most hits a pass is expected to record (reserve_map), less what it holds.
-  DeviceMemoryPromise map_promise_;
+  BufferExtents extents_;  // the photon group's sizes; map_hits and hit_records grow with the hits
+  // The map and the records at the most hits a pass is expected to record, less what they hold.
+  DeviceMemoryPromise growth_promise_;
 
   int photon_frame_ = 0;  // the frame number keying this frame's photons
   // The photon map on the device: valid after a pass went through, for the photons of

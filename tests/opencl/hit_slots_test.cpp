@@ -1,12 +1,12 @@
-// The photon group's memory sized by what a pass needs. Hit records by what the scene's materials
+// The photon group's memory sized by what a pass needs. Hit slots by what the scene's materials
 // allow (render/photon/photon_settings.h): a photon records a hit after each bounce, so without
-// mirror reflectance `bounces` records per photon hold every hit, and mirrors add two. Proved by
+// mirror reflectance `bounces` slots per photon hold every hit, and mirrors add two. Proved by
 // rendering the built-in Cornell box (no mirrors) and the same box with a mirror reflectance of
 // 1e-7 on every material, which no photon of the seed chooses: the second reserves two more
-// records per photon, and both must record the same hits and give the same image, bit for bit
-// (fixed smoothing: no reduction over the record layout). And the photon map by the valid hits a
-// pass records, not by its photons, while the memory checks before the first frame still count
-// the map at the most hits a pass is expected to record (DeviceMemoryPromise).
+// slots per photon, and both must record the same hits and give the same image, bit for bit
+// (fixed smoothing: no reduction over the slot layout). And the hit records and the photon map by
+// the valid hits a pass records, not by its photons, while the memory checks before the first
+// frame still count them at the most hits a pass is expected to record (DeviceMemoryPromise).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -62,21 +62,25 @@ TEST(HitSlots, AMirrorFreeSceneLosesNoHitInBounceManyRecords) {
     ASSERT_EQ(x.size(), y.size());
     EXPECT_EQ(std::memcmp(x.data(), y.data(), x.size() * sizeof(float)), 0) << "layer '" << layer << "'";
   }
-  // Five float4 per record: 80 bytes for each of the two records per photon not reserved.
-  EXPECT_GE(b.peak_bytes, a.peak_bytes + uint64_t(65536) * 2 * 80);
+  // One float4 per slot (the records are taken per valid hit): 16 bytes for each of the two slots
+  // per photon not reserved.
+  EXPECT_GE(b.peak_bytes, a.peak_bytes + uint64_t(65536) * 2 * 16);
   std::printf("peak device memory: %.1f MiB without mirrors, %.1f MiB with\n", a.peak_bytes / 1048576.0,
               b.peak_bytes / 1048576.0);
 }
 
 // A photon map entry: the tree's nodes (4 float4), its three parent and visit words, nine float4 of
 // footprint and gather data, the Morton keys and slots before and after the sort (kernels/common/
-// buffers.h): 64 + 12 + 144 + 16 bytes.
-constexpr uint64_t kMapBytesPerHit = 236;
+// buffers.h): 64 + 12 + 144 + 16 bytes. A hit record: four float4.
+constexpr uint64_t kMapBytesPerHit = 236, kRecordBytes = 64;
 
 // Renders the built-in box (every diffuse reflectance set to `albedo` when given) with 65536
-// photons of two bounces; returns the valid hits and the map's room, in hits.
+// photons of two bounces, twice; returns the valid hits, and the room of the map and of the hit
+// records, in hits. The records start with room for 40960 hits (5/8 of the photons): a pass that
+// records more traces again with more room, and the frame rendered again, with room from the
+// start, must give the same bits.
 struct MapRoom {
-  uint64_t hits = 0, room = 0;
+  uint64_t hits = 0, room = 0, records = 0;
 };
 
 MapRoom render_and_measure_map(float albedo) {
@@ -92,39 +96,51 @@ MapRoom render_and_measure_map(float albedo) {
   if (albedo > 0)
     for (MaterialDesc& m : scene.materials) m.diffuse = Float3{albedo, albedo, albedo};
   Renderer renderer(*device, scene, settings);
-  // Before the first pass no map is held; the checks count one for 5/4 of the photons (no more
-  // than the records of each photon).
-  const uint64_t counted = 81920 * kMapBytesPerHit;
+  // Before the first pass no map is held; the checks count the map and the records for 5/4 of
+  // the photons' hits (no more than the slots of each photon).
+  const uint64_t counted = 81920 * (kMapBytesPerHit + kRecordBytes);
   EXPECT_EQ(renderer.buffers()[BufferSlot::map_center].bytes(), 0u);
-  EXPECT_EQ(device->needed_bytes() - device->allocated_bytes(), counted);
+  EXPECT_EQ(renderer.buffers()[BufferSlot::hit_normal].bytes(), 40960 * sizeof(float4));
+  EXPECT_EQ(device->needed_bytes() - device->allocated_bytes(), counted - 40960 * kRecordBytes);
   FrameStats stats;
-  renderer.render_frame(0, &stats);
+  const FrameImage first = renderer.render_frame(0, &stats);
   MapRoom r;
   r.hits = uint64_t(stats.method.get("hits"));
   r.room = renderer.buffers()[BufferSlot::map_center].bytes() / sizeof(float4);
-  // The checks still count the map the photons could need, less what is held.
-  const uint64_t held = r.room * kMapBytesPerHit;
+  r.records = renderer.buffers()[BufferSlot::hit_normal].bytes() / sizeof(float4);
+  // The checks still count what the photons could need, less what is held.
+  const uint64_t held = r.room * kMapBytesPerHit + r.records * kRecordBytes;
   EXPECT_EQ(device->needed_bytes() - device->allocated_bytes(), held < counted ? counted - held : 0);
+  const FrameImage again = renderer.render_frame(0);
+  for (const char* layer : {"indirect", "caustic"}) {
+    const std::vector<float>& x = first.find(layer)->rgb;
+    const std::vector<float>& y = again.find(layer)->rgb;
+    EXPECT_EQ(std::memcmp(x.data(), y.data(), x.size() * sizeof(float)), 0) << "layer '" << layer << "'";
+  }
   return r;
 }
 
-TEST(HitSlots, ThePhotonMapIsSizedByTheHitsAPassRecords) {
-  // The box as it is: fewer valid hits than photons, room for 5/4 of them.
+TEST(HitSlots, ThePhotonMapAndTheHitRecordsAreSizedByTheHitsAPassRecords) {
+  // The box as it is: fewer valid hits than photons (but more than the records' first room),
+  // room for 5/4 of them.
   const MapRoom dark = render_and_measure_map(0);
-  ASSERT_GT(dark.hits, 20000u);
+  ASSERT_GT(dark.hits, 40960u);
   ASSERT_LT(dark.hits, 65536u) << "the box's photons record fewer valid hits than there are photons";
   EXPECT_EQ(dark.room, dark.hits * 5 / 4);
+  EXPECT_EQ(dark.records, dark.room);
   // Brighter walls: more valid hits than photons but within the 5/4 of them the checks counted:
   // the map keeps that room and no more.
   const MapRoom bright = render_and_measure_map(0.85f);
   ASSERT_GT(bright.hits, 65536u);
   ASSERT_LE(bright.hits, 81920u);
   EXPECT_EQ(bright.room, 81920u);
+  EXPECT_EQ(bright.records, 81920u);
   // Brighter still: more than 5/4 of the photons; the map grows to 5/4 of the hits, up to the
   // two records of each photon.
   const MapRoom brightest = render_and_measure_map(1.0f);
   ASSERT_GT(brightest.hits, 81920u);
   EXPECT_EQ(brightest.room, std::min<uint64_t>(brightest.hits * 5 / 4, 131072u));
+  EXPECT_EQ(brightest.records, brightest.room);
   std::printf("valid hits of 65536 photons: %llu, %llu, %llu; map room %llu, %llu, %llu\n",
               (unsigned long long)dark.hits, (unsigned long long)bright.hits, (unsigned long long)brightest.hits,
               (unsigned long long)dark.room, (unsigned long long)bright.room, (unsigned long long)brightest.room);

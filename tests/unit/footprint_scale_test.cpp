@@ -17,25 +17,34 @@
 namespace pm {
 namespace {
 
-// A batch of hit records held on the host, with the kernel's view of them.
+// A batch of hits held on the host, with the kernel's view of them: per slot the position, whose
+// w holds the flags and the index of the hit's record; the records in the reverse of slot order,
+// as an atomic counter may hand them out (photon_trace.h).
 struct HostHits {
-  std::vector<float4> position, incident, dp_u, dp_v, partials;  // position.w: the flags
+  std::vector<float4> position, incident, dp_u, dp_v, partials;
   LaunchParams params{};
   KernelGlobals kg{};
+
+  uint32_t record(size_t slot) const { return uint32_t(position.size() - 1 - slot); }
 
   HostHits(uint32_t photons, uint32_t slots_per_photon, uint32_t seed, float scale) {
     const uint32_t slots = photons * slots_per_photon;
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    position.resize(slots);
+    incident.resize(slots);
+    dp_u.resize(slots);
+    dp_v.resize(slots);
     for (uint32_t i = 0; i < slots; ++i) {
       uint32_t flags = i % 7 == 3 ? 0u : PM_HIT_VALID;  // some empty slots
       if (i % 11 == 5) flags |= PM_HIT_CAUSTIC;          // some caustic hits
+      const uint32_t r = record(i), w = flags | (r << PM_HIT_RECORD_SHIFT);
       float bits;
-      std::memcpy(&bits, &flags, 4);
-      position.push_back({0, 0, 0, bits});
-      incident.push_back({0, 0, 1, 0.01f + 0.001f * float(i % 5)});  // w: Delta
-      dp_u.push_back({scale * u(rng), scale * u(rng), 0, 0});
-      dp_v.push_back({scale * u(rng), scale * u(rng), 0, 0});
+      std::memcpy(&bits, &w, 4);
+      position[i] = {0, 0, 0, bits};
+      incident[r] = {0, 0, 1, 0.01f + 0.001f * float(i % 5)};  // w: Delta
+      dp_u[r] = {scale * u(rng), scale * u(rng), 0, 0};
+      dp_v[r] = {scale * u(rng), scale * u(rng), 0, 0};
     }
     partials.resize(2 * ((slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE));
     params.photon_count = photons;
@@ -64,10 +73,11 @@ struct HostHits {
       uint32_t flags;
       std::memcpy(&flags, &position[i].w, 4);
       if (!(flags & PM_HIT_VALID) || (flags & PM_HIT_CAUSTIC)) continue;
-      const double ax = dp_u[i].x, ay = dp_u[i].y, bx = dp_v[i].x, by = dp_v[i].y;
+      const uint32_t r = record(i);
+      const double ax = dp_u[r].x, ay = dp_u[r].y, bx = dp_v[r].x, by = dp_v[r].y;
       const double la = std::hypot(ax, ay), lb = std::hypot(bx, by);
       const double sine = std::fabs(ax * by - ay * bx) / (la * lb);
-      const double delta = incident[i].w;
+      const double delta = incident[r].w;
       sum += M_PI * delta * delta * std::pow(la, 0.25) * std::pow(lb, 0.25) * sine;
     }
     return sum;
@@ -80,8 +90,9 @@ struct HostHits {
       uint32_t flags;
       std::memcpy(&flags, &position[i].w, 4);
       if (!(flags & PM_HIT_VALID) || (flags & PM_HIT_CAUSTIC)) continue;
-      Footprint f = footprint_from_differentials(vec3_from_float4(dp_u[i]), vec3_from_float4(dp_v[i]), vec3(0, 0, 1),
-                                                 incident[i].w, s, 1e30f, 0);
+      const uint32_t r = record(i);
+      Footprint f = footprint_from_differentials(vec3_from_float4(dp_u[r]), vec3_from_float4(dp_v[r]), vec3(0, 0, 1),
+                                                 incident[r].w, s, 1e30f, 0);
       sum += footprint_area(f);
     }
     return sum;
