@@ -28,15 +28,26 @@ struct Rendered {
   uint64_t peak_bytes = 0;
 };
 
-Rendered render(const Scene& scene) {
+std::unique_ptr<Device> opencl_device() {
   std::unique_ptr<Device> device = test::open_first_device("opencl");
   if (!device) throw std::runtime_error("no OpenCL device");
+  return device;
+}
+
+// 65536 photons of two bounces at a fixed footprint size (no reduction over the slots), size^2 pixels.
+RenderSettings photons_of_two_bounces(int size) {
   PhotonSettings photons;
   photons.photons = 65536;
   photons.bounces = 2;
   photons.smoothing = 8;
   RenderSettings settings = test::photon_render_settings(photons);
-  settings.width = settings.height = 48;
+  settings.width = settings.height = size;
+  return settings;
+}
+
+Rendered render(const Scene& scene) {
+  std::unique_ptr<Device> device = opencl_device();
+  RenderSettings settings = photons_of_two_bounces(48);
   settings.mirror_depth = 0;  // the camera follows no mirror, so the tiny one changes no shading point
   Rendered r;
   {
@@ -84,14 +95,8 @@ struct MapRoom {
 };
 
 MapRoom render_and_measure_map(float albedo) {
-  std::unique_ptr<Device> device = test::open_first_device("opencl");
-  if (!device) throw std::runtime_error("no OpenCL device");
-  PhotonSettings photons;
-  photons.photons = 65536;
-  photons.bounces = 2;
-  photons.smoothing = 8;
-  RenderSettings settings = test::photon_render_settings(photons);
-  settings.width = settings.height = 32;
+  std::unique_ptr<Device> device = opencl_device();
+  const RenderSettings settings = photons_of_two_bounces(32);
   Scene scene = builtin_cornell_box();
   if (albedo > 0)
     for (MaterialDesc& m : scene.materials) m.diffuse = Float3{albedo, albedo, albedo};
