@@ -59,8 +59,6 @@
   /* rest of the hit is recorded; per record (photon_trace.h: only valid hits have one) the rest */       \
   X(photon, float4, hit_position, hit_slots, 1)  /* xyz, w = PM_HIT_* flags | record << PM_HIT_RECORD_SHIFT */\
                                                  /* as uint bits, 0: no hit */                              \
-  X(photon, float4, hit_record_position, hit_records, 1) /* the slot's position again, w = PM_HIT_* */    \
-                                                 /* flags | slot << PM_HIT_RECORD_SHIFT as uint bits */     \
   X(photon, float4, hit_normal, hit_records, 1)  /* xyz facing the photon's side, w = flux red (watts) */   \
   X(photon, float4, hit_incident, hit_records, 1) /* xyz unit direction back to its origin, w = Delta */    \
   X(photon, float4, hit_dp_u, hit_records, 1)    /* positional differentials (eq. 8 scaling), w = green */  \
@@ -84,9 +82,9 @@
   X(photon, uint, gather_stats, counters, 2)   /* [0] hits accepted, [1] shading points (collect_stats) */ \
   X(photon, uint, map_tile_offsets, bounds_tiles, 1) /* S4: first compacted key of each tile's valid hits */\
   X(photon, uint, morton_keys, map_hits, 1)    /* S4 input of the sort: Morton keys of the valid hits */ \
-  X(photon, uint, morton_records, map_hits, 1) /* and their hit records */                                \
+  X(photon, uint, morton_slots, map_hits, 1)   /* and their slots */                                     \
   X(photon, uint, sorted_keys, map_hits, 1)    /* S4 output of the sort: keys ascending */               \
-  X(photon, uint, sorted_records, map_hits, 1) /* and their hit records */                                \
+  X(photon, uint, sorted_slots, map_hits, 1)   /* and their slots */                                     \
   /* vertex link radiosity (render/radiosity/, docs/radiosity.md): the refined mesh, uploaded once */     \
   X(radiosity, float4, rad_elements, uploaded, 1)   /* 2 per element: (position, material bits), normal */ \
   X(radiosity, uint4, rad_element_ranges, uploaded, 1) /* elements + 1: first ring entry, neighbour, link word */\

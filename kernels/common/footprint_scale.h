@@ -24,7 +24,7 @@ PM_DEVICE void kernel_photon_footprint_scale(const KernelGlobals* kg, const Laun
     float w = kg->hit_position[i].w;
     uint flags = PM_AS_UINT(w);
     if ((flags & PM_HIT_VALID) == 0u || (flags & PM_HIT_CAUSTIC) != 0u) continue;
-    uint record = photon_hit_link(w);
+    uint record = photon_hit_record(w);
     float delta = kg->hit_incident[record].w;
     Vec3 a_u = footprint_semiaxis(vec3_from_float4(kg->hit_dp_u[record]), delta, 1.0f, PM_FOOTPRINT_FAR, 0);
     Vec3 a_v = footprint_semiaxis(vec3_from_float4(kg->hit_dp_v[record]), delta, 1.0f, PM_FOOTPRINT_FAR, 0);

@@ -43,7 +43,7 @@ PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p
   return f;
 }
 
-/* Work item = sorted position k < hit_count: the gather data of hit sorted_records[k], written at
+/* Work item = sorted position k < hit_count: the gather data of hit sorted_slots[k], written at
    k, so the photon map's leaves and the gather read contiguous memory. The gather data of a hit: the footprint clipped at the geometry around it (footprint_clip.h),
    its bounds, the rows of the inverse of its basis, whose w hold the first cut (mu, mv, t): the
    gather accepts x where mu (row_u . (x - hit)) + mv (row_v . (x - hit)) <= t, a second cut in
@@ -52,9 +52,9 @@ PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p
    flux (the knn gather divides by its own area). */
 PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchParams* p, uint k)
 {
-  uint record = kg->sorted_records[k];
-  float4 position = kg->hit_record_position[record];
-  uint hit_flags = PM_AS_UINT(position.w) & PM_HIT_SLOT_FLAGS, slot = photon_hit_link(position.w);
+  uint slot = kg->sorted_slots[k];
+  float4 position = kg->hit_position[slot];
+  uint hit_flags = PM_AS_UINT(position.w) & PM_HIT_SLOT_FLAGS, record = photon_hit_record(position.w);
   Vec3 center = vec3_from_float4(position);
   Vec3 normal = vec3_normalize(vec3_from_float4(kg->hit_normal[record]));
   Footprint f = hit_footprint(kg, p, hit_flags, record);

@@ -135,13 +135,12 @@ PM_DEVICE uint photon_map_morton_key(float4 center, float4 bounds_lo, float4 bou
   return morton_code(vec3_from_float4(center), vec3_from_float4(bounds_lo), vec3_from_float4(bounds_hi));
 }
 
-/* Work item = tile (as in step 1): the Morton key of each valid hit of the tile and the record its
-   slot names (centers[i].w above the flags, photon_trace.h), in slot order, from position
-   first_out[tile] on (the exclusive prefix sum of the tiles' valid counts). Only valid hits reach
-   the sort, in an order that does not depend on scheduling. */
+/* Work item = tile (as in step 1): the Morton key and slot of each valid hit of the tile, in slot
+   order, from position first_out[tile] on (the exclusive prefix sum of the tiles' valid counts).
+   Only valid hits reach the sort, in an order that does not depend on scheduling. */
 PM_DEVICE void photon_map_morton_tile(uint tile, uint count, PM_GLOBAL const float4* centers,
                                       PM_GLOBAL const uint* first_out, float4 bounds_lo, float4 bounds_hi,
-                                      PM_GLOBAL uint* keys, PM_GLOBAL uint* records)
+                                      PM_GLOBAL uint* keys, PM_GLOBAL uint* slots)
 {
   uint begin = tile * PM_PHOTON_MAP_BOUNDS_TILE;
   uint end = pm_min_u(begin + PM_PHOTON_MAP_BOUNDS_TILE, count);
@@ -150,7 +149,7 @@ PM_DEVICE void photon_map_morton_tile(uint tile, uint count, PM_GLOBAL const flo
     float4 c = PM_LOAD(&centers[i]);
     if ((PM_AS_UINT(c.w) & PM_HIT_VALID) == 0u) continue;
     keys[out] = photon_map_morton_key(c, bounds_lo, bounds_hi);
-    records[out] = PM_AS_UINT(c.w) >> PM_HIT_RECORD_SHIFT;
+    slots[out] = i;
     ++out;
   }
 }

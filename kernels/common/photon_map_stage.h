@@ -25,7 +25,7 @@ PM_DEVICE void kernel_photon_map_area(const KernelGlobals* kg, const LaunchParam
 PM_DEVICE void kernel_photon_morton(const KernelGlobals* kg, const LaunchParams* p, uint tile)
 {
   photon_map_morton_tile(tile, p->photon_count * p->hit_slots_per_photon, kg->hit_position, kg->map_tile_offsets,
-                         p->hit_bounds_lo, p->hit_bounds_hi, kg->morton_keys, kg->morton_records);
+                         p->hit_bounds_lo, p->hit_bounds_hi, kg->morton_keys, kg->morton_slots);
 }
 
 PM_DEVICE void kernel_photon_map_nodes(const KernelGlobals* kg, const LaunchParams* p, uint i)

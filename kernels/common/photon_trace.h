@@ -57,11 +57,9 @@ PM_DEVICE int photon_glossy_reemit(PhotonRay* ray, Vec3 n, float exponent, float
    photon is absorbed or leaves before it fills its slots: three in four on Sponza), so the
    records are taken as hits come, by an atomic counter, and the slot says which record is its
    own; everything after the trace reads in slot order, so the image does not depend on the
-   order the records were taken in. Five float4 a record: the position again, whose w names the
-   slot back (the footprints, which read in the sort's order, then load the whole record at
-   once), and the flux in the w of the normal and the differentials (buffers.h). A hit beyond the
-   records' room keeps an empty slot: the host sees the count over the room, grows the records
-   and traces the pass again. */
+   order the records were taken in. Four float4 a record: the flux rides in the w of the normal
+   and the differentials (buffers.h). A hit beyond the records' room keeps an empty slot: the
+   host sees the count over the room, grows the records and traces the pass again. */
 PM_DEVICE void photon_store_hit(const KernelGlobals* kg, uint slot, const PhotonRay* ray, Vec3 n, Vec3 flux, float delta,
                                 uint flags)
 {
@@ -72,16 +70,14 @@ PM_DEVICE void photon_store_hit(const KernelGlobals* kg, uint slot, const Photon
   }
   if (vec3_dot(n, ray->direction) > 0.0f) n = vec3_neg(n); /* the side the photon arrived on */
   kg->hit_position[slot] = vec3_to_float4(ray->origin, PM_UINT_AS_FLOAT(flags | (record << PM_HIT_RECORD_SHIFT)));
-  kg->hit_record_position[record] = vec3_to_float4(ray->origin, PM_UINT_AS_FLOAT(flags | (slot << PM_HIT_RECORD_SHIFT)));
   kg->hit_normal[record] = vec3_to_float4(n, flux.x);
   kg->hit_incident[record] = vec3_to_float4(vec3_neg(ray->direction), delta);
   kg->hit_dp_u[record] = vec3_to_float4(ray->dp_u, flux.y);
   kg->hit_dp_v[record] = vec3_to_float4(ray->dp_v, flux.z);
 }
 
-/* The record of the hit in a slot whose position's w is `position_w`, or the slot of a record
-   whose position's w it is (photon_store_hit). */
-PM_DEVICE uint photon_hit_link(float position_w)
+/* The record of the hit in a slot whose position's w is `position_w` (photon_store_hit). */
+PM_DEVICE uint photon_hit_record(float position_w)
 {
   return PM_AS_UINT(position_w) >> PM_HIT_RECORD_SHIFT;
 }

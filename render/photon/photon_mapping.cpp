@@ -297,10 +297,10 @@ void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
   {
     StageScope scope(timer, "map: sort");
     if (settings_.builder == kPhotonMapVvh)
-      device_.copy(buffers_[BufferSlot::morton_records], buffers_[BufferSlot::sorted_records], bounds.count * sizeof(uint32_t));
+      device_.copy(buffers_[BufferSlot::morton_slots], buffers_[BufferSlot::sorted_slots], bounds.count * sizeof(uint32_t));
     else
-      device_.sort_pairs(buffers_[BufferSlot::morton_keys], buffers_[BufferSlot::morton_records],
-                         buffers_[BufferSlot::sorted_keys], buffers_[BufferSlot::sorted_records], bounds.count,
+      device_.sort_pairs(buffers_[BufferSlot::morton_keys], buffers_[BufferSlot::morton_slots],
+                         buffers_[BufferSlot::sorted_keys], buffers_[BufferSlot::sorted_slots], bounds.count,
                          PM_MORTON_SORT_BITS);
   }
   // S3 in sorted order, then the footprints' total area for T_auto.

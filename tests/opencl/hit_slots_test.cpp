@@ -82,8 +82,8 @@ TEST(HitSlots, AMirrorFreeSceneLosesNoHitInBounceManyRecords) {
 
 // A photon map entry: the tree's nodes (4 float4), its three parent and visit words, nine float4 of
 // footprint and gather data, the Morton keys and slots before and after the sort (kernels/common/
-// buffers.h): 64 + 12 + 144 + 16 bytes. A hit record: five float4.
-constexpr uint64_t kMapBytesPerHit = 236, kRecordBytes = 80;
+// buffers.h): 64 + 12 + 144 + 16 bytes. A hit record: four float4.
+constexpr uint64_t kMapBytesPerHit = 236, kRecordBytes = 64;
 
 // Renders the built-in box (every diffuse reflectance set to `albedo` when given) with 65536
 // photons of two bounces, twice; returns the valid hits, and the room of the map and of the hit

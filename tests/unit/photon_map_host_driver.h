@@ -45,12 +45,9 @@ struct HostPhotonMap {
 // Never written by a correct build: lets the tests see any slot the bottom-up pass missed.
 constexpr uint kPoison = 0x7FBADBADu;
 
-// Hit slots as the trace leaves them: position with PM_HIT_VALID and the index of the hit's record
-// in w (or 0: an empty slot), and the footprint area in w of the second array. The tests give
-// each slot the record of its own index, so the records the sort carries are the slots.
-inline float4 valid_center(float4 p, uint record) {
-  return PM_MAKE_FLOAT4(p.x, p.y, p.z, PM_UINT_AS_FLOAT(PM_HIT_VALID | (record << PM_HIT_RECORD_SHIFT)));
-}
+// Hit slots as the footprint stage leaves them: position with PM_HIT_VALID in w (or 0: an empty
+// slot), and the footprint area in w of the second array.
+inline float4 valid_center(float4 p) { return PM_MAKE_FLOAT4(p.x, p.y, p.z, PM_UINT_AS_FLOAT(PM_HIT_VALID)); }
 
 // Step 1 as the pipeline runs it: one tile per work item, the partials combined on the host.
 inline PhotonMapBounds reduce_bounds(const std::vector<float4>& centers, const std::vector<float4>& areas,
@@ -134,7 +131,7 @@ inline HostPhotonMap build(const std::vector<float4>& positions, const std::vect
 {
   uint n = (uint)positions.size();
   std::vector<float4> centers(n);
-  for (uint i = 0; i < n; ++i) centers[i] = valid_center(positions[i], i);
+  for (uint i = 0; i < n; ++i) centers[i] = valid_center(positions[i]);
   std::vector<uint> codes, indices;
   morton_keys(centers, lo, order, &codes, &indices);
   sort_pairs(&codes, &indices);

@@ -196,10 +196,10 @@ TEST(PhotonMapBounds, TilesGiveBoundsCountAndAreaOfValidHitsOnly)
       if (at >= n) continue;
       std::vector<float4> centers(n), areas(n);
       for (uint i = 0; i < n; ++i) {
-        centers[i] = valid_center(h.pos[i], i);
+        centers[i] = valid_center(h.pos[i]);
         areas[i] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, 0.25f * float(i % 7));
       }
-      centers[at] = valid_center(PM_MAKE_FLOAT4(50.0f, -50.0f, 0.5f, 0.0f), at);
+      centers[at] = valid_center(PM_MAKE_FLOAT4(50.0f, -50.0f, 0.5f, 0.0f));
       centers[n - 1 - at].z = -60.0f;
       // Empty slots far outside, with an area: they must count for nothing.
       uint empty = 0;
@@ -236,7 +236,7 @@ TEST(PhotonMapMorton, OnlyValidHitsGetKeysInSlotOrder)
   std::vector<uint> expected_slots;
   for (uint i = 0; i < n; ++i) {
     const bool valid = (i * 7919u) % 5u != 0u && !(i >= 250 && i < 270);
-    centers[i] = valid ? valid_center(h.pos[i], i) : PM_MAKE_FLOAT4(9.0f, 9.0f, 9.0f, PM_UINT_AS_FLOAT(0u));
+    centers[i] = valid ? valid_center(h.pos[i]) : PM_MAKE_FLOAT4(9.0f, 9.0f, 9.0f, PM_UINT_AS_FLOAT(0u));
     if (valid) expected_slots.push_back(i);
   }
   for (Order order : {Order::kForward, Order::kReverse, Order::kRandom}) {
@@ -260,7 +260,7 @@ TEST(PhotonMapTree, BuildLinksEveryChildOnce)
     Hits h = make_hits(n, 200 + n, n == 1000 ? 4 : 0, 0.05f);
     std::vector<uint> codes, index;
     std::vector<float4> centers(n);
-    for (uint i = 0; i < n; ++i) centers[i] = valid_center(h.pos[i], i);
+    for (uint i = 0; i < n; ++i) centers[i] = valid_center(h.pos[i]);
     morton_keys(centers, h.pos, Order::kForward, &codes, &index);
     sort_pairs(&codes, &index);
     std::vector<uint> node_parent(n - 1, kPoison), leaf_parent(n, kPoison), visits(n - 1, 7u);
