@@ -142,7 +142,6 @@ class DeviceMemoryPromise {
     device_->promised_ = device_->promised_ - bytes_ + bytes;
     bytes_ = bytes;
   }
-  uint64_t bytes() const { return bytes_; }
 
  private:
   Device* device_;
