@@ -267,7 +267,8 @@ void Renderer::begin_frame(int frame) {
     // The extra layers read the shading points just recorded, before any method's pass.
     if (!settings_.layers.empty()) device_.launch(KernelId::film_layers, p.width * p.height, p);
   }
-  for (BufferSlot sum : {BufferSlot::film_indirect_sum, BufferSlot::film_caustic_sum, BufferSlot::film_odd_sum})
+  // The camera pass has zeroed the odd-pass sum's blue in the direct layer's w (film.h).
+  for (BufferSlot sum : {BufferSlot::film_indirect_sum, BufferSlot::film_caustic_sum})
     device_.fill_zero(buffers_[sum], buffers_[sum].bytes());
   passes_done_ = 0;
   odd_passes_ = 0;
@@ -376,6 +377,8 @@ double Renderer::estimate_noise() {
   return difference / std::sqrt(k * (1.0 / even + 1.0 / odd)) / level;
 }
 
+// The device keeps the odd-pass sum in the w of the direct, indirect and caustic buffers
+// (kernels/common/film.h); FilmSums holds it apart, with every w zero, as checkpoints store it.
 FilmSums Renderer::film_sums() {
   const size_t pixels = size_t(width_) * height_;
   FilmSums sums;
@@ -385,9 +388,15 @@ FilmSums Renderer::film_sums() {
     out.resize(pixels);
     device_.download(buffers_[slot], out.data(), pixels * sizeof(float4));
   };
+  std::vector<float4> direct;
   read(BufferSlot::film_indirect_sum, sums.indirect);
   read(BufferSlot::film_caustic_sum, sums.caustic);
-  read(BufferSlot::film_odd_sum, sums.odd);
+  read(BufferSlot::film_direct, direct);
+  sums.odd.resize(pixels);
+  for (size_t i = 0; i < pixels; ++i) {
+    sums.odd[i] = float4{sums.indirect[i].w, sums.caustic[i].w, direct[i].w, 0.0f};
+    sums.indirect[i].w = sums.caustic[i].w = 0.0f;
+  }
   return sums;
 }
 
@@ -395,9 +404,16 @@ void Renderer::set_film_sums(const FilmSums& sums) {
   const size_t pixels = size_t(width_) * height_;
   if (sums.indirect.size() != pixels || sums.caustic.size() != pixels || sums.odd.size() != pixels)
     throw DeviceError("renderer: film sums of another size than the film");
-  device_.upload(buffers_[BufferSlot::film_indirect_sum], sums.indirect.data(), pixels * sizeof(float4));
-  device_.upload(buffers_[BufferSlot::film_caustic_sum], sums.caustic.data(), pixels * sizeof(float4));
-  device_.upload(buffers_[BufferSlot::film_odd_sum], sums.odd.data(), pixels * sizeof(float4));
+  std::vector<float4> indirect = sums.indirect, caustic = sums.caustic, direct(pixels);
+  device_.download(buffers_[BufferSlot::film_direct], direct.data(), pixels * sizeof(float4));
+  for (size_t i = 0; i < pixels; ++i) {
+    indirect[i].w = sums.odd[i].x;
+    caustic[i].w = sums.odd[i].y;
+    direct[i].w = sums.odd[i].z;
+  }
+  device_.upload(buffers_[BufferSlot::film_indirect_sum], indirect.data(), pixels * sizeof(float4));
+  device_.upload(buffers_[BufferSlot::film_caustic_sum], caustic.data(), pixels * sizeof(float4));
+  device_.upload(buffers_[BufferSlot::film_direct], direct.data(), pixels * sizeof(float4));
   passes_done_ = sums.passes;
   odd_passes_ = sums.odd_passes;
   next_pass_ = sums.passes;

@@ -17,6 +17,17 @@
    so that a launch over about a thousand control pixels fills a GPU. */
 #define PM_CONTROL_LANES 64u
 
+/* Buffers that take a second role once their first is spent within a photon pass. The hit records
+   are read last by the footprints (S3), the unsorted Morton keys and slots by the sort and the
+   sorted slots by the footprints; the photon map's tree is built after both, and read until the
+   next pass traces again. The map's n - 1 inner nodes (4 float4 each, photon_map.h) fit in the
+   records of its n valid hits (4 float4 each), and its build links and visit counters in the
+   sort's scratch, so the map holds no memory of its own for them. */
+#define PM_MAP_NODES(kg) ((kg)->hit_records)
+#define PM_MAP_NODE_PARENT(kg) ((kg)->morton_keys)
+#define PM_MAP_LEAF_PARENT(kg) ((kg)->morton_slots)
+#define PM_MAP_VISITS(kg) ((kg)->sorted_slots)
+
 #define PM_BUFFER_LIST(X)                                                                                   \
   /* S0 scene, uploaded once per renderer */                                                               \
   X(scene, float4, scene_nodes, uploaded, 1)  /* BVH2, 4 float4 per node, child boxes in the parent */      \
@@ -39,11 +50,11 @@
                                                       /* bits, -1: none */                                  \
   /* (the normal, the material, the direction towards the viewer and the mirrors' product are */          \
   /* replayed: eye_path_next) */                                                                           \
-  /* S7 film: direct light once per frame; indirect and caustic summed over passes (rgb, w unused) */      \
-  X(frame, float4, film_direct, pixels, 1)                                                                  \
-  X(frame, float4, film_indirect_sum, pixels, 1)                                                            \
-  X(frame, float4, film_caustic_sum, pixels, 1)                                                             \
-  X(frame, float4, film_odd_sum, pixels, 1)   /* indirect + caustic of the odd passes: the error estimate */\
+  /* S7 film: direct light once per frame; indirect and caustic summed over passes (rgb); their w */       \
+  /* hold the odd passes' indirect + caustic, for the error estimate (film.h, film_odd_sum) */              \
+  X(frame, float4, film_direct, pixels, 1)       /* w: the odd sum's blue */                                \
+  X(frame, float4, film_indirect_sum, pixels, 1) /* w: its red */                                           \
+  X(frame, float4, film_caustic_sum, pixels, 1)  /* w: its green */                                         \
   X(frame, float4, film_error_partials, error_tiles, 1) /* per tile: (sum |even - odd|, sum |all|, 0, 0) */ \
   /* extra layers (film_layers.h), allocated only when asked for: layer_pixels is 0 otherwise */            \
   X(frame, float4, film_albedo, layer_pixels, 1)   /* rgb albedo, w = first hit's material (int bits) */    \
@@ -59,32 +70,25 @@
   /* rest of the hit is recorded; per record (photon_trace.h: only valid hits have one) the rest */       \
   X(photon, float4, hit_position, hit_slots, 1)  /* xyz, w = PM_HIT_* flags | record << PM_HIT_RECORD_SHIFT */\
                                                  /* as uint bits, 0: no hit */                              \
-  X(photon, float4, hit_normal, hit_records, 1)  /* xyz facing the photon's side, w = flux red (watts) */   \
-  X(photon, float4, hit_incident, hit_records, 1) /* xyz unit direction back to its origin, w = Delta */    \
-  X(photon, float4, hit_dp_u, hit_records, 1)    /* positional differentials (eq. 8 scaling), w = green */  \
-  X(photon, float4, hit_dp_v, hit_records, 1)    /* w = flux blue */                                        \
+  X(photon, float4, hit_records, hit_records, 4) /* 4 float4 per record (PM_RECORD_*, photon_trace.h); */ \
+                                                 /* the photon map's nodes once spent (PM_MAP_NODES) */     \
   X(photon, uint, hit_record_count, counters, 2) /* [0] records the trace took (atomic), [1] their room */ \
   /* photon mapping, S3 footprints and S4 photon map: the valid hits in sorted order */                     \
   X(photon, float4, map_partials, bounds_tiles, 2) /* per tile: (lo, area sum), (hi, count) */              \
-  X(photon, float4, map_nodes, map_hits, 4)   /* 4 float4 per inner node, photon_map.h */                  \
-  X(photon, uint, map_node_parent, map_hits, 1)                                                             \
-  X(photon, uint, map_leaf_parent, map_hits, 1)                                                             \
-  X(photon, uint, map_visits, map_hits, 1)                                                                  \
   X(photon, float4, map_lo, map_hits, 1)       /* footprint AABB; lo.w = footprint area */                  \
-  X(photon, float4, map_hi, map_hits, 1)                                                                    \
+  X(photon, float4, map_hi, map_hits, 1)       /* w: a second cut's mu (footprint_second_cut) */            \
   X(photon, float4, map_center, map_hits, 1)   /* hit position, w = flags */                                \
   X(photon, float4, map_row_u, map_hits, 1)    /* rows of the inverse ellipsoid basis, w: the first cut */  \
   X(photon, float4, map_row_v, map_hits, 1)                                                                 \
   X(photon, float4, map_row_n, map_hits, 1)                                                                 \
-  X(photon, float4, map_power, map_hits, 1)    /* rgb flux / (ellipse area x covered share) */            \
-  X(photon, float4, map_incident, map_hits, 1)                                                              \
-  X(photon, float4, map_cut, map_hits, 1)      /* second cut of a clipped footprint (footprint_clip.h) */   \
+  X(photon, float4, map_power, map_hits, 1)    /* rgb flux / (area x covered share), w: the cut's mv */      \
+  X(photon, float4, map_incident, map_hits, 1) /* unit direction back to the origin, w: the cut's t */      \
   X(photon, uint, gather_stats, counters, 2)   /* [0] hits accepted, [1] shading points (collect_stats) */ \
   X(photon, uint, map_tile_offsets, bounds_tiles, 1) /* S4: first compacted key of each tile's valid hits */\
-  X(photon, uint, morton_keys, map_hits, 1)    /* S4 input of the sort: Morton keys of the valid hits */ \
-  X(photon, uint, morton_slots, map_hits, 1)   /* and their slots */                                     \
-  X(photon, uint, sorted_keys, map_hits, 1)    /* S4 output of the sort: keys ascending */               \
-  X(photon, uint, sorted_slots, map_hits, 1)   /* and their slots */                                     \
+  X(photon, uint, morton_keys, map_hits, 1)    /* S4 input of the sort: Morton keys of the valid hits; */ \
+  X(photon, uint, morton_slots, map_hits, 1)   /* and their slots (the tree's parent links later) */       \
+  X(photon, uint, sorted_keys, map_hits, 1)    /* S4 output of the sort: keys ascending */                 \
+  X(photon, uint, sorted_slots, map_hits, 1)   /* and their slots (the tree's visit counters later) */     \
   /* vertex link radiosity (render/radiosity/, docs/radiosity.md): the refined mesh, uploaded once */     \
   X(radiosity, float4, rad_elements, uploaded, 1)   /* 2 per element: (position, material bits), normal */ \
   X(radiosity, uint4, rad_element_ranges, uploaded, 1) /* elements + 1: first ring entry, neighbour, link word */\

@@ -179,7 +179,7 @@ PM_DEVICE void kernel_camera_pass(const KernelGlobals* kg, const LaunchParams* p
     ray = ray_make(offset_ray_origin(pos, n, offset), vec3_reflect(ray.direction, n));
   }
   for (; depth <= p->mirror_depth; ++depth) shading_point_clear(kg, depth * pixels + pixel);
-  kg->film_direct[pixel] = vec3_to_float4(radiance, 0.0f);
+  kg->film_direct[pixel] = vec3_to_float4(radiance, 0.0f); /* w: the frame's odd-pass sum starts at 0 (film.h) */
 }
 
 #endif

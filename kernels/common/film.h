@@ -7,8 +7,11 @@
    output layer and is counted, so the host can report it instead of writing a corrupt image. The
    sums stay untouched, so more passes can follow a read.
 
-   The error estimate: odd passes also go into film_odd_sum, so the mean of the even passes and
-   the mean of the odd passes are two independent estimates of the same image. Their difference
+   The error estimate: odd passes also go into an odd-pass sum of indirect + caustic, so the mean
+   of the even passes and the mean of the odd passes are two independent estimates of the same
+   image. The odd sum has no buffer of its own: its red, green and blue ride in the w of
+   film_indirect_sum, film_caustic_sum and film_direct, which the layers leave free (film_odd_sum;
+   the camera pass writes the direct layer with w = 0 at the start of a frame). Their difference
    is noise only; film_error_tiles sums it per tile of PM_FILM_ERROR_TILE pixels, and the host turns
    it into the expected relative error of the mean of all passes (render/progressive.h). */
 #ifndef PM_FILM_H
@@ -34,14 +37,23 @@ PM_DEVICE int film_combine(float4 direct, float4 indirect_sum, float4 caustic_su
   return film_finite(vec3_to_float4(*combined, 0.0f));
 }
 
+/* The odd passes' sum of indirect + caustic at a pixel, from the w of the three film buffers. */
+PM_DEVICE Vec3 film_odd_sum(const KernelGlobals* kg, uint pixel)
+{
+  return vec3(kg->film_indirect_sum[pixel].w, kg->film_caustic_sum[pixel].w, kg->film_direct[pixel].w);
+}
+
 /* A pass's estimate at a pixel added to the film sums (one work item per pixel: no atomics). */
 PM_DEVICE void film_add(const KernelGlobals* kg, const LaunchParams* p, uint pixel, Vec3 indirect, Vec3 caustic)
 {
-  kg->film_indirect_sum[pixel] = vec3_to_float4(vec3_add(vec3_from_float4(kg->film_indirect_sum[pixel]), indirect), 0.0f);
-  kg->film_caustic_sum[pixel] = vec3_to_float4(vec3_add(vec3_from_float4(kg->film_caustic_sum[pixel]), caustic), 0.0f);
-  if (p->pass_index & 1u)
-    kg->film_odd_sum[pixel] =
-        vec3_to_float4(vec3_add(vec3_from_float4(kg->film_odd_sum[pixel]), vec3_add(indirect, caustic)), 0.0f);
+  float4 indirect_sum = kg->film_indirect_sum[pixel], caustic_sum = kg->film_caustic_sum[pixel];
+  Vec3 odd = film_odd_sum(kg, pixel);
+  if (p->pass_index & 1u) {
+    odd = vec3_add(odd, vec3_add(indirect, caustic));
+    kg->film_direct[pixel].w = odd.z;
+  }
+  kg->film_indirect_sum[pixel] = vec3_to_float4(vec3_add(vec3_from_float4(indirect_sum), indirect), odd.x);
+  kg->film_caustic_sum[pixel] = vec3_to_float4(vec3_add(vec3_from_float4(caustic_sum), caustic), odd.y);
 }
 
 #define PM_FILM_ERROR_TILE 256
@@ -59,7 +71,7 @@ PM_DEVICE void kernel_film_error_tiles(const KernelGlobals* kg, const LaunchPara
   float difference = 0.0f, level = 0.0f;
   for (uint i = begin; i < end; ++i) {
     Vec3 all = vec3_add(vec3_from_float4(kg->film_indirect_sum[i]), vec3_from_float4(kg->film_caustic_sum[i]));
-    Vec3 odd = vec3_from_float4(kg->film_odd_sum[i]);
+    Vec3 odd = film_odd_sum(kg, i);
     Vec3 even_mean = vec3_scale(vec3_sub(all, odd), 1.0f / even_passes);
     Vec3 odd_mean = vec3_scale(odd, 1.0f / odd_passes);
     Vec3 d = vec3_sub(even_mean, odd_mean);

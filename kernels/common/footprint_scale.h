@@ -25,9 +25,9 @@ PM_DEVICE void kernel_photon_footprint_scale(const KernelGlobals* kg, const Laun
     uint flags = PM_AS_UINT(w);
     if ((flags & PM_HIT_VALID) == 0u || (flags & PM_HIT_CAUSTIC) != 0u) continue;
     uint record = photon_hit_record(w);
-    float delta = kg->hit_incident[record].w;
-    Vec3 a_u = footprint_semiaxis(vec3_from_float4(kg->hit_dp_u[record]), delta, 1.0f, PM_FOOTPRINT_FAR, 0);
-    Vec3 a_v = footprint_semiaxis(vec3_from_float4(kg->hit_dp_v[record]), delta, 1.0f, PM_FOOTPRINT_FAR, 0);
+    float delta = photon_hit_part(kg, record, PM_RECORD_INCIDENT).w;
+    Vec3 a_u = footprint_semiaxis(vec3_from_float4(photon_hit_part(kg, record, PM_RECORD_DP_U)), delta, 1.0f, PM_FOOTPRINT_FAR, 0);
+    Vec3 a_v = footprint_semiaxis(vec3_from_float4(photon_hit_part(kg, record, PM_RECORD_DP_V)), delta, 1.0f, PM_FOOTPRINT_FAR, 0);
     float a = PM_PI * vec3_length(vec3_cross(a_u, a_v));
     if (!pm_isfinite(a)) continue;
     area += a;

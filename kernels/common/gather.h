@@ -26,7 +26,7 @@ PM_DEVICE void gather_at(const KernelGlobals* kg, const LaunchParams* p, const M
   PhotonMapQuery q;
   photon_map_query_begin(&q, x, p->hit_count, PM_TRAVERSAL_STACK);
   int k;
-  while ((k = photon_map_query_next(&q, kg->map_nodes, kg->map_lo, kg->map_hi)) >= 0) {
+  while ((k = photon_map_query_next(&q, PM_MAP_NODES(kg), kg->map_lo, kg->map_hi)) >= 0) {
     float4 c = PM_LOAD(&kg->map_center[k]);
     float r2, at_u, at_v;
     if (!footprint_reaches_at(kg, k, c, x, n, &r2, &at_u, &at_v)) continue;

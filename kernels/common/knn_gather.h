@@ -122,8 +122,8 @@ PM_DEVICE void knn_search(const KernelGlobals* kg, const LaunchParams* p, const 
     float next_d2[2];
     uint n_next = 0;
     for (uint side = 0; side < 2u; ++side) {
-      float4 lo = PM_LOAD(&kg->map_nodes[4 * node + 2 * side]);
-      float4 hi = PM_LOAD(&kg->map_nodes[4 * node + 2 * side + 1]);
+      float4 lo = PM_LOAD(&PM_MAP_NODES(kg)[4 * node + 2 * side]);
+      float4 hi = PM_LOAD(&PM_MAP_NODES(kg)[4 * node + 2 * side + 1]);
       float d2 = knn_box_distance2(lo, hi, p->rmax, x) * q->box_scale;
       if (d2 >= knn_radius2(h, rmax2)) continue;
       uint ref = PM_AS_UINT(lo.w);

@@ -23,7 +23,7 @@
    -10 % in the closed diffuse sphere of tests/opencl/analytic_sphere_test.cpp.) */
 PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p, uint flags, uint record)
 {
-  Vec3 n = vec3_from_float4(kg->hit_normal[record]);
+  Vec3 n = vec3_from_float4(photon_hit_part(kg, record, PM_RECORD_NORMAL));
   if (p->estimator != PM_ESTIMATOR_PD) {
     int radius = p->estimator == PM_ESTIMATOR_RADIUS;
     float r = radius ? p->gather_radius : p->rmax;
@@ -36,8 +36,9 @@ PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p
     return f;
   }
   int caustic = (flags & PM_HIT_CAUSTIC) != 0u;
-  float delta = kg->hit_incident[record].w;
-  Footprint f = footprint_from_differentials(vec3_from_float4(kg->hit_dp_u[record]), vec3_from_float4(kg->hit_dp_v[record]),
+  float delta = photon_hit_part(kg, record, PM_RECORD_INCIDENT).w;
+  Footprint f = footprint_from_differentials(vec3_from_float4(photon_hit_part(kg, record, PM_RECORD_DP_U)),
+                                             vec3_from_float4(photon_hit_part(kg, record, PM_RECORD_DP_V)),
                                              n, delta, p->smoothing, p->rmax, caustic);
   if (p->footprint_thickness > 0.0f) footprint_set_thickness(&f, p->footprint_thickness);
   return f;
@@ -47,7 +48,7 @@ PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p
    k, so the photon map's leaves and the gather read contiguous memory. The gather data of a hit: the footprint clipped at the geometry around it (footprint_clip.h),
    its bounds, the rows of the inverse of its basis, whose w hold the first cut (mu, mv, t): the
    gather accepts x where mu (row_u . (x - hit)) + mv (row_v . (x - hit)) <= t, a second cut in
-   map_cut (flagged PM_HIT_SECOND_CUT), and flux / (area * covered share); the gather divides by the kernel mass the cuts keep about each shading point. For
+   the w of map_hi, map_power and map_incident (flagged PM_HIT_SECOND_CUT), and flux / (area * covered share); the gather divides by the kernel mass the cuts keep about each shading point. For
    knn the bounds are the point box hit +- r_max the knn traversal expects, and the power is the
    flux (the knn gather divides by its own area). */
 PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchParams* p, uint k)
@@ -56,7 +57,7 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
   float4 position = kg->hit_position[slot];
   uint hit_flags = PM_AS_UINT(position.w) & PM_HIT_SLOT_FLAGS, record = photon_hit_record(position.w);
   Vec3 center = vec3_from_float4(position);
-  Vec3 normal = vec3_normalize(vec3_from_float4(kg->hit_normal[record]));
+  Vec3 normal = vec3_normalize(vec3_from_float4(photon_hit_part(kg, record, PM_RECORD_NORMAL)));
   Footprint f = hit_footprint(kg, p, hit_flags, record);
   /* Progressive shrink (docs/progressive.md): every footprint of this pass scaled alike (knn's
      reach is r_max, which the host already shrank). */
@@ -82,7 +83,7 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     coverage = footprint_covered_share(kg, &f, &cut, center, normal,
                                        ray_offset_distance(center, 0.0f, p->ray_epsilon), turn, p->kernel_shape,
                                        p->facet_weighting ? PM_COVERAGE_LIT_AREA : PM_COVERAGE_CELLS,
-                                       vec3_from_float4(kg->hit_incident[record]));
+                                       vec3_from_float4(photon_hit_part(kg, record, PM_RECORD_INCIDENT)));
   }
   Vec3 lo, hi;
   footprint_bounds(f, center, &lo, &hi);
@@ -110,14 +111,13 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
   }
   uint flags = hit_flags | (cut.t[1] < 1.0f ? PM_HIT_SECOND_CUT : 0u);
   kg->map_lo[k] = vec3_to_float4(lo, area);
-  kg->map_hi[k] = vec3_to_float4(hi, 0.0f);
+  kg->map_hi[k] = vec3_to_float4(hi, cut.mu[1]);
   kg->map_center[k] = vec3_to_float4(center, PM_UINT_AS_FLOAT(flags));
   kg->map_row_u[k] = vec3_to_float4(vec3_scale(c_vn, inv_det), cut.mu[0]);
   kg->map_row_v[k] = vec3_to_float4(vec3_scale(c_nu, inv_det), cut.mv[0]);
   kg->map_row_n[k] = vec3_to_float4(vec3_scale(c_uv, inv_det), cut.t[0]);
-  kg->map_cut[k] = PM_MAKE_FLOAT4(cut.mu[1], cut.mv[1], cut.t[1], 0.0f);
-  kg->map_power[k] = vec3_to_float4(power, 0.0f);
-  kg->map_incident[k] = kg->hit_incident[record];
+  kg->map_power[k] = vec3_to_float4(power, cut.mv[1]);
+  kg->map_incident[k] = vec3_to_float4(vec3_from_float4(photon_hit_part(kg, record, PM_RECORD_INCIDENT)), cut.t[1]);
 }
 
 #endif

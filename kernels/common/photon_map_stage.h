@@ -28,15 +28,18 @@ PM_DEVICE void kernel_photon_morton(const KernelGlobals* kg, const LaunchParams*
                          p->hit_bounds_lo, p->hit_bounds_hi, kg->morton_keys, kg->morton_slots);
 }
 
+/* The tree's nodes, build links and visit counters take the memory of what the pass has spent
+   by then (PM_MAP_NODES and the rest, buffers.h). */
 PM_DEVICE void kernel_photon_map_nodes(const KernelGlobals* kg, const LaunchParams* p, uint i)
 {
-  photon_map_build_node(i, p->hit_count, kg->sorted_keys, kg->map_node_parent, kg->map_leaf_parent, kg->map_visits);
+  photon_map_build_node(i, p->hit_count, kg->sorted_keys, PM_MAP_NODE_PARENT(kg), PM_MAP_LEAF_PARENT(kg),
+                        PM_MAP_VISITS(kg));
 }
 
 PM_DEVICE void kernel_photon_map_bottom_up(const KernelGlobals* kg, const LaunchParams* p, uint k)
 {
-  photon_map_bottom_up(k, p->hit_count, p->leaf_threshold, kg->map_lo, kg->map_hi, kg->map_node_parent,
-                       kg->map_leaf_parent, kg->map_visits, kg->map_nodes);
+  photon_map_bottom_up(k, p->hit_count, p->leaf_threshold, kg->map_lo, kg->map_hi, PM_MAP_NODE_PARENT(kg),
+                       PM_MAP_LEAF_PARENT(kg), PM_MAP_VISITS(kg), PM_MAP_NODES(kg));
 }
 
 #endif

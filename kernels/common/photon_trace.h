@@ -57,9 +57,10 @@ PM_DEVICE int photon_glossy_reemit(PhotonRay* ray, Vec3 n, float exponent, float
    photon is absorbed or leaves before it fills its slots: three in four on Sponza), so the
    records are taken as hits come, by an atomic counter, and the slot says which record is its
    own; everything after the trace reads in slot order, so the image does not depend on the
-   order the records were taken in. Four float4 a record: the flux rides in the w of the normal
-   and the differentials (buffers.h). A hit beyond the records' room keeps an empty slot: the
-   host sees the count over the room, grows the records and traces the pass again. */
+   order the records were taken in. Four float4 a record, side by side (PM_RECORD_*): the flux
+   rides in the w of the normal and the differentials. A hit beyond the records' room keeps an
+   empty slot: the host sees the count over the room, grows the records and traces the pass
+   again. */
 PM_DEVICE void photon_store_hit(const KernelGlobals* kg, uint slot, const PhotonRay* ray, Vec3 n, Vec3 flux, float delta,
                                 uint flags)
 {
@@ -70,10 +71,11 @@ PM_DEVICE void photon_store_hit(const KernelGlobals* kg, uint slot, const Photon
   }
   if (vec3_dot(n, ray->direction) > 0.0f) n = vec3_neg(n); /* the side the photon arrived on */
   kg->hit_position[slot] = vec3_to_float4(ray->origin, PM_UINT_AS_FLOAT(flags | (record << PM_HIT_RECORD_SHIFT)));
-  kg->hit_normal[record] = vec3_to_float4(n, flux.x);
-  kg->hit_incident[record] = vec3_to_float4(vec3_neg(ray->direction), delta);
-  kg->hit_dp_u[record] = vec3_to_float4(ray->dp_u, flux.y);
-  kg->hit_dp_v[record] = vec3_to_float4(ray->dp_v, flux.z);
+  PM_GLOBAL float4* out = &kg->hit_records[PM_RECORD_FLOAT4S * record];
+  out[PM_RECORD_NORMAL] = vec3_to_float4(n, flux.x);
+  out[PM_RECORD_INCIDENT] = vec3_to_float4(vec3_neg(ray->direction), delta);
+  out[PM_RECORD_DP_U] = vec3_to_float4(ray->dp_u, flux.y);
+  out[PM_RECORD_DP_V] = vec3_to_float4(ray->dp_v, flux.z);
 }
 
 /* The record of the hit in a slot whose position's w is `position_w` (photon_store_hit). */
@@ -82,10 +84,17 @@ PM_DEVICE uint photon_hit_record(float position_w)
   return PM_AS_UINT(position_w) >> PM_HIT_RECORD_SHIFT;
 }
 
+/* One float4 of a hit record (PM_RECORD_*). */
+PM_DEVICE float4 photon_hit_part(const KernelGlobals* kg, uint record, uint part)
+{
+  return kg->hit_records[PM_RECORD_FLOAT4S * record + part];
+}
+
 /* The flux a hit record carries. */
 PM_DEVICE Vec3 photon_hit_flux(const KernelGlobals* kg, uint record)
 {
-  return vec3(kg->hit_normal[record].w, kg->hit_dp_u[record].w, kg->hit_dp_v[record].w);
+  return vec3(photon_hit_part(kg, record, PM_RECORD_NORMAL).w, photon_hit_part(kg, record, PM_RECORD_DP_U).w,
+              photon_hit_part(kg, record, PM_RECORD_DP_V).w);
 }
 
 PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* p, uint photon)

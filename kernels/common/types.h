@@ -75,6 +75,14 @@ typedef struct CameraParams {
 #define PM_HIT_RECORD_SHIFT 2u
 #define PM_HIT_SECOND_CUT 4u /* footprint data: the footprint has a second cut (footprint_clip.h) */
 
+/* A hit record (photon_trace.h): four float4 side by side in hit_records, at PM_RECORD_FLOAT4S *
+   record; the photon map's inner nodes take the same memory, four float4 each (buffers.h). */
+#define PM_RECORD_FLOAT4S 4u
+#define PM_RECORD_NORMAL 0u   /* xyz facing the photon's side, w = flux red (watts) */
+#define PM_RECORD_INCIDENT 1u /* xyz unit direction back to its origin, w = Delta */
+#define PM_RECORD_DP_U 2u     /* positional differentials (eq. 8 scaling), w = flux green */
+#define PM_RECORD_DP_V 3u     /* w = flux blue */
+
 /* Density estimators (--estimator) and kernel shapes (--kernel) of the gather. */
 #define PM_ESTIMATOR_PD 0     /* photon-differential footprints (the paper) */
 #define PM_ESTIMATOR_RADIUS 1 /* fixed-radius gathering */

@@ -193,12 +193,15 @@ uint32_t PhotonMapping::expected_most_hits() const {
   return uint32_t(std::min<uint64_t>(uint64_t(photons_per_pass_) * 5 / 4, hit_slots()));
 }
 
+uint64_t hit_room(uint64_t hits) {
+  return hits + hits / 16 + uint64_t(std::ceil(8.0 * std::sqrt(double(hits))));
+}
+
 uint32_t PhotonMapping::room_for(uint32_t hits) const {
-  // A margin so that passes of about the same count do not reallocate, but no more than the
-  // checks counted while the hits fit in it. Sized by the hits, not the photons: most photons of
-  // a pass record fewer hits than their slots (Sponza about one valid hit per two photons,
-  // docs/benchmarks.md).
-  uint64_t room = uint64_t(hits) * 5 / 4;
+  // No more than the checks counted while the hits fit in it. Sized by the hits, not the
+  // photons: most photons of a pass record fewer hits than their slots (Sponza about one valid
+  // hit per two photons, docs/benchmarks.md).
+  uint64_t room = hit_room(hits);
   if (hits <= expected_most_hits()) room = std::min<uint64_t>(room, expected_most_hits());
   return uint32_t(std::min<uint64_t>(room, hit_slots()));
 }
@@ -233,14 +236,16 @@ void PhotonMapping::build_vvh_map(const LaunchParams& params) {
   device_.download(buffers_[BufferSlot::map_hi], hi.data(), n * sizeof(float4));
   VvhPhotonMap map = build_vvh_photon_map(lo, hi, params.leaf_threshold);
   for (BufferSlot slot : {BufferSlot::map_lo, BufferSlot::map_hi, BufferSlot::map_center, BufferSlot::map_row_u,
-                          BufferSlot::map_row_v, BufferSlot::map_row_n, BufferSlot::map_power, BufferSlot::map_incident,
-                          BufferSlot::map_cut}) {
+                          BufferSlot::map_row_v, BufferSlot::map_row_n, BufferSlot::map_power, BufferSlot::map_incident}) {
     std::vector<float4> data(n), permuted(n);
     device_.download(buffers_[slot], data.data(), n * sizeof(float4));
     for (uint32_t k = 0; k < n; ++k) permuted[k] = data[map.order[k]];
     device_.upload(buffers_[slot], permuted.data(), n * sizeof(float4));
   }
-  device_.upload(buffers_[BufferSlot::map_nodes], map.nodes.data(), map.nodes.size() * sizeof(float4));
+  // The nodes take the hit records' memory (PM_MAP_NODES, kernels/common/buffers.h): n - 1 inner
+  // nodes for n hits fit there; the records are spent by now, so the room may grow without loss.
+  reserve_hit_records(uint32_t(map.nodes.size() / PM_RECORD_FLOAT4S));
+  device_.upload(buffers_[BufferSlot::hit_records], map.nodes.data(), map.nodes.size() * sizeof(float4));
 }
 
 // S1-S4 for one pass: leaves the photon map and its parameters in map_params_.

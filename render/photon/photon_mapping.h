@@ -17,6 +17,12 @@
 
 namespace pm {
 
+// The room the photon map and the hit records take for a pass of `hits` valid hits, so that the
+// passes and frames after it do not reallocate: 1/16 more for what an animation changes, and 8
+// standard deviations of a pass's count for its photons' noise (the count is a sum of many
+// photons' hits: about its square root; small passes vary by several percent).
+uint64_t hit_room(uint64_t hits);
+
 class PhotonMapping final : public IndirectMethod {
  public:
   PhotonMapping(const MethodContext& context, const PhotonSettings& settings);

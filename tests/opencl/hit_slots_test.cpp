@@ -14,6 +14,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "render/photon/photon_mapping.h"
 #include "render/renderer.h"
 #include "scene_io/cornell_box.h"
 #include "support/device_checks.h"
@@ -80,10 +81,11 @@ TEST(HitSlots, AMirrorFreeSceneLosesNoHitInBounceManyRecords) {
               b.peak_bytes / 1048576.0);
 }
 
-// A photon map entry: the tree's nodes (4 float4), its three parent and visit words, nine float4 of
-// footprint and gather data, the Morton keys and slots before and after the sort (kernels/common/
-// buffers.h): 64 + 12 + 144 + 16 bytes. A hit record: four float4.
-constexpr uint64_t kMapBytesPerHit = 236, kRecordBytes = 64;
+// A photon map entry: eight float4 of footprint and gather data, the Morton keys and slots before
+// and after the sort (16 bytes), which the tree's parent links and visit counters take over. A
+// hit record: four float4, which the tree's nodes take over (kernels/common/buffers.h).
+constexpr uint64_t kMapBytesPerHit = 144, kRecordBytes = 64;
+
 
 // Renders the built-in box (every diffuse reflectance set to `albedo` when given) with 65536
 // photons of two bounces, twice; returns the valid hits, and the room of the map and of the hit
@@ -105,14 +107,14 @@ MapRoom render_and_measure_map(float albedo) {
   // the photons' hits (no more than the slots of each photon).
   const uint64_t counted = 81920 * (kMapBytesPerHit + kRecordBytes);
   EXPECT_EQ(renderer.buffers()[BufferSlot::map_center].bytes(), 0u);
-  EXPECT_EQ(renderer.buffers()[BufferSlot::hit_normal].bytes(), 40960 * sizeof(float4));
+  EXPECT_EQ(renderer.buffers()[BufferSlot::hit_records].bytes(), 40960 * kRecordBytes);
   EXPECT_EQ(device->needed_bytes() - device->allocated_bytes(), counted - 40960 * kRecordBytes);
   FrameStats stats;
   const FrameImage first = renderer.render_frame(0, &stats);
   MapRoom r;
   r.hits = uint64_t(stats.method.get("hits"));
   r.room = renderer.buffers()[BufferSlot::map_center].bytes() / sizeof(float4);
-  r.records = renderer.buffers()[BufferSlot::hit_normal].bytes() / sizeof(float4);
+  r.records = renderer.buffers()[BufferSlot::hit_records].bytes() / kRecordBytes;
   // The checks still count what the photons could need, less what is held.
   const uint64_t held = r.room * kMapBytesPerHit + r.records * kRecordBytes;
   EXPECT_EQ(device->needed_bytes() - device->allocated_bytes(), held < counted ? counted - held : 0);
@@ -127,24 +129,24 @@ MapRoom render_and_measure_map(float albedo) {
 
 TEST(HitSlots, ThePhotonMapAndTheHitRecordsAreSizedByTheHitsAPassRecords) {
   // The box as it is: fewer valid hits than photons (but more than the records' first room),
-  // room for 5/4 of them.
+  // room for them and a margin (hit_room).
   const MapRoom dark = render_and_measure_map(0);
   ASSERT_GT(dark.hits, 40960u);
   ASSERT_LT(dark.hits, 65536u) << "the box's photons record fewer valid hits than there are photons";
-  EXPECT_EQ(dark.room, dark.hits * 5 / 4);
+  EXPECT_EQ(dark.room, hit_room(dark.hits));
   EXPECT_EQ(dark.records, dark.room);
-  // Brighter walls: more valid hits than photons but within the 5/4 of them the checks counted:
-  // the map keeps that room and no more.
-  const MapRoom bright = render_and_measure_map(0.85f);
-  ASSERT_GT(bright.hits, 65536u);
+  // Brighter walls: more valid hits than photons, within the 5/4 of them the checks counted, but
+  // too many for their margin to fit in it: the map keeps that room and no more.
+  const MapRoom bright = render_and_measure_map(0.93f);
+  ASSERT_GT(hit_room(bright.hits), 81920u);
   ASSERT_LE(bright.hits, 81920u);
   EXPECT_EQ(bright.room, 81920u);
   EXPECT_EQ(bright.records, 81920u);
-  // Brighter still: more than 5/4 of the photons; the map grows to 5/4 of the hits, up to the
-  // two records of each photon.
+  // Brighter still: more than 5/4 of the photons; the map grows to the hits and their margin, up
+  // to the two records of each photon.
   const MapRoom brightest = render_and_measure_map(1.0f);
   ASSERT_GT(brightest.hits, 81920u);
-  EXPECT_EQ(brightest.room, std::min<uint64_t>(brightest.hits * 5 / 4, 131072u));
+  EXPECT_EQ(brightest.room, std::min<uint64_t>(hit_room(brightest.hits), 131072u));
   EXPECT_EQ(brightest.records, brightest.room);
   std::printf("valid hits of 65536 photons: %llu, %llu, %llu; map room %llu, %llu, %llu\n",
               (unsigned long long)dark.hits, (unsigned long long)bright.hits, (unsigned long long)brightest.hits,

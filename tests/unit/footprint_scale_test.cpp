@@ -21,7 +21,7 @@ namespace {
 // w holds the flags and the index of the hit's record; the records in the reverse of slot order,
 // as an atomic counter may hand them out (photon_trace.h).
 struct HostHits {
-  std::vector<float4> position, incident, dp_u, dp_v, partials;
+  std::vector<float4> position, incident, dp_u, dp_v, records, partials;
   LaunchParams params{};
   KernelGlobals kg{};
 
@@ -46,13 +46,18 @@ struct HostHits {
       dp_u[r] = {scale * u(rng), scale * u(rng), 0, 0};
       dp_v[r] = {scale * u(rng), scale * u(rng), 0, 0};
     }
+    // The kernel's records: four float4 side by side (PM_RECORD_*, kernels/common/types.h).
+    records.resize(size_t(PM_RECORD_FLOAT4S) * slots);
+    for (uint32_t r = 0; r < slots; ++r) {
+      records[PM_RECORD_FLOAT4S * r + PM_RECORD_INCIDENT] = incident[r];
+      records[PM_RECORD_FLOAT4S * r + PM_RECORD_DP_U] = dp_u[r];
+      records[PM_RECORD_FLOAT4S * r + PM_RECORD_DP_V] = dp_v[r];
+    }
     partials.resize(2 * ((slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE));
     params.photon_count = photons;
     params.hit_slots_per_photon = slots_per_photon;
     kg.hit_position = position.data();
-    kg.hit_incident = incident.data();
-    kg.hit_dp_u = dp_u.data();
-    kg.hit_dp_v = dp_v.data();
+    kg.hit_records = records.data();
     kg.map_partials = partials.data();
   }
 
