@@ -76,13 +76,14 @@
   /* photon mapping, S3 footprints and S4 photon map: the valid hits in sorted order */                     \
   X(photon, float4, map_partials, bounds_tiles, 2) /* per tile: (lo, area sum), (hi, count) */              \
   X(photon, float4, map_lo, map_hits, 1)       /* footprint AABB; lo.w = footprint area */                  \
-  X(photon, float4, map_hi, map_hits, 1)       /* w: a second cut's mu (footprint_second_cut) */            \
+  X(photon, float4, map_hi, map_hits, 1)                                                                    \
   X(photon, float4, map_center, map_hits, 1)   /* hit position, w = flags */                                \
   X(photon, float4, map_row_u, map_hits, 1)    /* rows of the inverse ellipsoid basis, w: the first cut */  \
   X(photon, float4, map_row_v, map_hits, 1)                                                                 \
   X(photon, float4, map_row_n, map_hits, 1)                                                                 \
-  X(photon, float4, map_power, map_hits, 1)    /* rgb flux / (area x covered share), w: the cut's mv */      \
-  X(photon, float4, map_incident, map_hits, 1) /* unit direction back to the origin, w: the cut's t */      \
+  X(photon, float4, map_power, map_hits, 1)    /* rgb flux / (ellipse area x covered share) */            \
+  X(photon, float4, map_incident, map_hits, 1)                                                              \
+  X(photon, float4, map_cut, map_hits, 1)      /* second cut of a clipped footprint (footprint_clip.h) */   \
   X(photon, uint, gather_stats, counters, 2)   /* [0] hits accepted, [1] shading points (collect_stats) */ \
   X(photon, uint, map_tile_offsets, bounds_tiles, 1) /* S4: first compacted key of each tile's valid hits */\
   X(photon, uint, morton_keys, map_hits, 1)    /* S4 input of the sort: Morton keys of the valid hits; */ \

@@ -46,18 +46,10 @@ PM_DEVICE float gather_kernel_weight(uint shape, float r2)
   return shape == PM_KERNEL_EPANECHNIKOV ? kernel_epanechnikov(r2) : kernel_constant(r2);
 }
 
-/* The second cut (mu, mv, t) of photon k's clipped footprint (footprint_clip.h), flagged
-   PM_HIT_SECOND_CUT: it rides in the w that the footprint's bounds, power and incident direction
-   leave free, so a second cut costs no memory of its own (photon_footprint.h). */
-PM_DEVICE Vec3 footprint_second_cut(const KernelGlobals* kg, uint k)
-{
-  return vec3(PM_LOAD(&kg->map_hi[k]).w, PM_LOAD(&kg->map_power[k]).w, PM_LOAD(&kg->map_incident[k]).w);
-}
-
 /* Whether photon k's footprint reaches the shading point x with normal n: x lies in the
    ellipsoid, on the hit's side of its cuts (footprint_clip.h; the rows' w hold the first,
-   mu lu + mv lv <= t in the ellipsoid's coordinates of x - hit, footprint_second_cut a second one
-   where the flags say so), and x's surface faces the way the
+   mu lu + mv lv <= t in the ellipsoid's coordinates of x - hit, map_cut a second one where the
+   flags say so), and x's surface faces the way the
    photon's did: the normal axis row_n = n_hit / |a_n| must lie within 60 degrees of n
    (PM_GATHER_MIN_NORMAL_COS2). The footprint's thickness lets a photon reach the neighbouring
    facets of a tessellated curved surface, and around a convex edge onto the other side of the
@@ -77,7 +69,7 @@ PM_DEVICE int footprint_reaches_at(const KernelGlobals* kg, uint k, float4 c, Ve
   *at_v = lv;
   if (!(*r2 <= 1.0f) || !(row_u.w * lu + row_v.w * lv <= row_n.w)) return 0;
   if (PM_AS_UINT(c.w) & PM_HIT_SECOND_CUT) {
-    Vec3 cut = footprint_second_cut(kg, k);
+    float4 cut = PM_LOAD(&kg->map_cut[k]);
     if (!(cut.x * lu + cut.y * lv <= cut.z)) return 0;
   }
   return photon_faces_like(row_n, n);
@@ -106,7 +98,7 @@ PM_DEVICE float footprint_kept_about(const KernelGlobals* kg, uint k, float4 c, 
   mv[1] = 0.0f;
   t[1] = 1.0f;
   if (PM_AS_UINT(c.w) & PM_HIT_SECOND_CUT) {
-    Vec3 cut = footprint_second_cut(kg, k);
+    float4 cut = PM_LOAD(&kg->map_cut[k]);
     mu[1] = cut.x;
     mv[1] = cut.y;
     t[1] = pm_fmaxf(cut.z - (cut.x * at_u + cut.y * at_v), 0.0f);

@@ -48,7 +48,7 @@ PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p
    k, so the photon map's leaves and the gather read contiguous memory. The gather data of a hit: the footprint clipped at the geometry around it (footprint_clip.h),
    its bounds, the rows of the inverse of its basis, whose w hold the first cut (mu, mv, t): the
    gather accepts x where mu (row_u . (x - hit)) + mv (row_v . (x - hit)) <= t, a second cut in
-   the w of map_hi, map_power and map_incident (flagged PM_HIT_SECOND_CUT), and flux / (area * covered share); the gather divides by the kernel mass the cuts keep about each shading point. For
+   map_cut (flagged PM_HIT_SECOND_CUT), and flux / (area * covered share); the gather divides by the kernel mass the cuts keep about each shading point. For
    knn the bounds are the point box hit +- r_max the knn traversal expects, and the power is the
    flux (the knn gather divides by its own area). */
 PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchParams* p, uint k)
@@ -111,13 +111,14 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
   }
   uint flags = hit_flags | (cut.t[1] < 1.0f ? PM_HIT_SECOND_CUT : 0u);
   kg->map_lo[k] = vec3_to_float4(lo, area);
-  kg->map_hi[k] = vec3_to_float4(hi, cut.mu[1]);
+  kg->map_hi[k] = vec3_to_float4(hi, 0.0f);
   kg->map_center[k] = vec3_to_float4(center, PM_UINT_AS_FLOAT(flags));
   kg->map_row_u[k] = vec3_to_float4(vec3_scale(c_vn, inv_det), cut.mu[0]);
   kg->map_row_v[k] = vec3_to_float4(vec3_scale(c_nu, inv_det), cut.mv[0]);
   kg->map_row_n[k] = vec3_to_float4(vec3_scale(c_uv, inv_det), cut.t[0]);
-  kg->map_power[k] = vec3_to_float4(power, cut.mv[1]);
-  kg->map_incident[k] = vec3_to_float4(vec3_from_float4(photon_hit_part(kg, record, PM_RECORD_INCIDENT)), cut.t[1]);
+  kg->map_cut[k] = PM_MAKE_FLOAT4(cut.mu[1], cut.mv[1], cut.t[1], 0.0f);
+  kg->map_power[k] = vec3_to_float4(power, 0.0f);
+  kg->map_incident[k] = photon_hit_part(kg, record, PM_RECORD_INCIDENT);
 }
 
 #endif

@@ -236,7 +236,8 @@ void PhotonMapping::build_vvh_map(const LaunchParams& params) {
   device_.download(buffers_[BufferSlot::map_hi], hi.data(), n * sizeof(float4));
   VvhPhotonMap map = build_vvh_photon_map(lo, hi, params.leaf_threshold);
   for (BufferSlot slot : {BufferSlot::map_lo, BufferSlot::map_hi, BufferSlot::map_center, BufferSlot::map_row_u,
-                          BufferSlot::map_row_v, BufferSlot::map_row_n, BufferSlot::map_power, BufferSlot::map_incident}) {
+                          BufferSlot::map_row_v, BufferSlot::map_row_n, BufferSlot::map_power, BufferSlot::map_incident,
+                          BufferSlot::map_cut}) {
     std::vector<float4> data(n), permuted(n);
     device_.download(buffers_[slot], data.data(), n * sizeof(float4));
     for (uint32_t k = 0; k < n; ++k) permuted[k] = data[map.order[k]];

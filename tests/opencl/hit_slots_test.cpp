@@ -81,10 +81,10 @@ TEST(HitSlots, AMirrorFreeSceneLosesNoHitInBounceManyRecords) {
               b.peak_bytes / 1048576.0);
 }
 
-// A photon map entry: eight float4 of footprint and gather data, the Morton keys and slots before
+// A photon map entry: nine float4 of footprint and gather data, the Morton keys and slots before
 // and after the sort (16 bytes), which the tree's parent links and visit counters take over. A
 // hit record: four float4, which the tree's nodes take over (kernels/common/buffers.h).
-constexpr uint64_t kMapBytesPerHit = 144, kRecordBytes = 64;
+constexpr uint64_t kMapBytesPerHit = 160, kRecordBytes = 64;
 
 
 // Renders the built-in box (every diffuse reflectance set to `albedo` when given) with 65536

@@ -64,13 +64,9 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   auto row_u = read_slot<float4>(device, renderer, BufferSlot::map_row_u, n);
   auto row_v = read_slot<float4>(device, renderer, BufferSlot::map_row_v, n);
   auto row_n = read_slot<float4>(device, renderer, BufferSlot::map_row_n, n);
-  auto hi = read_slot<float4>(device, renderer, BufferSlot::map_hi, n);
+  auto cut = read_slot<float4>(device, renderer, BufferSlot::map_cut, n);
   auto power = read_slot<float4>(device, renderer, BufferSlot::map_power, n);
   auto incident = read_slot<float4>(device, renderer, BufferSlot::map_incident, n);
-  // A clipped footprint's second cut (mu, mv, t), from the w of its bounds, power and incident
-  // direction (gather_reach.h, footprint_second_cut).
-  std::vector<float4> cut(n);
-  for (size_t k = 0; k < n; ++k) cut[k] = float4{hi[k].w, power[k].w, incident[k].w, 0.0f};
   const size_t pixels = size_t(width) * height, depths = size_t(renderer.mirror_depth()) + 1, records = depths * pixels;
   auto sp = read_slot<float4>(device, renderer, BufferSlot::shade_position, records);
   auto indirect = read_slot<float4>(device, renderer, BufferSlot::film_indirect_sum, pixels);  // one pass: the sums are the image
@@ -113,8 +109,7 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
       for (size_t k = 0; k < n; ++k) {
         Vec3 d = vec3_sub(x, v3(center[k]));
         // The footprint (pd, radius) or reach (knn) on the hit's side of its cuts (the rows' w:
-        // mu lu + mv lv <= t, and where flagged a second in the w of map_hi, map_power and
-        // map_incident), and the photon's surface facing within
+        // mu lu + mv lv <= t, and map_cut where flagged), and the photon's surface facing within
         // 60 degrees of the shading point's (gather_reach.h).
         double lu = dot3(row_u[k], d), lv = dot3(row_v[k], d), ln = dot3(row_n[k], d);
         double r2 = lu * lu + lv * lv + ln * ln;
