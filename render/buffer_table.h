@@ -29,6 +29,7 @@ struct BufferExtents {
   uint64_t shading_points = 0;  // pixels * (mirror depth + 1)
   uint64_t error_tiles = 0;     // pixels / PM_FILM_ERROR_TILE, rounded up
   uint64_t layer_pixels = 0;    // pixels when the film's extra layers are asked for, else 0
+  uint64_t caustic_pixels = 0;  // pixels when the scene has mirrors (the only source of caustics), else 0
   uint64_t control_pixels = 0;  // the bias control's pixels (render/bias_control.h)
   uint64_t hit_slots = 0;       // photons per pass * hit slots per photon
   uint64_t hit_records = 0;     // valid hits whose records the trace has room for (grown as needed)

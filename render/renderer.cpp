@@ -118,6 +118,9 @@ Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& set
   extents.shading_points = extents.pixels * uint64_t(mirror_depth_ + 1);
   extents.error_tiles = (extents.pixels + PM_FILM_ERROR_TILE - 1) / PM_FILM_ERROR_TILE;
   extents.layer_pixels = settings_.layers.empty() ? 0 : extents.pixels;
+  // Only a mirror can send a photon to a diffuse surface by specular bounces alone: without one the
+  // caustic layer is zero, and the film keeps no sum for it (kernels/common/film.h).
+  extents.caustic_pixels = scene.has_mirrors() ? extents.pixels : 0;
   extents.control_pixels = control_grid(width_, height_).pixels();
   buffers_.allocate(BufferGroup::frame, extents);
   control_ = std::make_unique<BiasControl>(device_, buffers_, width_, height_);
@@ -253,6 +256,7 @@ void Renderer::begin_frame(int frame) {
   p.path_mis = 1u;  // paths of the error estimate's bias control; the path method sets its own
   p.ray_epsilon = measures_.ray_epsilon;
   p.mirror_depth = uint32_t(mirror_depth_);
+  p.film_caustic = has_caustic_film() ? 1u : 0u;
   p.seed = settings_.seed;
   p.frame = uint32_t(frame);
   p.collect_stats = frame_.collect_stats ? 1u : 0u;
@@ -267,9 +271,9 @@ void Renderer::begin_frame(int frame) {
     // The extra layers read the shading points just recorded, before any method's pass.
     if (!settings_.layers.empty()) device_.launch(KernelId::film_layers, p.width * p.height, p);
   }
-  // The camera pass has zeroed the odd-pass sum's blue in the direct layer's w (film.h).
-  for (BufferSlot sum : {BufferSlot::film_indirect_sum, BufferSlot::film_caustic_sum})
-    device_.fill_zero(buffers_[sum], buffers_[sum].bytes());
+  // The camera pass has zeroed the odd-pass sum's red in the direct layer's w (film.h).
+  for (BufferSlot sum : {BufferSlot::film_indirect_sum, BufferSlot::film_odd_blue, BufferSlot::film_caustic_sum})
+    if (buffers_[sum]) device_.fill_zero(buffers_[sum], buffers_[sum].bytes());
   passes_done_ = 0;
   odd_passes_ = 0;
   next_pass_ = 0;
@@ -377,25 +381,28 @@ double Renderer::estimate_noise() {
   return difference / std::sqrt(k * (1.0 / even + 1.0 / odd)) / level;
 }
 
-// The device keeps the odd-pass sum in the w of the direct, indirect and caustic buffers
-// (kernels/common/film.h); FilmSums holds it apart, with every w zero, as checkpoints store it.
+// The device keeps the odd-pass sum's red and green in the w of the direct and indirect buffers,
+// its blue in a plane, and a caustic sum only where the scene has mirrors (kernels/common/film.h);
+// FilmSums holds every sum apart, with every w zero and the caustic sum zero where the film has
+// none, as checkpoints store them.
 FilmSums Renderer::film_sums() {
   const size_t pixels = size_t(width_) * height_;
   FilmSums sums;
   sums.passes = passes_done_;
   sums.odd_passes = odd_passes_;
-  auto read = [&](BufferSlot slot, std::vector<float4>& out) {
-    out.resize(pixels);
-    device_.download(buffers_[slot], out.data(), pixels * sizeof(float4));
-  };
-  std::vector<float4> direct;
-  read(BufferSlot::film_indirect_sum, sums.indirect);
-  read(BufferSlot::film_caustic_sum, sums.caustic);
-  read(BufferSlot::film_direct, direct);
+  std::vector<float4> direct(pixels);
+  std::vector<float> odd_blue(pixels);
+  sums.indirect.resize(pixels);
+  sums.caustic.assign(pixels, float4{0, 0, 0, 0});
   sums.odd.resize(pixels);
+  device_.download(buffers_[BufferSlot::film_direct], direct.data(), pixels * sizeof(float4));
+  device_.download(buffers_[BufferSlot::film_indirect_sum], sums.indirect.data(), pixels * sizeof(float4));
+  device_.download(buffers_[BufferSlot::film_odd_blue], odd_blue.data(), pixels * sizeof(float));
+  if (has_caustic_film())
+    device_.download(buffers_[BufferSlot::film_caustic_sum], sums.caustic.data(), pixels * sizeof(float4));
   for (size_t i = 0; i < pixels; ++i) {
-    sums.odd[i] = float4{sums.indirect[i].w, sums.caustic[i].w, direct[i].w, 0.0f};
-    sums.indirect[i].w = sums.caustic[i].w = 0.0f;
+    sums.odd[i] = float4{direct[i].w, sums.indirect[i].w, odd_blue[i], 0.0f};
+    sums.indirect[i].w = 0.0f;
   }
   return sums;
 }
@@ -404,16 +411,23 @@ void Renderer::set_film_sums(const FilmSums& sums) {
   const size_t pixels = size_t(width_) * height_;
   if (sums.indirect.size() != pixels || sums.caustic.size() != pixels || sums.odd.size() != pixels)
     throw DeviceError("renderer: film sums of another size than the film");
-  std::vector<float4> indirect = sums.indirect, caustic = sums.caustic, direct(pixels);
+  if (!has_caustic_film() && std::any_of(sums.caustic.begin(), sums.caustic.end(), [](const float4& v) {
+        return v.x != 0 || v.y != 0 || v.z != 0;
+      }))
+    throw DeviceError("renderer: film sums with caustic light for a scene without mirrors, which makes none");
+  std::vector<float4> indirect = sums.indirect, direct(pixels);
+  std::vector<float> odd_blue(pixels);
   device_.download(buffers_[BufferSlot::film_direct], direct.data(), pixels * sizeof(float4));
   for (size_t i = 0; i < pixels; ++i) {
-    indirect[i].w = sums.odd[i].x;
-    caustic[i].w = sums.odd[i].y;
-    direct[i].w = sums.odd[i].z;
+    direct[i].w = sums.odd[i].x;
+    indirect[i].w = sums.odd[i].y;
+    odd_blue[i] = sums.odd[i].z;
   }
-  device_.upload(buffers_[BufferSlot::film_indirect_sum], indirect.data(), pixels * sizeof(float4));
-  device_.upload(buffers_[BufferSlot::film_caustic_sum], caustic.data(), pixels * sizeof(float4));
   device_.upload(buffers_[BufferSlot::film_direct], direct.data(), pixels * sizeof(float4));
+  device_.upload(buffers_[BufferSlot::film_indirect_sum], indirect.data(), pixels * sizeof(float4));
+  device_.upload(buffers_[BufferSlot::film_odd_blue], odd_blue.data(), pixels * sizeof(float));
+  if (has_caustic_film())
+    device_.upload(buffers_[BufferSlot::film_caustic_sum], sums.caustic.data(), pixels * sizeof(float4));
   passes_done_ = sums.passes;
   odd_passes_ = sums.odd_passes;
   next_pass_ = sums.passes;
@@ -472,7 +486,9 @@ FrameImage Renderer::read_image(FrameStats* stats) {
   // The film resolved here (film.h, film_combine): the sums over the passes, and a pixel whose
   // combined value is not finite black in every layer and counted.
   std::vector<float4> direct = layer(BufferSlot::film_direct), indirect = layer(BufferSlot::film_indirect_sum),
-                      caustic = layer(BufferSlot::film_caustic_sum), combined(pixels);
+                      caustic = has_caustic_film() ? layer(BufferSlot::film_caustic_sum)
+                                                   : std::vector<float4>(pixels, float4{0, 0, 0, 0}),
+                      combined(pixels);
   const uint32_t passes = passes_done_ > 0 ? passes_done_ : 1u;
   int repaired = 0;
   for (size_t i = 0; i < pixels; ++i) {

@@ -143,6 +143,8 @@ class Renderer {
   int width() const { return width_; }
   // The mirror bounces eye rays take here: the settings', or 0 where the scene has no mirror.
   int mirror_depth() const { return mirror_depth_; }
+  // Whether the film keeps a caustic sum: only a scene with mirrors makes caustics (film.h).
+  bool has_caustic_film() const { return bool(buffers_[BufferSlot::film_caustic_sum]); }
   int height() const { return height_; }
   Device& device() const { return device_; }
   // Every device buffer of the pipeline, for tests and tools that inspect intermediate results.

@@ -85,8 +85,7 @@ PM_DEVICE void kernel_bias_control_sum(const KernelGlobals* kg, const LaunchPara
     kg->control_sums[c] = total;
   }
   float inv_passes = 1.0f / (float)(p->film_passes > 0u ? p->film_passes : 1u);
-  Vec3 film = vec3_scale(vec3_add(vec3_from_float4(kg->film_indirect_sum[pixel]),
-                                  vec3_from_float4(kg->film_caustic_sum[pixel])), inv_passes);
+  Vec3 film = vec3_scale(vec3_add(vec3_from_float4(kg->film_indirect_sum[pixel]), film_caustic(kg, p, pixel)), inv_passes);
   kg->control_film[c] = vec3_to_float4(film, PM_UINT_AS_FLOAT(pixel));
 }
 

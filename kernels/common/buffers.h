@@ -50,11 +50,12 @@
                                                       /* bits, -1: none */                                  \
   /* (the normal, the material, the direction towards the viewer and the mirrors' product are */          \
   /* replayed: eye_path_next) */                                                                           \
-  /* S7 film: direct light once per frame; indirect and caustic summed over passes (rgb); their w */       \
-  /* hold the odd passes' indirect + caustic, for the error estimate (film.h, film_odd_sum) */              \
-  X(frame, float4, film_direct, pixels, 1)       /* w: the odd sum's blue */                                \
-  X(frame, float4, film_indirect_sum, pixels, 1) /* w: its red */                                           \
-  X(frame, float4, film_caustic_sum, pixels, 1)  /* w: its green */                                         \
+  /* S7 film: direct light once per frame; indirect and caustic summed over passes (rgb); the odd */       \
+  /* passes' indirect + caustic for the error estimate in the free w and a plane (film_odd_sum) */          \
+  X(frame, float4, film_direct, pixels, 1)       /* w: the odd sum's red */                                 \
+  X(frame, float4, film_indirect_sum, pixels, 1) /* w: its green */                                         \
+  X(frame, float, film_odd_blue, pixels, 1)      /* its blue */                                             \
+  X(frame, float4, film_caustic_sum, caustic_pixels, 1) /* only where mirrors make caustics; w unused */    \
   X(frame, float4, film_error_partials, error_tiles, 1) /* per tile: (sum |even - odd|, sum |all|, 0, 0) */ \
   /* extra layers (film_layers.h), allocated only when asked for: layer_pixels is 0 otherwise */            \
   X(frame, float4, film_albedo, layer_pixels, 1)   /* rgb albedo, w = first hit's material (int bits) */    \

@@ -175,6 +175,7 @@ typedef struct LaunchParams {
   uint facet_weighting;       /* photon mapping: 1: a photon counts on a tilted facet by what its beam delivers there
                                  and its footprint's area is the lit surface area (gather_reach.h); 0: in full */
   uint control_lanes;         /* bias control: work items per control pixel, each a share of its paths (bias_control.h) */
+  uint film_caustic;          /* 1: the film has a caustic sum (a scene with mirrors, film.h); 0: caustics are none */
 } LaunchParams;
 
 /* Environment lights (environment_light.h): none, one radiance from every direction, or an

@@ -446,8 +446,11 @@ TEST(ExtremesKernels, GrazingTransferAndDegenerateDifferentialsStayFinite) {
 TEST(Extremes, ANonFiniteFilmSumIsRepairedBlackInEveryLayer) {
   RenderSettings settings = photons(20000);
   settings.width = settings.height = 8;
-  const Scene scene = builtin_cornell_box();  // the renderer reads it for as long as it lives
+  // A mirror in the green wall gives the film a caustic sum (only mirrors make caustics, film.h).
+  Scene scene = builtin_cornell_box();  // the renderer reads it for as long as it lives
+  scene.materials.back().mirror = {0.5f, 0.5f, 0.5f};
   Renderer renderer(device(), scene, settings);
+  ASSERT_TRUE(renderer.has_caustic_film());
   renderer.render_frame(0);
   FilmSums sums = renderer.film_sums();
   ASSERT_EQ(sums.indirect.size(), 64u);

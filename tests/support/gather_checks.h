@@ -70,7 +70,9 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   const size_t pixels = size_t(width) * height, depths = size_t(renderer.mirror_depth()) + 1, records = depths * pixels;
   auto sp = read_slot<float4>(device, renderer, BufferSlot::shade_position, records);
   auto indirect = read_slot<float4>(device, renderer, BufferSlot::film_indirect_sum, pixels);  // one pass: the sums are the image
-  auto caustic = read_slot<float4>(device, renderer, BufferSlot::film_caustic_sum, pixels);
+  // A scene without mirrors makes no caustics, and its film keeps no caustic sum.
+  auto caustic = renderer.has_caustic_film() ? read_slot<float4>(device, renderer, BufferSlot::film_caustic_sum, pixels)
+                                             : std::vector<float4>(pixels, float4{0, 0, 0, 0});
   // A shading point's normal is its triangle's, computed by each side in its own arithmetic:
   // CUDA's fast math may differ from the host's in the last bits, enough to change which photon
   // is knn's k-th. The brute force takes the device's normals where the normal layer has them
