@@ -480,5 +480,26 @@ TEST(Extremes, ANonFiniteFilmSumIsRepairedBlackInEveryLayer) {
   EXPECT_EQ(caustic->rgb[3 * 10 + 0], 0.0625f);
 }
 
+// A scene without mirrors makes no caustics: its film keeps no caustic sum, still writes the
+// caustic layer (zero), and refuses film sums that carry caustic light (a checkpoint of another
+// scene) before it changes anything.
+TEST(Extremes, AFilmWithoutMirrorsKeepsNoCausticSumAndRefusesCausticLight) {
+  RenderSettings settings = photons(20000);
+  settings.width = settings.height = 8;
+  const Scene scene = builtin_cornell_box();  // the renderer reads it for as long as it lives
+  Renderer renderer(device(), scene, settings);
+  EXPECT_FALSE(renderer.has_caustic_film());
+  const FrameImage first = renderer.render_frame(0);
+  const ImageLayer* caustic = first.find("caustic");
+  ASSERT_NE(caustic, nullptr);
+  EXPECT_TRUE(std::all_of(caustic->rgb.begin(), caustic->rgb.end(), [](float v) { return v == 0.0f; }));
+  FilmSums sums = renderer.film_sums();
+  sums.caustic[5].y = 0.5f;
+  EXPECT_THROW(renderer.set_film_sums(sums), DeviceError);
+  const FrameImage again = renderer.read_image();
+  for (const char* name : {"", "direct", "indirect"})
+    EXPECT_EQ(first.find(name)->rgb, again.find(name)->rgb) << "layer '" << name << "'";
+}
+
 }  // namespace
 }  // namespace pm

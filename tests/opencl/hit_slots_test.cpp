@@ -86,7 +86,6 @@ TEST(HitSlots, AMirrorFreeSceneLosesNoHitInBounceManyRecords) {
 // hit record: four float4, which the tree's nodes take over (kernels/common/buffers.h).
 constexpr uint64_t kMapBytesPerHit = 160, kRecordBytes = 64;
 
-
 // Renders the built-in box (every diffuse reflectance set to `albedo` when given) with 65536
 // photons of two bounces, twice; returns the valid hits, and the room of the map and of the hit
 // records, in hits. The records start with room for 40960 hits (5/8 of the photons): a pass that
