@@ -21,7 +21,7 @@
    are read last by the footprints (S3), the unsorted Morton keys and slots by the sort and the
    sorted slots by the footprints; the photon map's tree is built after both, and read until the
    next pass traces again. The map's n - 1 inner nodes (4 float4 each, photon_map.h) fit in the
-   records of its n valid hits (4 float4 each), and its build links and visit counters in the
+   records of its n valid hits (5 float4 each), and its build links and visit counters in the
    sort's scratch, so the map holds no memory of its own for them. */
 #define PM_MAP_NODES(kg) ((kg)->hit_records)
 #define PM_MAP_NODE_PARENT(kg) ((kg)->morton_keys)
@@ -67,11 +67,10 @@
   X(frame, float4, control_partials, control_pixels, PM_CONTROL_LANES) /* per lane of a launch, as control_sums */ \
   /* photon mapping, S1 emitters: per light (first photon of the pass, photon count, 0, 0) */              \
   X(photon, uint4, photon_emitters, uploaded, 1)                                                            \
-  /* photon mapping, S2 hits: per slot [photon * hit_slots_per_photon + k] the position and where the */   \
-  /* rest of the hit is recorded; per record (photon_trace.h: only valid hits have one) the rest */       \
-  X(photon, float4, hit_position, hit_slots, 1)  /* xyz, w = PM_HIT_* flags | record << PM_HIT_RECORD_SHIFT */\
-                                                 /* as uint bits, 0: no hit */                              \
-  X(photon, float4, hit_records, hit_records, 4) /* 4 float4 per record (PM_RECORD_*, photon_trace.h); */ \
+  /* photon mapping, S2 hits: per slot [photon * hit_slots_per_photon + k] where its hit is recorded; */   \
+  /* per record (photon_trace.h: only valid hits have one) the hit */                                      \
+  X(photon, uint, hit_slots, hit_slots, 1)       /* PM_HIT_* flags | record << PM_HIT_RECORD_SHIFT, 0: none */\
+  X(photon, float4, hit_records, hit_records, 5) /* 5 float4 per record (PM_RECORD_*, photon_trace.h); */ \
                                                  /* the photon map's nodes once spent (PM_MAP_NODES) */     \
   X(photon, uint, hit_record_count, counters, 2) /* [0] records the trace took (atomic), [1] their room */ \
   /* photon mapping, S3 footprints and S4 photon map: the valid hits in sorted order */                     \

@@ -21,10 +21,9 @@ PM_DEVICE void kernel_photon_footprint_scale(const KernelGlobals* kg, const Laun
   uint end = pm_min_u(begin + PM_PHOTON_MAP_BOUNDS_TILE, slots);
   float area = 0.0f;
   for (uint i = begin; i < end; ++i) {
-    float w = kg->hit_position[i].w;
-    uint flags = PM_AS_UINT(w);
+    uint flags = kg->hit_slots[i];
     if ((flags & PM_HIT_VALID) == 0u || (flags & PM_HIT_CAUSTIC) != 0u) continue;
-    uint record = photon_hit_record(w);
+    uint record = photon_hit_record(flags);
     float delta = photon_hit_part(kg, record, PM_RECORD_INCIDENT).w;
     Vec3 a_u = footprint_semiaxis(vec3_from_float4(photon_hit_part(kg, record, PM_RECORD_DP_U)), delta, 1.0f, PM_FOOTPRINT_FAR, 0);
     Vec3 a_v = footprint_semiaxis(vec3_from_float4(photon_hit_part(kg, record, PM_RECORD_DP_V)), delta, 1.0f, PM_FOOTPRINT_FAR, 0);

@@ -54,9 +54,9 @@ PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p
 PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchParams* p, uint k)
 {
   uint slot = kg->sorted_slots[k];
-  float4 position = kg->hit_position[slot];
-  uint hit_flags = PM_AS_UINT(position.w) & PM_HIT_SLOT_FLAGS, record = photon_hit_record(position.w);
-  Vec3 center = vec3_from_float4(position);
+  uint slot_word = kg->hit_slots[slot];
+  uint hit_flags = slot_word & PM_HIT_SLOT_FLAGS, record = photon_hit_record(slot_word);
+  Vec3 center = vec3_from_float4(photon_hit_part(kg, record, PM_RECORD_POSITION));
   Vec3 normal = vec3_normalize(vec3_from_float4(photon_hit_part(kg, record, PM_RECORD_NORMAL)));
   Footprint f = hit_footprint(kg, p, hit_flags, record);
   /* Progressive shrink (docs/progressive.md): every footprint of this pass scaled alike (knn's

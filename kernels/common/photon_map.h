@@ -61,12 +61,28 @@ PM_DEVICE uint photon_map_bounds_tile_count(uint count)
   return (count + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
 }
 
+/* Where steps 1 and 2 find hit i: its PM_HIT_* flags (the return) and its position. Two layouts:
+   the trace's hit slots (slot_words non-null: a word of flags and a record index per slot, the
+   position at positions[stride * record], photon_trace.h), or positions in place (slot_words
+   null: positions[i], the flags as uint bits in its w). An empty slot's record is not read. */
+PM_DEVICE uint photon_map_hit(uint i, PM_GLOBAL const uint* slot_words, PM_GLOBAL const float4* positions,
+                              uint stride, float4* position)
+{
+  if (slot_words) {
+    uint word = PM_LOAD(&slot_words[i]);
+    if ((word & PM_HIT_VALID) != 0u) *position = PM_LOAD(&positions[stride * (word >> PM_HIT_RECORD_SHIFT)]);
+    return word;
+  }
+  *position = PM_LOAD(&positions[i]);
+  return PM_AS_UINT(position->w);
+}
+
 /* Work item = tile of slots [tile * TILE, min(count, (tile + 1) * TILE)): bounds of the valid
-   hits' positions (centers[i].w holds PM_HIT_* flags), the sum of their footprint areas
-   (area_in[i].w; none when area_in is null) and their count, into partials[2 tile] = (lo, area),
-   [2 tile + 1] = (hi, count as uint bits). A tile without valid hits gives the empty box
-   (+1e30, -1e30). */
-PM_DEVICE void photon_map_bounds_tile(uint tile, uint count, PM_GLOBAL const float4* centers,
+   hits' positions (photon_map_hit), the sum of their footprint areas (area_in[i].w; none when
+   area_in is null) and their count, into partials[2 tile] = (lo, area), [2 tile + 1] = (hi,
+   count as uint bits). A tile without valid hits gives the empty box (+1e30, -1e30). */
+PM_DEVICE void photon_map_bounds_tile(uint tile, uint count, PM_GLOBAL const uint* slot_words,
+                                      PM_GLOBAL const float4* positions, uint stride,
                                       PM_GLOBAL const float4* area_in, PM_GLOBAL float4* partials)
 {
   uint begin = tile * PM_PHOTON_MAP_BOUNDS_TILE;
@@ -75,8 +91,8 @@ PM_DEVICE void photon_map_bounds_tile(uint tile, uint count, PM_GLOBAL const flo
   float area = 0.0f;
   uint valid = 0;
   for (uint i = begin; i < end; ++i) {
-    float4 c = PM_LOAD(&centers[i]);
-    if ((PM_AS_UINT(c.w) & PM_HIT_VALID) == 0u) continue;
+    float4 c;
+    if ((photon_map_hit(i, slot_words, positions, stride, &c) & PM_HIT_VALID) == 0u) continue;
     Vec3 x = vec3_from_float4(c);
     lo = vec3_min(lo, x);
     hi = vec3_max(hi, x);
@@ -138,7 +154,8 @@ PM_DEVICE uint photon_map_morton_key(float4 center, float4 bounds_lo, float4 bou
 /* Work item = tile (as in step 1): the Morton key and slot of each valid hit of the tile, in slot
    order, from position first_out[tile] on (the exclusive prefix sum of the tiles' valid counts).
    Only valid hits reach the sort, in an order that does not depend on scheduling. */
-PM_DEVICE void photon_map_morton_tile(uint tile, uint count, PM_GLOBAL const float4* centers,
+PM_DEVICE void photon_map_morton_tile(uint tile, uint count, PM_GLOBAL const uint* slot_words,
+                                      PM_GLOBAL const float4* positions, uint stride,
                                       PM_GLOBAL const uint* first_out, float4 bounds_lo, float4 bounds_hi,
                                       PM_GLOBAL uint* keys, PM_GLOBAL uint* slots)
 {
@@ -146,8 +163,8 @@ PM_DEVICE void photon_map_morton_tile(uint tile, uint count, PM_GLOBAL const flo
   uint end = pm_min_u(begin + PM_PHOTON_MAP_BOUNDS_TILE, count);
   uint out = PM_LOAD(&first_out[tile]);
   for (uint i = begin; i < end; ++i) {
-    float4 c = PM_LOAD(&centers[i]);
-    if ((PM_AS_UINT(c.w) & PM_HIT_VALID) == 0u) continue;
+    float4 c;
+    if ((photon_map_hit(i, slot_words, positions, stride, &c) & PM_HIT_VALID) == 0u) continue;
     keys[out] = photon_map_morton_key(c, bounds_lo, bounds_hi);
     slots[out] = i;
     ++out;

@@ -8,23 +8,25 @@
 #include "photon_map.h"
 #include "photon_trace.h"
 
-/* Work item = tile of hit slots: bounds and count of the valid hits (hit_position.w holds the
-   flags), read back for the Morton bounds and the compaction. */
+/* Work item = tile of hit slots: bounds and count of the valid hits (the slots' flags, the
+   records' positions), read back for the Morton bounds and the compaction. */
 PM_DEVICE void kernel_photon_reduce(const KernelGlobals* kg, const LaunchParams* p, uint tile)
 {
-  photon_map_bounds_tile(tile, p->photon_count * p->hit_slots_per_photon, kg->hit_position, 0, kg->map_partials);
+  photon_map_bounds_tile(tile, p->photon_count * p->hit_slots_per_photon, kg->hit_slots,
+                         kg->hit_records + PM_RECORD_POSITION, PM_RECORD_FLOAT4S, 0, kg->map_partials);
 }
 
 /* Work item = tile of sorted positions: the footprints' total area, for T_auto (section 5.3). */
 PM_DEVICE void kernel_photon_map_area(const KernelGlobals* kg, const LaunchParams* p, uint tile)
 {
-  photon_map_bounds_tile(tile, p->hit_count, kg->map_center, kg->map_lo, kg->map_partials);
+  photon_map_bounds_tile(tile, p->hit_count, 0, kg->map_center, 1u, kg->map_lo, kg->map_partials);
 }
 
 /* Work item = tile: the valid hits' Morton keys, compacted, for a sort of hit_count pairs. */
 PM_DEVICE void kernel_photon_morton(const KernelGlobals* kg, const LaunchParams* p, uint tile)
 {
-  photon_map_morton_tile(tile, p->photon_count * p->hit_slots_per_photon, kg->hit_position, kg->map_tile_offsets,
+  photon_map_morton_tile(tile, p->photon_count * p->hit_slots_per_photon, kg->hit_slots,
+                         kg->hit_records + PM_RECORD_POSITION, PM_RECORD_FLOAT4S, kg->map_tile_offsets,
                          p->hit_bounds_lo, p->hit_bounds_hi, kg->morton_keys, kg->morton_slots);
 }
 

@@ -53,12 +53,12 @@ PM_DEVICE int photon_glossy_reemit(PhotonRay* ray, Vec3 n, float exponent, float
   return vec3_dot(ray->direction, nf) > 0.0f;
 }
 
-/* A hit: its position in its slot, the rest in a record of its own. Most slots stay empty (a
-   photon is absorbed or leaves before it fills its slots: three in four on Sponza), so the
-   records are taken as hits come, by an atomic counter, and the slot says which record is its
-   own; everything after the trace reads in slot order, so the image does not depend on the
-   order the records were taken in. Four float4 a record, side by side (PM_RECORD_*): the flux
-   rides in the w of the normal and the differentials. A hit beyond the records' room keeps an
+/* A hit: its flags and the index of its record in its slot (one word), the hit in the record.
+   Most slots stay empty (a photon is absorbed or leaves before it fills its slots: three in four
+   on Sponza), so the records are taken as hits come, by an atomic counter, and the slot says
+   which record is its own; everything after the trace reads in slot order, so the image does not
+   depend on the order the records were taken in. Five float4 a record, side by side
+   (PM_RECORD_*): the flux rides in the w of the normal and the differentials. A hit beyond the records' room keeps an
    empty slot: the host sees the count over the room, grows the records and traces the pass
    again. */
 PM_DEVICE void photon_store_hit(const KernelGlobals* kg, uint slot, const PhotonRay* ray, Vec3 n, Vec3 flux, float delta,
@@ -66,22 +66,23 @@ PM_DEVICE void photon_store_hit(const KernelGlobals* kg, uint slot, const Photon
 {
   uint record = pm_atomic_add_u32(&kg->hit_record_count[0], 1u);
   if (record >= kg->hit_record_count[1]) {
-    kg->hit_position[slot] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_UINT_AS_FLOAT(0u));
+    kg->hit_slots[slot] = 0u;
     return;
   }
   if (vec3_dot(n, ray->direction) > 0.0f) n = vec3_neg(n); /* the side the photon arrived on */
-  kg->hit_position[slot] = vec3_to_float4(ray->origin, PM_UINT_AS_FLOAT(flags | (record << PM_HIT_RECORD_SHIFT)));
+  kg->hit_slots[slot] = flags | (record << PM_HIT_RECORD_SHIFT);
   PM_GLOBAL float4* out = &kg->hit_records[PM_RECORD_FLOAT4S * record];
+  out[PM_RECORD_POSITION] = vec3_to_float4(ray->origin, 0.0f);
   out[PM_RECORD_NORMAL] = vec3_to_float4(n, flux.x);
   out[PM_RECORD_INCIDENT] = vec3_to_float4(vec3_neg(ray->direction), delta);
   out[PM_RECORD_DP_U] = vec3_to_float4(ray->dp_u, flux.y);
   out[PM_RECORD_DP_V] = vec3_to_float4(ray->dp_v, flux.z);
 }
 
-/* The record of the hit in a slot whose position's w is `position_w` (photon_store_hit). */
-PM_DEVICE uint photon_hit_record(float position_w)
+/* The record of the hit in a slot whose word is `slot_word` (photon_store_hit). */
+PM_DEVICE uint photon_hit_record(uint slot_word)
 {
-  return PM_AS_UINT(position_w) >> PM_HIT_RECORD_SHIFT;
+  return slot_word >> PM_HIT_RECORD_SHIFT;
 }
 
 /* One float4 of a hit record (PM_RECORD_*). */
@@ -212,7 +213,7 @@ PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* 
     }
   }
   for (uint k = stored; k < p->hit_slots_per_photon; ++k)
-    kg->hit_position[first_slot + k] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_UINT_AS_FLOAT(0u)); /* no flags */
+    kg->hit_slots[first_slot + k] = 0u; /* no flags */
 }
 
 #endif

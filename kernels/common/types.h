@@ -67,21 +67,23 @@ typedef struct CameraParams {
   float4 up;
 } CameraParams;
 
-/* Photon hit flags, stored as uint bits in the w of hit_position and map_center; hit_position's w
-   also holds the index of the hit's record above PM_HIT_RECORD_SHIFT (photon_trace.h). */
+/* Photon hit flags: a hit slot's word (hit_slots) holds them below the index of the hit's record
+   (above PM_HIT_RECORD_SHIFT, photon_trace.h); the gather data keeps them as uint bits in the w of
+   map_center. */
 #define PM_HIT_VALID 1u
 #define PM_HIT_CAUSTIC 2u /* path from the light was specular only */
 #define PM_HIT_SLOT_FLAGS 3u /* the flags a hit slot carries */
 #define PM_HIT_RECORD_SHIFT 2u
 #define PM_HIT_SECOND_CUT 4u /* footprint data: the footprint has a second cut (footprint_clip.h) */
 
-/* A hit record (photon_trace.h): four float4 side by side in hit_records, at PM_RECORD_FLOAT4S *
+/* A hit record (photon_trace.h): five float4 side by side in hit_records, at PM_RECORD_FLOAT4S *
    record; the photon map's inner nodes take the same memory, four float4 each (buffers.h). */
-#define PM_RECORD_FLOAT4S 4u
+#define PM_RECORD_FLOAT4S 5u
 #define PM_RECORD_NORMAL 0u   /* xyz facing the photon's side, w = flux red (watts) */
 #define PM_RECORD_INCIDENT 1u /* xyz unit direction back to its origin, w = Delta */
 #define PM_RECORD_DP_U 2u     /* positional differentials (eq. 8 scaling), w = flux green */
 #define PM_RECORD_DP_V 3u     /* w = flux blue */
+#define PM_RECORD_POSITION 4u /* xyz where the photon hit, w = 0 */
 
 /* Density estimators (--estimator) and kernel shapes (--kernel) of the gather. */
 #define PM_ESTIMATOR_PD 0     /* photon-differential footprints (the paper) */

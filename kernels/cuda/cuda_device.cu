@@ -171,19 +171,28 @@ class CudaDevice final : public Device {
                         cudaGetErrorString(err) + ")");
   }
 
+  // CUB sorts in the two pairs of buffers it is given (its DoubleBuffer form: the inputs are
+  // scratch, as sort_pairs allows), so its temporary storage is only its digit counts, not a
+  // third copy of the pairs; the result is copied out when it ends in the inputs.
   void sort_pairs(DeviceBuffer& keys_in, DeviceBuffer& values_in, DeviceBuffer& keys_out, DeviceBuffer& values_out,
                   uint32_t count, int key_bits) override {
     activate();
-    const auto* k_in = static_cast<const uint32_t*>(keys_in.handle());
-    const auto* v_in = static_cast<const uint32_t*>(values_in.handle());
-    auto* k_out = static_cast<uint32_t*>(keys_out.handle());
-    auto* v_out = static_cast<uint32_t*>(values_out.handle());
+    cub::DoubleBuffer<uint32_t> keys(static_cast<uint32_t*>(keys_in.handle()), static_cast<uint32_t*>(keys_out.handle()));
+    cub::DoubleBuffer<uint32_t> values(static_cast<uint32_t*>(values_in.handle()),
+                                       static_cast<uint32_t*>(values_out.handle()));
     size_t temp_bytes = 0;
-    PM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, k_in, k_out, v_in, v_out, int(count), 0,
+    PM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, keys, values, int(count), 0, key_bits, stream_));
+    if (sort_temp_.bytes() < temp_bytes) {
+      sort_temp_.reset();
+      sort_temp_ = allocate(temp_bytes, "CUB radix sort temporary storage");
+    }
+    PM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(sort_temp_.handle(), temp_bytes, keys, values, int(count), 0,
                                                   key_bits, stream_));
-    if (sort_temp_.bytes() < temp_bytes) sort_temp_ = allocate(temp_bytes, "CUB radix sort temporary storage");
-    PM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(sort_temp_.handle(), temp_bytes, k_in, k_out, v_in, v_out,
-                                                  int(count), 0, key_bits, stream_));
+    const size_t bytes = size_t(count) * sizeof(uint32_t);
+    if (keys.Current() != keys_out.handle())
+      PM_CUDA_CHECK(cudaMemcpyAsync(keys_out.handle(), keys.Current(), bytes, cudaMemcpyDeviceToDevice, stream_));
+    if (values.Current() != values_out.handle())
+      PM_CUDA_CHECK(cudaMemcpyAsync(values_out.handle(), values.Current(), bytes, cudaMemcpyDeviceToDevice, stream_));
   }
 
   void synchronize() override {

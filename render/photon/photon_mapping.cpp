@@ -52,11 +52,12 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
   shading_points_ = context.shading_points;
   extents_.hit_slots = hit_slots();
   extents_.bounds_tiles = (extents_.hit_slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
-  // The hit records start with room for 5/8 of the photons' hits (Sponza and Sibenik record about
-  // half a valid hit per photon); a pass that records more traces again with more room. The map
-  // is allocated by the first pass, for the hits it records (reserve_map). Until they grow, the
-  // memory checks count both at the room of 5/4 of the photons' hits.
-  extents_.hit_records = std::min<uint64_t>(uint64_t(photons_per_pass_) * 5 / 8, hit_slots());
+  // The hit records start with room for half as many hits as photons (Sponza and Sibenik record
+  // about that many); a pass that records more traces again with room for what it recorded
+  // (room_for), so the room ends near the hits a pass records, not at a guess above them. The
+  // map is allocated by the first pass, for the hits it records (reserve_map). Until they grow,
+  // the memory checks count both at the room of 5/4 of the photons' hits.
+  extents_.hit_records = std::min<uint64_t>(uint64_t(photons_per_pass_) / 2, hit_slots());
   resize_growing_buffers();
   area_power_ = build_scene_emitters(context.scene).power_rgb_sum;
   environment_power_ = environment_power_rgb_sum(context.scene.environment, context.measures);
@@ -245,7 +246,7 @@ void PhotonMapping::build_vvh_map(const LaunchParams& params) {
   }
   // The nodes take the hit records' memory (PM_MAP_NODES, kernels/common/buffers.h): n - 1 inner
   // nodes for n hits fit there; the records are spent by now, so the room may grow without loss.
-  reserve_hit_records(uint32_t(map.nodes.size() / PM_RECORD_FLOAT4S));
+  reserve_hit_records(uint32_t((map.nodes.size() + PM_RECORD_FLOAT4S - 1) / PM_RECORD_FLOAT4S));
   device_.upload(buffers_[BufferSlot::hit_records], map.nodes.data(), map.nodes.size() * sizeof(float4));
 }
 

@@ -74,21 +74,21 @@ TEST(HitSlots, AMirrorFreeSceneLosesNoHitInBounceManyRecords) {
     ASSERT_EQ(x.size(), y.size());
     EXPECT_EQ(std::memcmp(x.data(), y.data(), x.size() * sizeof(float)), 0) << "layer '" << layer << "'";
   }
-  // One float4 per slot (the records are taken per valid hit): 16 bytes for each of the two slots
+  // One word per slot (the records are taken per valid hit): 4 bytes for each of the two slots
   // per photon not reserved.
-  EXPECT_GE(b.peak_bytes, a.peak_bytes + uint64_t(65536) * 2 * 16);
+  EXPECT_GE(b.peak_bytes, a.peak_bytes + uint64_t(65536) * 2 * 4);
   std::printf("peak device memory: %.1f MiB without mirrors, %.1f MiB with\n", a.peak_bytes / 1048576.0,
               b.peak_bytes / 1048576.0);
 }
 
 // A photon map entry: nine float4 of footprint and gather data, the Morton keys and slots before
 // and after the sort (16 bytes), which the tree's parent links and visit counters take over. A
-// hit record: four float4, which the tree's nodes take over (kernels/common/buffers.h).
-constexpr uint64_t kMapBytesPerHit = 160, kRecordBytes = 64;
+// hit record: five float4, which the tree's nodes take over (kernels/common/buffers.h).
+constexpr uint64_t kMapBytesPerHit = 160, kRecordBytes = 80;
 
 // Renders the built-in box (every diffuse reflectance set to `albedo` when given) with 65536
 // photons of two bounces, twice; returns the valid hits, and the room of the map and of the hit
-// records, in hits. The records start with room for 40960 hits (5/8 of the photons): a pass that
+// records, in hits. The records start with room for 32768 hits (half the photons): a pass that
 // records more traces again with more room, and the frame rendered again, with room from the
 // start, must give the same bits.
 struct MapRoom {
@@ -106,8 +106,8 @@ MapRoom render_and_measure_map(float albedo) {
   // the photons' hits (no more than the slots of each photon).
   const uint64_t counted = 81920 * (kMapBytesPerHit + kRecordBytes);
   EXPECT_EQ(renderer.buffers()[BufferSlot::map_center].bytes(), 0u);
-  EXPECT_EQ(renderer.buffers()[BufferSlot::hit_records].bytes(), 40960 * kRecordBytes);
-  EXPECT_EQ(device->needed_bytes() - device->allocated_bytes(), counted - 40960 * kRecordBytes);
+  EXPECT_EQ(renderer.buffers()[BufferSlot::hit_records].bytes(), 32768 * kRecordBytes);
+  EXPECT_EQ(device->needed_bytes() - device->allocated_bytes(), counted - 32768 * kRecordBytes);
   FrameStats stats;
   const FrameImage first = renderer.render_frame(0, &stats);
   MapRoom r;
@@ -130,7 +130,7 @@ TEST(HitSlots, ThePhotonMapAndTheHitRecordsAreSizedByTheHitsAPassRecords) {
   // The box as it is: fewer valid hits than photons (but more than the records' first room),
   // room for them and a margin (hit_room).
   const MapRoom dark = render_and_measure_map(0);
-  ASSERT_GT(dark.hits, 40960u);
+  ASSERT_GT(dark.hits, 32768u);
   ASSERT_LT(dark.hits, 65536u) << "the box's photons record fewer valid hits than there are photons";
   EXPECT_EQ(dark.room, hit_room(dark.hits));
   EXPECT_EQ(dark.records, dark.room);

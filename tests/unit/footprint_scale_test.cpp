@@ -8,7 +8,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <random>
 #include <vector>
 
@@ -17,36 +16,35 @@
 namespace pm {
 namespace {
 
-// A batch of hits held on the host, with the kernel's view of them: per slot the position, whose
-// w holds the flags and the index of the hit's record; the records in the reverse of slot order,
-// as an atomic counter may hand them out (photon_trace.h).
+// A batch of hits held on the host, with the kernel's view of them: per slot a word of the flags
+// and the index of the hit's record; the records in the reverse of slot order, as an atomic
+// counter may hand them out (photon_trace.h).
 struct HostHits {
-  std::vector<float4> position, incident, dp_u, dp_v, records, partials;
+  std::vector<uint32_t> slot_words;
+  std::vector<float4> incident, dp_u, dp_v, records, partials;
   LaunchParams params{};
   KernelGlobals kg{};
 
-  uint32_t record(size_t slot) const { return uint32_t(position.size() - 1 - slot); }
+  uint32_t record(size_t slot) const { return uint32_t(slot_words.size() - 1 - slot); }
 
   HostHits(uint32_t photons, uint32_t slots_per_photon, uint32_t seed, float scale) {
     const uint32_t slots = photons * slots_per_photon;
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-    position.resize(slots);
+    slot_words.resize(slots);
     incident.resize(slots);
     dp_u.resize(slots);
     dp_v.resize(slots);
     for (uint32_t i = 0; i < slots; ++i) {
       uint32_t flags = i % 7 == 3 ? 0u : PM_HIT_VALID;  // some empty slots
       if (i % 11 == 5) flags |= PM_HIT_CAUSTIC;          // some caustic hits
-      const uint32_t r = record(i), w = flags | (r << PM_HIT_RECORD_SHIFT);
-      float bits;
-      std::memcpy(&bits, &w, 4);
-      position[i] = {0, 0, 0, bits};
+      const uint32_t r = record(i);
+      slot_words[i] = flags | (r << PM_HIT_RECORD_SHIFT);
       incident[r] = {0, 0, 1, 0.01f + 0.001f * float(i % 5)};  // w: Delta
       dp_u[r] = {scale * u(rng), scale * u(rng), 0, 0};
       dp_v[r] = {scale * u(rng), scale * u(rng), 0, 0};
     }
-    // The kernel's records: four float4 side by side (PM_RECORD_*, kernels/common/types.h).
+    // The kernel's records: five float4 side by side (PM_RECORD_*, kernels/common/types.h).
     records.resize(size_t(PM_RECORD_FLOAT4S) * slots);
     for (uint32_t r = 0; r < slots; ++r) {
       records[PM_RECORD_FLOAT4S * r + PM_RECORD_INCIDENT] = incident[r];
@@ -56,7 +54,7 @@ struct HostHits {
     partials.resize(2 * ((slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE));
     params.photon_count = photons;
     params.hit_slots_per_photon = slots_per_photon;
-    kg.hit_position = position.data();
+    kg.hit_slots = slot_words.data();
     kg.hit_records = records.data();
     kg.map_partials = partials.data();
   }
@@ -74,9 +72,8 @@ struct HostHits {
   // Independent: pi Delta^2 |dp_u|^(1/4) |dp_v|^(1/4) sin(angle) over valid diffuse hits, in double.
   double reference_area() const {
     double sum = 0;
-    for (size_t i = 0; i < position.size(); ++i) {
-      uint32_t flags;
-      std::memcpy(&flags, &position[i].w, 4);
+    for (size_t i = 0; i < slot_words.size(); ++i) {
+      const uint32_t flags = slot_words[i];
       if (!(flags & PM_HIT_VALID) || (flags & PM_HIT_CAUSTIC)) continue;
       const uint32_t r = record(i);
       const double ax = dp_u[r].x, ay = dp_u[r].y, bx = dp_v[r].x, by = dp_v[r].y;
@@ -91,9 +88,8 @@ struct HostHits {
   // Total area of the batch's diffuse footprints at smoothing s, unclamped, as S3 builds them.
   double footprint_area_at(float s) const {
     double sum = 0;
-    for (size_t i = 0; i < position.size(); ++i) {
-      uint32_t flags;
-      std::memcpy(&flags, &position[i].w, 4);
+    for (size_t i = 0; i < slot_words.size(); ++i) {
+      const uint32_t flags = slot_words[i];
       if (!(flags & PM_HIT_VALID) || (flags & PM_HIT_CAUSTIC)) continue;
       const uint32_t r = record(i);
       Footprint f = footprint_from_differentials(vec3_from_float4(dp_u[r]), vec3_from_float4(dp_v[r]), vec3(0, 0, 1),

@@ -45,19 +45,57 @@ struct HostPhotonMap {
 // Never written by a correct build: lets the tests see any slot the bottom-up pass missed.
 constexpr uint kPoison = 0x7FBADBADu;
 
-// Hit slots as the footprint stage leaves them: position with PM_HIT_VALID in w (or 0: an empty
-// slot), and the footprint area in w of the second array.
+// Hits with their positions in place, as the gather data keeps them: position with PM_HIT_VALID
+// in w (or 0: an empty slot), and the footprint area in w of the second array.
 inline float4 valid_center(float4 p) { return PM_MAKE_FLOAT4(p.x, p.y, p.z, PM_UINT_AS_FLOAT(PM_HIT_VALID)); }
 
-// Step 1 as the pipeline runs it: one tile per work item, the partials combined on the host.
+// The same hits as the trace leaves them (photon_trace.h): a word per slot (the flags and the
+// index of the hit's record), the positions in records of `stride` float4 at offset
+// PM_RECORD_POSITION, the records handed out in an order of their own (as an atomic counter
+// would), and an empty slot's word 0.
+struct SlotLayout {
+  std::vector<uint> words;
+  std::vector<float4> records;
+  uint stride = PM_RECORD_FLOAT4S;
+  const float4* positions() const { return records.data() + PM_RECORD_POSITION; }
+};
+
+inline SlotLayout slot_layout(const std::vector<float4>& centers, uint32_t seed)
+{
+  SlotLayout layout;
+  std::vector<uint> valid;
+  for (uint i = 0; i < (uint)centers.size(); ++i)
+    if (PM_AS_UINT(centers[i].w) & PM_HIT_VALID) valid.push_back(i);
+  std::vector<uint> record_of(valid.size());
+  std::iota(record_of.begin(), record_of.end(), 0u);
+  std::shuffle(record_of.begin(), record_of.end(), std::mt19937(seed));
+  float poison = PM_UINT_AS_FLOAT(kPoison);
+  layout.words.assign(centers.size(), 0u);
+  layout.records.assign(layout.stride * valid.size(), PM_MAKE_FLOAT4(poison, poison, poison, poison));
+  for (size_t k = 0; k < valid.size(); ++k) {
+    const uint i = valid[k], r = record_of[k];
+    layout.words[i] = (PM_AS_UINT(centers[i].w) & PM_HIT_SLOT_FLAGS) | (r << PM_HIT_RECORD_SHIFT);
+    float4 c = centers[i];
+    c.w = 0.0f;
+    layout.records[layout.stride * r + PM_RECORD_POSITION] = c;
+  }
+  return layout;
+}
+
+// Step 1 as the pipeline runs it: one tile per work item, the partials combined on the host. The
+// hits in place (`centers`), or in the trace's layout when `slots` is given (no areas there).
 inline PhotonMapBounds reduce_bounds(const std::vector<float4>& centers, const std::vector<float4>& areas,
-                                     std::vector<float4>* partials_out = nullptr)
+                                     std::vector<float4>* partials_out = nullptr, const SlotLayout* slots = nullptr)
 {
   uint count = (uint)centers.size();
   uint tiles = photon_map_bounds_tile_count(count);
   std::vector<float4> partials(2 * (size_t)tiles);
   run_items(tiles, Order::kReverse, 0, [&](uint t) {
-    photon_map_bounds_tile(t, count, centers.data(), areas.data(), partials.data());
+    if (slots)
+      photon_map_bounds_tile(t, count, slots->words.data(), slots->positions(), slots->stride, nullptr,
+                             partials.data());
+    else
+      photon_map_bounds_tile(t, count, nullptr, centers.data(), 1u, areas.data(), partials.data());
   });
   if (partials_out) *partials_out = partials;
   return photon_map_combine_partials(partials.data(), tiles);
@@ -66,10 +104,10 @@ inline PhotonMapBounds reduce_bounds(const std::vector<float4>& centers, const s
 // Step 2 as the pipeline runs it: the valid slots' keys, compacted per tile at the host-computed
 // offsets, in any order of the tiles.
 inline void morton_keys(const std::vector<float4>& centers, const std::vector<float4>& areas, Order order,
-                        std::vector<uint>* codes, std::vector<uint>* slots)
+                        std::vector<uint>* codes, std::vector<uint>* slots, const SlotLayout* layout = nullptr)
 {
   std::vector<float4> partials;
-  PhotonMapBounds b = reduce_bounds(centers, areas, &partials);
+  PhotonMapBounds b = reduce_bounds(centers, areas, &partials, layout);
   uint count = (uint)centers.size();
   uint tiles = photon_map_bounds_tile_count(count);
   std::vector<uint> first_out(tiles);
@@ -77,7 +115,12 @@ inline void morton_keys(const std::vector<float4>& centers, const std::vector<fl
   codes->assign(b.count, kPoison);
   slots->assign(b.count, kPoison);
   run_items(tiles, order, 5, [&](uint t) {
-    photon_map_morton_tile(t, count, centers.data(), first_out.data(), b.lo, b.hi, codes->data(), slots->data());
+    if (layout)
+      photon_map_morton_tile(t, count, layout->words.data(), layout->positions(), layout->stride, first_out.data(),
+                             b.lo, b.hi, codes->data(), slots->data());
+    else
+      photon_map_morton_tile(t, count, nullptr, centers.data(), 1u, first_out.data(), b.lo, b.hi, codes->data(),
+                             slots->data());
   });
 }
 

@@ -251,6 +251,35 @@ TEST(PhotonMapMorton, OnlyValidHitsGetKeysInSlotOrder)
   }
 }
 
+// Steps 1 and 2 over the trace's hit slots (a word per slot, the position in a record taken in
+// any order, photon_trace.h) give the bounds, counts, keys and slots of the same hits in place,
+// bit for bit (the records' other float4 are poison: reading one would show).
+TEST(PhotonMapMorton, HitSlotsAndRecordsGiveTheKeysOfTheHitsInPlace)
+{
+  for (uint n : {1u, 256u, 257u, 1000u, 70000u}) {
+    Hits h = make_hits(n, 31 + n, n == 1000 ? 4 : 0, 0.1f);
+    std::vector<float4> centers(n), areas(n, PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, 0.0f));
+    for (uint i = 0; i < n; ++i) {
+      const bool valid = (i * 7919u) % 5u != 0u || n == 1;
+      centers[i] = valid ? valid_center(h.pos[i]) : PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_UINT_AS_FLOAT(0u));
+      if (valid && i % 3 == 1) centers[i].w = PM_UINT_AS_FLOAT(PM_HIT_VALID | PM_HIT_CAUSTIC);
+    }
+    const SlotLayout layout = slot_layout(centers, n);
+    PhotonMapBounds in_place = reduce_bounds(centers, areas), slotted = reduce_bounds(centers, areas, nullptr, &layout);
+    EXPECT_EQ(std::memcmp(&in_place.lo, &slotted.lo, sizeof(float4)), 0) << n;
+    EXPECT_EQ(std::memcmp(&in_place.hi, &slotted.hi, sizeof(float4)), 0) << n;
+    EXPECT_EQ(slotted.count, in_place.count) << n;
+    ASSERT_GT(slotted.count, 0u);
+    for (Order order : {Order::kForward, Order::kRandom}) {
+      std::vector<uint> codes, slots, slotted_codes, slotted_slots;
+      morton_keys(centers, areas, order, &codes, &slots);
+      morton_keys(centers, areas, order, &slotted_codes, &slotted_slots, &layout);
+      EXPECT_EQ(slotted_codes, codes) << n;
+      EXPECT_EQ(slotted_slots, slots) << n;
+    }
+  }
+}
+
 // Step 4 alone: every hit and every inner node but the root has one parent, every inner node
 // exactly one left and one right child (a broken split shows here, before the bottom-up pass
 // would follow the bad links out of bounds).
