@@ -3,6 +3,8 @@
 // kernels/common/radix_sort.h).
 #include "render/portable_sort.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <utility>
 
 namespace pm {
@@ -25,7 +27,10 @@ size_t histogram_bytes(uint32_t count) {
 
 DeviceBuffer& PortableSortScratch::histogram(Device& device, uint32_t count) {
   size_t needed = histogram_bytes(count);
-  if (histogram_.bytes() < needed) histogram_ = device.allocate(needed, "radix sort histogram");
+  if (histogram_.bytes() < needed) {
+    histogram_.reset();  // free first: the old and the new need not fit together
+    histogram_ = device.allocate(needed, "radix sort histogram");
+  }
   return histogram_;
 }
 
@@ -42,7 +47,10 @@ void portable_sort_pairs(Device& device, PortableSortScratch& scratch, DeviceBuf
   params.sort_count = count;
   params.sort_tile_count = tile_count(count);
   const uint32_t lanes = PM_SORT_RADIX * params.sort_tile_count;  // one per digit of every tile
-  DeviceBuffer& histogram = scratch.histogram(device, count);
+  // Sized for as many pairs as the output has room for, so that passes whose counts vary within
+  // that room do not grow it (device memory flat over passes).
+  const uint32_t room = uint32_t(std::min<size_t>(keys_out.bytes() / sizeof(uint32_t), UINT32_MAX));
+  DeviceBuffer& histogram = scratch.histogram(device, std::max(count, room));
   device.fill_zero(histogram, histogram_bytes(count));  // the first pass's totals; each scatter zeroes the next's
   device.bind(BufferSlot::sort_histogram, histogram);
 

@@ -17,16 +17,22 @@
    so that a launch over about a thousand control pixels fills a GPU. */
 #define PM_CONTROL_LANES 64u
 
-/* Buffers that take a second role once their first is spent within a photon pass. The hit records
-   are read last by the footprints (S3), the unsorted Morton keys and slots by the sort and the
-   sorted slots by the footprints; the photon map's tree is built after both, and read until the
-   next pass traces again. The map's n - 1 inner nodes (4 float4 each, photon_map.h) fit in the
-   records of its n valid hits (5 float4 each), and its build links and visit counters in the
-   sort's scratch, so the map holds no memory of its own for them. */
+/* Buffers that take a second role while their first is spent within a photon pass. The hit
+   records are read last by the footprints (S3) and the sorted slots too; the photon map's tree is
+   built after them, and read until the next pass traces again. The map's n - 1 inner nodes (4
+   float4 each, photon_map.h) and then its build links (a parent per inner node and per leaf, n
+   words each) fit in the records of its n valid hits (5 float4 each), its visit counters in the
+   sorted slots. The sort's input (the valid hits' Morton keys and slots, its scratch once sorted)
+   lives in two of the gather arrays, which the footprints write only after the sort. So the map
+   holds no memory of its own for any of them. */
 #define PM_MAP_NODES(kg) ((kg)->hit_records)
-#define PM_MAP_NODE_PARENT(kg) ((kg)->morton_keys)
-#define PM_MAP_LEAF_PARENT(kg) ((kg)->morton_slots)
+#define PM_MAP_NODE_PARENT(kg, n) ((PM_GLOBAL uint*)((kg)->hit_records + 4u * ((n) - 1u)))
+#define PM_MAP_LEAF_PARENT(kg, n) (PM_MAP_NODE_PARENT(kg, n) + (n))
 #define PM_MAP_VISITS(kg) ((kg)->sorted_slots)
+#define PM_SORT_KEYS_BUFFER map_row_u  /* the buffer that holds the sort's input keys */
+#define PM_SORT_SLOTS_BUFFER map_row_v /* and its input slots */
+#define PM_SORT_KEYS(kg) ((PM_GLOBAL uint*)((kg)->PM_SORT_KEYS_BUFFER))
+#define PM_SORT_SLOTS(kg) ((PM_GLOBAL uint*)((kg)->PM_SORT_SLOTS_BUFFER))
 
 #define PM_BUFFER_LIST(X)                                                                                   \
   /* S0 scene, uploaded once per renderer */                                                               \
@@ -86,8 +92,7 @@
   X(photon, float4, map_cut, map_hits, 1)      /* second cut of a clipped footprint (footprint_clip.h) */   \
   X(photon, uint, gather_stats, counters, 2)   /* [0] hits accepted, [1] shading points (collect_stats) */ \
   X(photon, uint, map_tile_offsets, bounds_tiles, 1) /* S4: first compacted key of each tile's valid hits */\
-  X(photon, uint, morton_keys, map_hits, 1)    /* S4 input of the sort: Morton keys of the valid hits; */ \
-  X(photon, uint, morton_slots, map_hits, 1)   /* and their slots (the tree's parent links later) */       \
+  /* (the sort's input: PM_SORT_KEYS, PM_SORT_SLOTS above) */                                              \
   X(photon, uint, sorted_keys, map_hits, 1)    /* S4 output of the sort: keys ascending */                 \
   X(photon, uint, sorted_slots, map_hits, 1)   /* and their slots (the tree's visit counters later) */     \
   /* vertex link radiosity (render/radiosity/, docs/radiosity.md): the refined mesh, uploaded once */     \

@@ -27,21 +27,23 @@ PM_DEVICE void kernel_photon_morton(const KernelGlobals* kg, const LaunchParams*
 {
   photon_map_morton_tile(tile, p->photon_count * p->hit_slots_per_photon, kg->hit_slots,
                          kg->hit_records + PM_RECORD_POSITION, PM_RECORD_FLOAT4S, kg->map_tile_offsets,
-                         p->hit_bounds_lo, p->hit_bounds_hi, kg->morton_keys, kg->morton_slots);
+                         p->hit_bounds_lo, p->hit_bounds_hi, PM_SORT_KEYS(kg), PM_SORT_SLOTS(kg));
 }
 
 /* The tree's nodes, build links and visit counters take the memory of what the pass has spent
-   by then (PM_MAP_NODES and the rest, buffers.h). */
+   by then, and the sort's input that of gather arrays not yet written (PM_MAP_NODES and the
+   rest, buffers.h). */
 PM_DEVICE void kernel_photon_map_nodes(const KernelGlobals* kg, const LaunchParams* p, uint i)
 {
-  photon_map_build_node(i, p->hit_count, kg->sorted_keys, PM_MAP_NODE_PARENT(kg), PM_MAP_LEAF_PARENT(kg),
-                        PM_MAP_VISITS(kg));
+  photon_map_build_node(i, p->hit_count, kg->sorted_keys, PM_MAP_NODE_PARENT(kg, p->hit_count),
+                        PM_MAP_LEAF_PARENT(kg, p->hit_count), PM_MAP_VISITS(kg));
 }
 
 PM_DEVICE void kernel_photon_map_bottom_up(const KernelGlobals* kg, const LaunchParams* p, uint k)
 {
-  photon_map_bottom_up(k, p->hit_count, p->leaf_threshold, kg->map_lo, kg->map_hi, PM_MAP_NODE_PARENT(kg),
-                       PM_MAP_LEAF_PARENT(kg), PM_MAP_VISITS(kg), PM_MAP_NODES(kg));
+  photon_map_bottom_up(k, p->hit_count, p->leaf_threshold, kg->map_lo, kg->map_hi,
+                       PM_MAP_NODE_PARENT(kg, p->hit_count), PM_MAP_LEAF_PARENT(kg, p->hit_count), PM_MAP_VISITS(kg),
+                       PM_MAP_NODES(kg));
 }
 
 #endif

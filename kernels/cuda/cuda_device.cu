@@ -8,6 +8,8 @@
 
 #include <cuda_runtime.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cub/device/device_radix_sort.cuh>
 #include <mutex>
 #include <string>
@@ -180,12 +182,16 @@ class CudaDevice final : public Device {
     cub::DoubleBuffer<uint32_t> keys(static_cast<uint32_t*>(keys_in.handle()), static_cast<uint32_t*>(keys_out.handle()));
     cub::DoubleBuffer<uint32_t> values(static_cast<uint32_t*>(values_in.handle()),
                                        static_cast<uint32_t*>(values_out.handle()));
+    // Sized for as many pairs as the output has room for, so that passes whose counts vary within
+    // that room do not grow it (device memory flat over passes).
+    const size_t room = std::max<size_t>(count, std::min<size_t>(keys_out.bytes() / sizeof(uint32_t), INT32_MAX));
     size_t temp_bytes = 0;
-    PM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, keys, values, int(count), 0, key_bits, stream_));
+    PM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, keys, values, int(room), 0, key_bits, stream_));
     if (sort_temp_.bytes() < temp_bytes) {
       sort_temp_.reset();
       sort_temp_ = allocate(temp_bytes, "CUB radix sort temporary storage");
     }
+    temp_bytes = sort_temp_.bytes();
     PM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(sort_temp_.handle(), temp_bytes, keys, values, int(count), 0,
                                                   key_bits, stream_));
     const size_t bytes = size_t(count) * sizeof(uint32_t);

@@ -304,9 +304,10 @@ void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
   {
     StageScope scope(timer, "map: sort");
     if (settings_.builder == kPhotonMapVvh)
-      device_.copy(buffers_[BufferSlot::morton_slots], buffers_[BufferSlot::sorted_slots], bounds.count * sizeof(uint32_t));
-    else
-      device_.sort_pairs(buffers_[BufferSlot::morton_keys], buffers_[BufferSlot::morton_slots],
+      device_.copy(buffers_[BufferSlot::PM_SORT_SLOTS_BUFFER], buffers_[BufferSlot::sorted_slots],
+                   bounds.count * sizeof(uint32_t));
+    else  // the input pairs live in gather arrays the footprints write next (PM_SORT_KEYS, buffers.h)
+      device_.sort_pairs(buffers_[BufferSlot::PM_SORT_KEYS_BUFFER], buffers_[BufferSlot::PM_SORT_SLOTS_BUFFER],
                          buffers_[BufferSlot::sorted_keys], buffers_[BufferSlot::sorted_slots], bounds.count,
                          PM_MORTON_SORT_BITS);
   }

@@ -81,10 +81,11 @@ TEST(HitSlots, AMirrorFreeSceneLosesNoHitInBounceManyRecords) {
               b.peak_bytes / 1048576.0);
 }
 
-// A photon map entry: nine float4 of footprint and gather data, the Morton keys and slots before
-// and after the sort (16 bytes), which the tree's parent links and visit counters take over. A
-// hit record: five float4, which the tree's nodes take over (kernels/common/buffers.h).
-constexpr uint64_t kMapBytesPerHit = 160, kRecordBytes = 80;
+// A photon map entry: nine float4 of footprint and gather data (two of which hold the sort's
+// input first), the sorted Morton keys and slots (8 bytes; the tree's visit counters take over the
+// slots). A hit record: five float4, which the tree's nodes and parent links take over
+// (kernels/common/buffers.h).
+constexpr uint64_t kMapBytesPerHit = 152, kRecordBytes = 80;
 
 // Renders the built-in box (every diffuse reflectance set to `albedo` when given) with 65536
 // photons of two bounces, twice; returns the valid hits, and the room of the map and of the hit
