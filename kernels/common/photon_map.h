@@ -61,24 +61,38 @@ PM_DEVICE uint photon_map_bounds_tile_count(uint count)
   return (count + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
 }
 
-/* Where steps 1 and 2 find hit i: its PM_HIT_* flags (the return) and its position. Two layouts:
+/* Where steps 1 and 2 find their hits: their PM_HIT_* flags and positions, in one of two layouts:
    the trace's hit slots (slot_words non-null: a word of flags and a record index per slot, the
    position at positions[stride * record], photon_trace.h), or positions in place (slot_words
-   null: positions[i], the flags as uint bits in its w). An empty slot's record is not read. */
-PM_DEVICE uint photon_map_hit(uint i, PM_GLOBAL const uint* slot_words, PM_GLOBAL const float4* positions,
-                              uint stride, float4* position)
+   null: positions[i], the flags as uint bits in its w). A tile is one work item's loop, so its
+   hits are read a batch at a time: every slot word of the batch, then the positions of its valid
+   hits, so that the batch's loads are in flight together rather than one dependent pair after
+   another. Hits [first, first + PM_PHOTON_MAP_HIT_BATCH) into flags[] and position[]; flags 0
+   from `end` on. An empty slot's record is not read. */
+#define PM_PHOTON_MAP_HIT_BATCH 8u
+
+PM_DEVICE void photon_map_hit_batch(uint first, uint end, PM_GLOBAL const uint* slot_words,
+                                    PM_GLOBAL const float4* positions, uint stride, uint* flags, float4* position)
 {
-  if (slot_words) {
-    uint word = PM_LOAD(&slot_words[i]);
-    if ((word & PM_HIT_VALID) != 0u) *position = PM_LOAD(&positions[stride * (word >> PM_HIT_RECORD_SHIFT)]);
-    return word;
+  for (uint j = 0; j < PM_PHOTON_MAP_HIT_BATCH; ++j) {
+    uint i = first + j;
+    flags[j] = 0u;
+    position[j] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, 0.0f);
+    if (i >= end) continue;
+    if (slot_words) {
+      flags[j] = PM_LOAD(&slot_words[i]);
+    } else {
+      position[j] = PM_LOAD(&positions[i]);
+      flags[j] = PM_AS_UINT(position[j].w);
+    }
   }
-  *position = PM_LOAD(&positions[i]);
-  return PM_AS_UINT(position->w);
+  if (!slot_words) return;
+  for (uint j = 0; j < PM_PHOTON_MAP_HIT_BATCH; ++j)
+    if ((flags[j] & PM_HIT_VALID) != 0u) position[j] = PM_LOAD(&positions[stride * (flags[j] >> PM_HIT_RECORD_SHIFT)]);
 }
 
 /* Work item = tile of slots [tile * TILE, min(count, (tile + 1) * TILE)): bounds of the valid
-   hits' positions (photon_map_hit), the sum of their footprint areas (area_in[i].w; none when
+   hits' positions (photon_map_hit_batch), the sum of their footprint areas (area_in[i].w; none when
    area_in is null) and their count, into partials[2 tile] = (lo, area), [2 tile + 1] = (hi,
    count as uint bits). A tile without valid hits gives the empty box (+1e30, -1e30). */
 PM_DEVICE void photon_map_bounds_tile(uint tile, uint count, PM_GLOBAL const uint* slot_words,
@@ -90,14 +104,18 @@ PM_DEVICE void photon_map_bounds_tile(uint tile, uint count, PM_GLOBAL const uin
   Vec3 lo = vec3_splat(1e30f), hi = vec3_splat(-1e30f);
   float area = 0.0f;
   uint valid = 0;
-  for (uint i = begin; i < end; ++i) {
-    float4 c;
-    if ((photon_map_hit(i, slot_words, positions, stride, &c) & PM_HIT_VALID) == 0u) continue;
-    Vec3 x = vec3_from_float4(c);
-    lo = vec3_min(lo, x);
-    hi = vec3_max(hi, x);
-    if (area_in) area += PM_LOAD(&area_in[i]).w;
-    ++valid;
+  for (uint first = begin; first < end; first += PM_PHOTON_MAP_HIT_BATCH) {
+    uint flags[PM_PHOTON_MAP_HIT_BATCH];
+    float4 c[PM_PHOTON_MAP_HIT_BATCH];
+    photon_map_hit_batch(first, end, slot_words, positions, stride, flags, c);
+    for (uint j = 0; j < PM_PHOTON_MAP_HIT_BATCH; ++j) {
+      if ((flags[j] & PM_HIT_VALID) == 0u) continue;
+      Vec3 x = vec3_from_float4(c[j]);
+      lo = vec3_min(lo, x);
+      hi = vec3_max(hi, x);
+      if (area_in) area += PM_LOAD(&area_in[first + j]).w;
+      ++valid;
+    }
   }
   partials[2 * tile] = vec3_to_float4(lo, area);
   partials[2 * tile + 1] = vec3_to_float4(hi, PM_UINT_AS_FLOAT(valid));
@@ -162,12 +180,16 @@ PM_DEVICE void photon_map_morton_tile(uint tile, uint count, PM_GLOBAL const uin
   uint begin = tile * PM_PHOTON_MAP_BOUNDS_TILE;
   uint end = pm_min_u(begin + PM_PHOTON_MAP_BOUNDS_TILE, count);
   uint out = PM_LOAD(&first_out[tile]);
-  for (uint i = begin; i < end; ++i) {
-    float4 c;
-    if ((photon_map_hit(i, slot_words, positions, stride, &c) & PM_HIT_VALID) == 0u) continue;
-    keys[out] = photon_map_morton_key(c, bounds_lo, bounds_hi);
-    slots[out] = i;
-    ++out;
+  for (uint first = begin; first < end; first += PM_PHOTON_MAP_HIT_BATCH) {
+    uint flags[PM_PHOTON_MAP_HIT_BATCH];
+    float4 c[PM_PHOTON_MAP_HIT_BATCH];
+    photon_map_hit_batch(first, end, slot_words, positions, stride, flags, c);
+    for (uint j = 0; j < PM_PHOTON_MAP_HIT_BATCH; ++j) {
+      if ((flags[j] & PM_HIT_VALID) == 0u) continue;
+      keys[out] = photon_map_morton_key(c[j], bounds_lo, bounds_hi);
+      slots[out] = first + j;
+      ++out;
+    }
   }
 }
 

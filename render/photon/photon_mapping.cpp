@@ -53,10 +53,11 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
   extents_.hit_slots = hit_slots();
   extents_.bounds_tiles = (extents_.hit_slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
   // The hit records start with room for half as many hits as photons (Sponza and Sibenik record
-  // about that many); a pass that records more traces again with room for what it recorded
-  // (room_for), so the room ends near the hits a pass records, not at a guess above them. The
-  // map is allocated by the first pass, for the hits it records (reserve_map). Until they grow,
-  // the memory checks count both at the room of 5/4 of the photons' hits.
+  // about that many); a first pass that records more traces again with room for what it recorded
+  // (room_for: its noise, no margin for change yet), so the room ends near the hits a pass
+  // records, not at a guess above them. The map is allocated by the first pass, for the hits it
+  // records (reserve_map). Until they grow, the memory checks count both at the room of 5/4 of
+  // the photons' hits.
   extents_.hit_records = std::min<uint64_t>(uint64_t(photons_per_pass_) / 2, hit_slots());
   resize_growing_buffers();
   area_power_ = build_scene_emitters(context.scene).power_rgb_sum;
@@ -194,15 +195,15 @@ uint32_t PhotonMapping::expected_most_hits() const {
   return uint32_t(std::min<uint64_t>(uint64_t(photons_per_pass_) * 5 / 4, hit_slots()));
 }
 
-uint64_t hit_room(uint64_t hits) {
-  return hits + hits / 16 + uint64_t(std::ceil(8.0 * std::sqrt(double(hits))));
+uint64_t hit_room(uint64_t hits, bool changing) {
+  return hits + (changing ? hits / 16 : 0) + uint64_t(std::ceil(8.0 * std::sqrt(double(hits))));
 }
 
 uint32_t PhotonMapping::room_for(uint32_t hits) const {
   // No more than the checks counted while the hits fit in it. Sized by the hits, not the
   // photons: most photons of a pass record fewer hits than their slots (Sponza about one valid
   // hit per two photons, docs/benchmarks.md).
-  uint64_t room = hit_room(hits);
+  uint64_t room = hit_room(hits, hits_measured_);
   if (hits <= expected_most_hits()) room = std::min<uint64_t>(room, expected_most_hits());
   return uint32_t(std::min<uint64_t>(room, hit_slots()));
 }
@@ -290,8 +291,9 @@ void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
   map_smoothing_ = params.smoothing;
   map_footprint_area_ = 0;
   map_params_ = params;
+  if (bounds.count > 0) reserve_map(bounds.count);
+  hits_measured_ = true;  // the rooms now hold a pass's hits: growing past them means the hits change
   if (bounds.count == 0) return;  // every photon escaped or was absorbed before a recorded hit
-  reserve_map(bounds.count);
 
   // The valid hits' Morton keys, compacted at each tile's offset, sorted (VVH: kept in slot order).
   {

@@ -18,10 +18,12 @@
 namespace pm {
 
 // The room the photon map and the hit records take for a pass of `hits` valid hits, so that the
-// passes and frames after it do not reallocate: 1/16 more for what an animation changes, and 8
-// standard deviations of a pass's count for its photons' noise (the count is a sum of many
-// photons' hits: about its square root; small passes vary by several percent).
-uint64_t hit_room(uint64_t hits);
+// passes and frames after it do not reallocate: 8 standard deviations of a pass's count for its
+// photons' noise (the count is a sum of many photons' hits: about its square root; small passes
+// vary by several percent), and, when `changing` (a pass has recorded more hits than a room
+// already measured held: the scene or its lights move), 1/16 more for what the animation changes
+// next.
+uint64_t hit_room(uint64_t hits, bool changing);
 
 class PhotonMapping final : public IndirectMethod {
  public:
@@ -61,6 +63,7 @@ class PhotonMapping final : public IndirectMethod {
   void reserve_hit_records(uint32_t hits);
   void resize_growing_buffers();
   uint32_t room_for(uint32_t hits) const;
+  bool hits_measured_ = false;  // a pass has sized the rooms by its hits: growth from then on means change
   // Bytes of the map and of the hit records with room for these many valid hits.
   uint64_t growing_bytes(uint64_t map_hits, uint64_t hit_records) const;
   // The most valid hits a pass is expected to record: the room the memory checks count.

@@ -129,16 +129,16 @@ MapRoom render_and_measure_map(float albedo) {
 
 TEST(HitSlots, ThePhotonMapAndTheHitRecordsAreSizedByTheHitsAPassRecords) {
   // The box as it is: fewer valid hits than photons (but more than the records' first room),
-  // room for them and a margin (hit_room).
+  // room for them and their noise (hit_room, no margin for change: the first pass measured them).
   const MapRoom dark = render_and_measure_map(0);
   ASSERT_GT(dark.hits, 32768u);
   ASSERT_LT(dark.hits, 65536u) << "the box's photons record fewer valid hits than there are photons";
-  EXPECT_EQ(dark.room, hit_room(dark.hits));
+  EXPECT_EQ(dark.room, hit_room(dark.hits, false));
   EXPECT_EQ(dark.records, dark.room);
   // Brighter walls: more valid hits than photons, within the 5/4 of them the checks counted, but
   // too many for their margin to fit in it: the map keeps that room and no more.
   const MapRoom bright = render_and_measure_map(0.93f);
-  ASSERT_GT(hit_room(bright.hits), 81920u);
+  ASSERT_GT(hit_room(bright.hits, false), 81920u);
   ASSERT_LE(bright.hits, 81920u);
   EXPECT_EQ(bright.room, 81920u);
   EXPECT_EQ(bright.records, 81920u);
@@ -146,11 +146,45 @@ TEST(HitSlots, ThePhotonMapAndTheHitRecordsAreSizedByTheHitsAPassRecords) {
   // to the two records of each photon.
   const MapRoom brightest = render_and_measure_map(1.0f);
   ASSERT_GT(brightest.hits, 81920u);
-  EXPECT_EQ(brightest.room, std::min<uint64_t>(hit_room(brightest.hits), 131072u));
+  EXPECT_EQ(brightest.room, std::min<uint64_t>(hit_room(brightest.hits, false), 131072u));
   EXPECT_EQ(brightest.records, brightest.room);
   std::printf("valid hits of 65536 photons: %llu, %llu, %llu; map room %llu, %llu, %llu\n",
               (unsigned long long)dark.hits, (unsigned long long)bright.hits, (unsigned long long)brightest.hits,
               (unsigned long long)dark.room, (unsigned long long)bright.room, (unsigned long long)brightest.room);
+}
+
+// Once a pass has sized the rooms by its hits, a pass that records more than they hold means the
+// hits change (here the light moves from far outside the box into it between two frames), and the
+// rooms grow with a margin for what the animation changes next (hit_room's `changing`).
+TEST(HitSlots, RoomsThatGrowAfterTheFirstPassKeepAMarginForChange) {
+  std::unique_ptr<Device> device = opencl_device();
+  Scene scene = builtin_cornell_box();
+  const Float3 inside = scene.lights[0].position, camera = scene.camera.position;
+  LightAnimation light;
+  light.position.keys = {{0.0, {camera.x, camera.y, camera.z - 20.0f}}, {1.0 / 24.0, {inside.x, inside.y, inside.z}}};
+  scene.animation.enabled = true;
+  scene.animation.first_frame = 0;
+  scene.animation.last_frame = 1;
+  scene.animation.lights = {light};
+  Renderer renderer(*device, scene, photons_of_two_bounces(32));
+  const auto map_room = [&] { return renderer.buffers()[BufferSlot::map_center].bytes() / sizeof(float4); };
+  const auto record_room = [&] { return renderer.buffers()[BufferSlot::hit_records].bytes() / kRecordBytes; };
+  FrameStats far, near;
+  renderer.render_frame(0, &far);
+  const uint64_t far_hits = uint64_t(far.method.get("hits"));
+  ASSERT_GT(far_hits, 0u);
+  ASSERT_LT(hit_room(far_hits, true), 32768u) << "the light far outside: the records' first room holds its hits";
+  EXPECT_EQ(map_room(), hit_room(far_hits, false));
+  EXPECT_EQ(record_room(), 32768u);
+  renderer.render_frame(1, &near);
+  const uint64_t near_hits = uint64_t(near.method.get("hits"));
+  ASSERT_GT(near_hits, 32768u);
+  ASSERT_LT(hit_room(near_hits, true), 81920u);
+  EXPECT_EQ(map_room(), hit_room(near_hits, true));
+  EXPECT_EQ(record_room(), hit_room(near_hits, true));
+  std::printf("valid hits of 65536 photons: %llu with the light outside, %llu inside; rooms %llu, %llu\n",
+              (unsigned long long)far_hits, (unsigned long long)near_hits,
+              (unsigned long long)hit_room(far_hits, false), (unsigned long long)map_room());
 }
 
 }  // namespace
