@@ -1,11 +1,10 @@
-/* Stages S1 emission and S2 tracing (paper sections 4.1-4.3): a photon leaves its point light,
-   spot light (spot_light.h), the area lights (area_lights.h) or the environment
-   (environment_light.h) with pre-scaled differentials (eq. 8) and is traced through the scene,
-   its differentials updated (Igehy transfer and mirror reflection, Russian roulette rescale,
-   diffuse re-emission with the virtual offset of eq. 10-13), a hit recorded at every diffuse or
+/* Stages S1 emission and S2 tracing (paper sections 4.1-4.3): one work item per photon emits it
+   from its point light, spot light (spot_light.h), the area lights (area_lights.h) or the
+   environment (environment_light.h) with pre-scaled differentials (eq. 8), traces it through the scene,
+   updates its differentials (Igehy transfer and mirror reflection, Russian roulette rescale,
+   diffuse re-emission with the virtual offset of eq. 10-13) and records a hit at every diffuse or
    glossy surface that is not lit directly. Records go to slots [photon * slots_per_photon + k],
-   so the result does not depend on scheduling; unused slots are marked empty. A work item traces
-   photons one after another (kernel_photon_trace). */
+   so the result does not depend on scheduling; unused slots are marked empty. */
 #ifndef PM_PHOTON_TRACE_H
 #define PM_PHOTON_TRACE_H
 
@@ -99,164 +98,122 @@ PM_DEVICE Vec3 photon_hit_flux(const KernelGlobals* kg, uint record)
               photon_hit_part(kg, record, PM_RECORD_DP_V).w);
 }
 
-/* A photon in flight between kernel_photon_trace's steps. */
-typedef struct PhotonState {
-  PhotonRay ray;
-  Vec3 flux, start;
-  float delta;
-  uint first_slot, stored, event, diffuse_bounces, specular_bounces;
-  uint rng_frame, rng_index, rng_extra;
-} PhotonState;
-
-/* S1: photon `photon` of the pass leaves its light (state *s); returns 0 where it does not (no
-   light owns it, or its emitter sends nothing that way), 1 otherwise. */
-PM_DEVICE int photon_emit(const KernelGlobals* kg, const LaunchParams* p, uint photon, PhotonState* s)
+PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* p, uint photon)
 {
-  s->first_slot = photon * p->hit_slots_per_photon;
-  s->stored = 0;
-  s->event = 1;
-  s->diffuse_bounces = 0;
-  s->specular_bounces = 0;
+  uint first_slot = photon * p->hit_slots_per_photon;
+  uint stored = 0;
   int light_index = photon_light_of(kg, p, photon);
-  if (light_index < 0) return 0;
-  /* The area lights' and the environment's shares (photon_light_of). */
-  int area = p->emitter_count > 0u && (uint)light_index == p->light_count;
-  int environment = p->environment != PM_ENVIRONMENT_NONE && (uint)light_index == photon_environment_entry(p);
-  uint4 emitter = kg->photon_emitters[light_index];
-  uint emitted = emitter.y;
-  s->delta = photon_spacing(emitted); /* eq. 9 with n = this light's photons in the pass */
-  /* Random numbers: RANDOM keys them by (seed, photon_frame) and the photon's index in the
-     frame; HALTON by the seed, the light and the photon's number within that light only, so
-     the same lights give the same photons in every frame (types.h). */
-  uint rng_frame = p->photon_frame, rng_index = p->photon_offset + photon;
-  /* The photon's 64-bit index within the frame: its high word keys the counter's spare word. */
-  uint rng_extra = p->photon_offset_hi + (rng_index < p->photon_offset ? 1u : 0u);
-  Uniform4 u;
-  if (p->photon_sequence == PM_PHOTON_SEQUENCE_HALTON) {
-    uint pass = p->photon_count > 0u ? p->photon_offset / p->photon_count : 0u;
-    rng_frame = 0u;
-    rng_index = pass * emitted + (photon - emitter.x);
-    rng_extra = (uint)light_index + 1u;
-    /* Halton points (bases 2 and 3), shifted modulo 1 by one random offset per seed and light
-       (Cranley-Patterson rotation) so that lights and seeds do not share directions. */
-    Bits4 shift = rng_bits4(p->seed, 0u, 0u, 0u, PM_STREAM_HALTON, rng_extra);
-    u.u0 = rng_to_unit(radical_inverse2_bits(rng_index) + shift.b0);
-    u.u1 = rng_to_unit(radical_inverse3_bits(rng_index) + shift.b1);
-    u.u2 = 0.0f;
-    u.u3 = 0.0f;
-  } else {
-    /* Stratified and coherent (emission_order.h): the light's photons of this pass each own a
-       stratum, consecutive photons neighbouring ones. */
-    Bits4 b = rng_bits4(p->seed, rng_frame, rng_index, 0u, PM_STREAM_PHOTON, rng_extra);
-    stratified_emission(photon - emitter.x, emitted, b.b0, b.b1, b.b2, &u.u0, &u.u1);
-    u.u2 = 0.0f;
-    u.u3 = 0.0f;
-  }
-  s->rng_frame = rng_frame;
-  s->rng_index = rng_index;
-  s->rng_extra = rng_extra;
-  int emits = 1;
-  if (environment) {
-    /* The point on the disk: a stream of its own, keyed like the direction. */
-    Uniform4 w = rng_uniform4_bits(rng_bits4(p->seed, rng_frame, rng_index, 0u, PM_STREAM_ENVIRONMENT, rng_extra));
-    emits = photon_emit_environment(kg, p, u.u0, u.u1, w.u0, w.u1, emitted, &s->ray, &s->flux);
-    s->start = s->ray.origin;
-  } else if (area) {
-    /* The emitter and the point on it: a stream of their own, keyed like the direction. */
-    Uniform4 w = rng_uniform4_bits(rng_bits4(p->seed, rng_frame, rng_index, 0u, PM_STREAM_AREA, rng_extra));
-    Vec3 normal = photon_emit_area(kg, p, w.u0, w.u1, w.u2, u.u0, u.u1, emitted, &s->ray, &s->flux);
-    s->start = offset_ray_origin(s->ray.origin, normal, ray_offset_distance(s->ray.origin, 0.0f, p->ray_epsilon));
-  } else {
-    PointLight light = kg->lights[light_index];
-    /* Every photon of a light carries the same flux: its emitted power over its photons. */
-    s->flux = vec3_scale(vec3_from_float4(light.power), light_emitted_fraction(&light) / (float)emitted);
-    if (light_is_spot(&light)) photon_emit_spot(&light, u.u0, u.u1, &s->ray);
-    else photon_emit_point(vec3_from_float4(light.position), u.u0, u.u1, &s->ray);
-    s->start = s->ray.origin;
-  }
-  return emits;
-}
-
-/* S2, one event: the photon traced to the next surface, its hit recorded there, and the event
-   Russian roulette chooses (section 4.2). Returns 1 while the photon goes on, 0 once it leaves
-   the scene, is absorbed or has had its bounces. */
-PM_DEVICE int photon_step(const KernelGlobals* kg, const LaunchParams* p, PhotonState* s)
-{
-  if (s->event > p->max_bounces + PM_PHOTON_MAX_SPECULAR + 1) return 0;
-  PhotonRay* ray = &s->ray;
-  Ray r = ray_make(s->start, ray->direction);
-  SceneHit hit = scene_trace(kg, &r, 0.0f, 1e30f, 0);
-  if (hit.triangle < 0) return 0;
-  Vec3 n = scene_triangle_normal(kg->triangles, hit.triangle);
-  /* Differentials travel from the ray origin (the offset start, off the last hit by ray.h's
-     offset, a negligible fraction of the path). */
-  ray->origin = s->start;
-  photon_transfer(ray, hit.t, n);
-  /* The reflectances at the hit, textured: they choose the photon's event and scale its flux. */
-  Material m = surface_material(kg, scene_triangle_material(kg->triangles, hit.triangle), hit.triangle, ray->origin);
-  float p_diffuse = channel_mean(material_diffuse(&m));
-  float p_glossy = channel_mean(material_glossy(&m));
-  float p_mirror = channel_mean(material_mirror(&m));
-
-  /* Hits lit straight from the light are direct light, which the camera pass ray traces. */
-  if (p_diffuse + p_glossy > 0.0f && (s->diffuse_bounces > 0 || s->specular_bounces > 0) &&
-      s->stored < p->hit_slots_per_photon) {
-    uint flags = PM_HIT_VALID | (s->diffuse_bounces == 0 ? PM_HIT_CAUSTIC : 0u);
-    photon_store_hit(kg, s->first_slot + s->stored, ray, n, s->flux, s->delta, flags);
-    ++s->stored;
-  }
-
-  /* Russian roulette chooses absorption or one reflection event (section 4.2). */
-  Uniform4 u = rng_uniform4_bits(rng_bits4(p->seed, s->rng_frame, s->rng_index, s->event, PM_STREAM_PHOTON, s->rng_extra));
-  Vec3 side = vec3_dot(n, ray->direction) > 0.0f ? vec3_neg(n) : n;
-  if (u.u2 < p_diffuse + p_glossy) {
-    if (s->diffuse_bounces == p->max_bounces) return 0; /* its next hit would not be recorded */
-    if (u.u2 < p_diffuse) {
-      s->flux = vec3_scale(vec3_mul(s->flux, material_diffuse(&m)), 1.0f / p_diffuse);
-      photon_roulette_rescale(ray, p_diffuse);
-      photon_diffuse_reemit(ray, n, u.u0, u.u1);
+  if (light_index >= 0) {
+    /* The area lights' and the environment's shares (photon_light_of). */
+    int area = p->emitter_count > 0u && (uint)light_index == p->light_count;
+    int environment = p->environment != PM_ENVIRONMENT_NONE && (uint)light_index == photon_environment_entry(p);
+    uint4 emitter = kg->photon_emitters[light_index];
+    uint emitted = emitter.y;
+    float delta = photon_spacing(emitted); /* eq. 9 with n = this light's photons in the pass */
+    /* Random numbers: RANDOM keys them by (seed, photon_frame) and the photon's index in the
+       frame; HALTON by the seed, the light and the photon's number within that light only, so
+       the same lights give the same photons in every frame (types.h). */
+    uint rng_frame = p->photon_frame, rng_index = p->photon_offset + photon;
+    /* The photon's 64-bit index within the frame: its high word keys the counter's spare word. */
+    uint rng_extra = p->photon_offset_hi + (rng_index < p->photon_offset ? 1u : 0u);
+    Uniform4 u;
+    if (p->photon_sequence == PM_PHOTON_SEQUENCE_HALTON) {
+      uint pass = p->photon_count > 0u ? p->photon_offset / p->photon_count : 0u;
+      rng_frame = 0u;
+      rng_index = pass * emitted + (photon - emitter.x);
+      rng_extra = (uint)light_index + 1u;
+      /* Halton points (bases 2 and 3), shifted modulo 1 by one random offset per seed and light
+         (Cranley-Patterson rotation) so that lights and seeds do not share directions. */
+      Bits4 shift = rng_bits4(p->seed, 0u, 0u, 0u, PM_STREAM_HALTON, rng_extra);
+      u.u0 = rng_to_unit(radical_inverse2_bits(rng_index) + shift.b0);
+      u.u1 = rng_to_unit(radical_inverse3_bits(rng_index) + shift.b1);
+      u.u2 = 0.0f;
+      u.u3 = 0.0f;
     } else {
-      float exponent = m.glossy.w;
-      photon_roulette_rescale(ray, p_glossy);
-      if (!photon_glossy_reemit(ray, n, exponent, u.u0, u.u1)) return 0;
-      float weight = brdf_glossy_sample_weight(exponent, vec3_dot(side, ray->direction));
-      s->flux = vec3_scale(vec3_mul(s->flux, material_glossy(&m)), weight / p_glossy);
+      /* Stratified and coherent (emission_order.h): the light's photons of this pass each own a
+         stratum, consecutive photons neighbouring ones. */
+      Bits4 b = rng_bits4(p->seed, rng_frame, rng_index, 0u, PM_STREAM_PHOTON, rng_extra);
+      stratified_emission(photon - emitter.x, emitted, b.b0, b.b1, b.b2, &u.u0, &u.u1);
+      u.u2 = 0.0f;
+      u.u3 = 0.0f;
     }
-    ++s->diffuse_bounces;
-  } else if (u.u2 < p_diffuse + p_glossy + p_mirror) {
-    if (s->specular_bounces == PM_PHOTON_MAX_SPECULAR) return 0;
-    s->flux = vec3_scale(vec3_mul(s->flux, material_mirror(&m)), 1.0f / p_mirror);
-    photon_roulette_rescale(ray, p_mirror);
-    photon_reflect_specular(ray, n);
-    ++s->specular_bounces;
-  } else {
-    return 0; /* absorbed */
-  }
-  s->start = offset_ray_origin(ray->origin, side, ray_offset_distance(s->start, hit.t, p->ray_epsilon));
-  ++s->event;
-  return 1;
-}
+    PhotonRay ray;
+    Vec3 flux;
+    Vec3 start;
+    int emits = 1;
+    if (environment) {
+      /* The point on the disk: a stream of its own, keyed like the direction. */
+      Uniform4 w = rng_uniform4_bits(rng_bits4(p->seed, rng_frame, rng_index, 0u, PM_STREAM_ENVIRONMENT, rng_extra));
+      emits = photon_emit_environment(kg, p, u.u0, u.u1, w.u0, w.u1, emitted, &ray, &flux);
+      start = ray.origin;
+    } else if (area) {
+      /* The emitter and the point on it: a stream of their own, keyed like the direction. */
+      Uniform4 w = rng_uniform4_bits(rng_bits4(p->seed, rng_frame, rng_index, 0u, PM_STREAM_AREA, rng_extra));
+      Vec3 normal = photon_emit_area(kg, p, w.u0, w.u1, w.u2, u.u0, u.u1, emitted, &ray, &flux);
+      start = offset_ray_origin(ray.origin, normal, ray_offset_distance(ray.origin, 0.0f, p->ray_epsilon));
+    } else {
+      PointLight light = kg->lights[light_index];
+      /* Every photon of a light carries the same flux: its emitted power over its photons. */
+      flux = vec3_scale(vec3_from_float4(light.power), light_emitted_fraction(&light) / (float)emitted);
+      if (light_is_spot(&light)) photon_emit_spot(&light, u.u0, u.u1, &ray);
+      else photon_emit_point(vec3_from_float4(light.position), u.u0, u.u1, &ray);
+      start = ray.origin;
+    }
+    uint diffuse_bounces = 0, specular_bounces = 0;
+    for (uint event = 1; emits && event <= p->max_bounces + PM_PHOTON_MAX_SPECULAR + 1; ++event) {
+      Ray r = ray_make(start, ray.direction);
+      SceneHit hit = scene_trace(kg, &r, 0.0f, 1e30f, 0);
+      if (hit.triangle < 0) break;
+      Vec3 n = scene_triangle_normal(kg->triangles, hit.triangle);
+      /* Differentials travel from the ray origin (the offset start, off the last hit by ray.h's
+         offset, a negligible fraction of the path). */
+      ray.origin = start;
+      photon_transfer(&ray, hit.t, n);
+      /* The reflectances at the hit, textured: they choose the photon's event and scale its flux. */
+      Material m = surface_material(kg, scene_triangle_material(kg->triangles, hit.triangle), hit.triangle, ray.origin);
+      float p_diffuse = channel_mean(material_diffuse(&m));
+      float p_glossy = channel_mean(material_glossy(&m));
+      float p_mirror = channel_mean(material_mirror(&m));
 
-/* Work item = lane < photon_lanes: photons lane, lane + lanes, ... of the pass, one after another.
-   A lane whose photon has ended (absorbed, escaped, its bounces spent) emits its next one in the
-   same loop iteration, so that a warp's lanes keep tracing while photons of different path
-   lengths end at different events, rather than idling until the warp's longest path is done
-   (path regeneration). Each photon's work and random numbers are its own, whatever lane takes
-   it: the result is that of one work item per photon. */
-PM_DEVICE void kernel_photon_trace(const KernelGlobals* kg, const LaunchParams* p, uint lane)
-{
-  uint lanes = p->photon_lanes > 0u ? p->photon_lanes : p->photon_count;
-  uint photon = lane;
-  PhotonState s;
-  int live = photon < p->photon_count ? photon_emit(kg, p, photon, &s) : 0;
-  while (photon < p->photon_count) {
-    if (live) live = photon_step(kg, p, &s);
-    if (live) continue;
-    for (uint k = s.stored; k < p->hit_slots_per_photon; ++k)
-      kg->hit_slots[s.first_slot + k] = 0u; /* no flags */
-    photon += lanes;
-    if (photon < p->photon_count) live = photon_emit(kg, p, photon, &s);
+      /* Hits lit straight from the light are direct light, which the camera pass ray traces. */
+      if (p_diffuse + p_glossy > 0.0f && (diffuse_bounces > 0 || specular_bounces > 0) &&
+          stored < p->hit_slots_per_photon) {
+        uint flags = PM_HIT_VALID | (diffuse_bounces == 0 ? PM_HIT_CAUSTIC : 0u);
+        photon_store_hit(kg, first_slot + stored, &ray, n, flux, delta, flags);
+        ++stored;
+      }
+
+      /* Russian roulette chooses absorption or one reflection event (section 4.2). */
+      u = rng_uniform4_bits(rng_bits4(p->seed, rng_frame, rng_index, event, PM_STREAM_PHOTON, rng_extra));
+      Vec3 side = vec3_dot(n, ray.direction) > 0.0f ? vec3_neg(n) : n;
+      if (u.u2 < p_diffuse + p_glossy) {
+        if (diffuse_bounces == p->max_bounces) break; /* its next hit would not be recorded */
+        if (u.u2 < p_diffuse) {
+          flux = vec3_scale(vec3_mul(flux, material_diffuse(&m)), 1.0f / p_diffuse);
+          photon_roulette_rescale(&ray, p_diffuse);
+          photon_diffuse_reemit(&ray, n, u.u0, u.u1);
+        } else {
+          float exponent = m.glossy.w;
+          photon_roulette_rescale(&ray, p_glossy);
+          if (!photon_glossy_reemit(&ray, n, exponent, u.u0, u.u1)) break;
+          float weight = brdf_glossy_sample_weight(exponent, vec3_dot(side, ray.direction));
+          flux = vec3_scale(vec3_mul(flux, material_glossy(&m)), weight / p_glossy);
+        }
+        ++diffuse_bounces;
+      } else if (u.u2 < p_diffuse + p_glossy + p_mirror) {
+        if (specular_bounces == PM_PHOTON_MAX_SPECULAR) break;
+        flux = vec3_scale(vec3_mul(flux, material_mirror(&m)), 1.0f / p_mirror);
+        photon_roulette_rescale(&ray, p_mirror);
+        photon_reflect_specular(&ray, n);
+        ++specular_bounces;
+      } else {
+        break; /* absorbed */
+      }
+      start = offset_ray_origin(ray.origin, side, ray_offset_distance(start, hit.t, p->ray_epsilon));
+    }
   }
+  for (uint k = stored; k < p->hit_slots_per_photon; ++k)
+    kg->hit_slots[first_slot + k] = 0u; /* no flags */
 }
 
 #endif

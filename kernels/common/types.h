@@ -114,8 +114,6 @@ typedef struct LaunchParams {
   uint sort_tile_count; /* portable radix sort: tiles of PM_SORT_TILE keys */
 
   uint photon_count;         /* photons emitted in this pass, all lights */
-  uint photon_lanes;         /* work items of the photon trace, each tracing photons lane, lane + lanes, ...
-                                (photon_trace.h); 0: one per photon */
   uint photon_offset;        /* index of the pass's first photon within the frame (random stream) */
   uint hit_slots_per_photon; /* hit records reserved per photon */
   uint max_bounces;          /* diffuse bounces a recorded photon may have undergone */

@@ -94,7 +94,6 @@ LaunchParams PhotonMapping::pass_params(const FrameContext& frame, uint32_t pass
   // Photon i of pass k is photon k N + i of the frame: its random stream (a 64-bit index).
   const uint64_t first = uint64_t(pass) * photons_per_pass_;
   params.photon_count = photons_per_pass_;
-  params.photon_lanes = photon_trace_lanes(photons_per_pass_, settings_.trace_lanes);
   params.photon_offset = uint32_t(first);
   params.photon_offset_hi = uint32_t(first >> 32);
   params.footprint_scale = float(settings_.footprint_scale(pass));
@@ -196,10 +195,6 @@ uint32_t PhotonMapping::expected_most_hits() const {
   return uint32_t(std::min<uint64_t>(uint64_t(photons_per_pass_) * 5 / 4, hit_slots()));
 }
 
-uint32_t photon_trace_lanes(uint32_t photons, uint32_t lanes) {
-  return std::min(photons, lanes > 0 ? lanes : kPhotonTraceLanes);
-}
-
 uint64_t hit_room(uint64_t hits, bool changing) {
   return hits + (changing ? hits / 16 : 0) + uint64_t(std::ceil(8.0 * std::sqrt(double(hits))));
 }
@@ -269,7 +264,7 @@ void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
     device_.upload(buffers_[BufferSlot::hit_record_count], counter, sizeof(counter));
     {
       StageScope scope(timer, "photon trace");
-      device_.launch(KernelId::photon_trace, traced.photon_lanes, traced);
+      device_.launch(KernelId::photon_trace, photons_per_pass_, traced);
     }
     if (!(settings_.smoothing > 0)) {
       StageScope scope(timer, "footprints");

@@ -25,13 +25,6 @@ namespace pm {
 // next.
 uint64_t hit_room(uint64_t hits, bool changing);
 
-// Work items of the photon trace: each traces every lanes-th photon of the pass, emitting the next
-// as soon as one ends (kernels/common/photon_trace.h). 131072 lanes fill a large GPU (an H100
-// keeps about that many threads of the trace's 64 registers resident) and leave each several
-// photons of a million to go on with.
-constexpr uint32_t kPhotonTraceLanes = 131072;
-uint32_t photon_trace_lanes(uint32_t photons, uint32_t lanes = 0);
-
 class PhotonMapping final : public IndirectMethod {
  public:
   PhotonMapping(const MethodContext& context, const PhotonSettings& settings);

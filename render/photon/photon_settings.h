@@ -78,9 +78,6 @@ class PhotonSettings final : public MethodSettings {
   // Final gathering (kernels/common/final_gather.h): gather rays per shading point and pass, the
   // map read at their hits and traced with one bounce fewer; 0: the map read at the shading point.
   uint32_t final_gather = 0;
-  // Work items of the photon trace (kPhotonTraceLanes when 0, at most the photons): how the
-  // photons are shared out, not what they give (tests prove every count gives the same bits).
-  uint32_t trace_lanes = 0;
 
   const char* method_name() const override { return "photon"; }
   void validate() const override;

@@ -6,8 +6,7 @@
 // slots per photon, and both must record the same hits and give the same image, bit for bit
 // (fixed smoothing: no reduction over the slot layout). And the hit records and the photon map by
 // the valid hits a pass records, not by its photons, while the memory checks before the first
-// frame still count them at the most hits a pass is expected to record (DeviceMemoryPromise). And
-// the photon trace's lanes, which share the photons out, change nothing.
+// frame still count them at the most hits a pass is expected to record (DeviceMemoryPromise).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -19,7 +18,6 @@
 #include "render/renderer.h"
 #include "scene_io/cornell_box.h"
 #include "support/device_checks.h"
-#include "support/image_stats.h"
 #include "support/render_settings.h"
 
 namespace pm {
@@ -153,45 +151,6 @@ TEST(HitSlots, ThePhotonMapAndTheHitRecordsAreSizedByTheHitsAPassRecords) {
   std::printf("valid hits of 65536 photons: %llu, %llu, %llu; map room %llu, %llu, %llu\n",
               (unsigned long long)dark.hits, (unsigned long long)bright.hits, (unsigned long long)brightest.hits,
               (unsigned long long)dark.room, (unsigned long long)bright.room, (unsigned long long)brightest.room);
-}
-
-// The photon trace's lanes share the photons out (each lane traces every lanes-th photon, the next
-// as soon as one ends: kernels/common/photon_trace.h); how many there are changes nothing: one
-// lane per photon, a thousand and seven give the same hits and the same bits, with mirrors on the
-// photons' paths (the box's first material half a mirror).
-TEST(HitSlots, EveryCountOfTraceLanesGivesTheSameBits) {
-  std::unique_ptr<Device> device = opencl_device();
-  Scene scene = builtin_cornell_box();
-  scene.materials[0].mirror = {0.5f, 0.5f, 0.5f};
-  FrameImage first;
-  double first_hits = 0;
-  for (uint32_t lanes : {65536u, 1000u, 7u}) {
-    PhotonSettings photons;
-    photons.photons = 65536;
-    photons.bounces = 2;
-    photons.smoothing = 8;
-    photons.trace_lanes = lanes;
-    RenderSettings settings = test::photon_render_settings(photons);
-    settings.width = settings.height = 32;
-    Renderer renderer(*device, scene, settings);
-    FrameStats stats;
-    const FrameImage image = renderer.render_frame(0, &stats);
-    const double hits = stats.method.get("hits");
-    if (lanes == 65536u) {
-      first = image;
-      first_hits = hits;
-      EXPECT_GT(hits, 20000.0);
-      EXPECT_GT(test::mean(image.find("caustic")->rgb), 0.0) << "the mirror makes caustics";
-      continue;
-    }
-    EXPECT_EQ(hits, first_hits) << lanes << " lanes";
-    for (const char* layer : {"indirect", "caustic"}) {
-      const std::vector<float>& x = first.find(layer)->rgb;
-      const std::vector<float>& y = image.find(layer)->rgb;
-      ASSERT_EQ(x.size(), y.size());
-      EXPECT_EQ(std::memcmp(x.data(), y.data(), x.size() * sizeof(float)), 0) << lanes << " lanes, layer '" << layer << "'";
-    }
-  }
 }
 
 // Once a pass has sized the rooms by its hits, a pass that records more than they hold means the
