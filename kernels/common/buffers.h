@@ -52,10 +52,10 @@
   X(scene, uint, texels, uploaded, 1)         /* RGBA8 of every image, top row first; rgb sRGB-encoded */   \
   X(scene, float, texture_srgb_table, uploaded, 1) /* 256: the linear value of each 8-bit sRGB code */      \
   /* S5 camera: one shading point per pixel and mirror depth, [depth * pixels + pixel] */                  \
-  X(frame, float4, shade_position, shading_points, 1) /* xyz, w = the hit triangle (leaf order) as int */  \
-                                                      /* bits, -1: none */                                  \
-  /* (the normal, the material, the direction towards the viewer and the mirrors' product are */          \
-  /* replayed: eye_path_next) */                                                                           \
+  X(frame, float2, shade_hit, shading_points, 1) /* x: the ray's distance to the hit, y = the hit */      \
+                                                /* triangle (leaf order) as int bits, -1: none */          \
+  /* (the position, the normal, the material, the direction towards the viewer and the mirrors' */       \
+  /* product are replayed: eye_path_next) */                                                               \
   /* S7 film: direct light once per frame; indirect and caustic summed over passes (rgb); the odd */       \
   /* passes' indirect + caustic for the error estimate in the free w and a plane (film_odd_sum) */          \
   X(frame, float4, film_direct, pixels, 1)       /* w: the odd sum's red */                                 \

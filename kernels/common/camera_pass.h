@@ -68,11 +68,12 @@ typedef struct ShadingPoint {
 } ShadingPoint;
 
 /* A pixel's eye path, replayed from its shading points. The frame keeps per shading point only
-   its position and triangle, one float4; the direction towards the viewer and the mirrors'
-   product are replayed from the camera ray through the mirrors before the point, and the normal
-   and material read from the triangle, as the camera pass computed them and by the same
-   operations, so they come out as the same bits: a frame without mirrors keeps 1 float4 a pixel
-   for its shading point instead of 4. Each point replays its path from the
+   the ray's distance to it and its triangle, one float2; the position, the direction towards the
+   viewer and the mirrors' product are replayed from the camera ray through the mirrors before
+   the point (each mirror's hit at its distance along the ray, the reflected ray leaving it from
+   the same offset origin), and the normal and material read from the triangle, as the camera pass
+   computed them and by the same operations, so they come out as the same bits: a frame without
+   mirrors keeps 8 bytes a pixel for its shading point instead of 64. Each point replays its path from the
    camera (a mirror depth of d reads the d points before it again), so a reader holds nothing
    across its points but the pixel and the depth: carrying the last point's direction and
    mirror from one point to the next instead cost the footprint gather 8 registers (72 -> 80 on
@@ -110,19 +111,24 @@ PM_DEVICE int eye_path_next(const KernelGlobals* kg, const LaunchParams* p, EyeP
 {
   if (e->depth > p->mirror_depth) return 0;
   uint pixels = p->width * p->height;
-  float4 pos = kg->shade_position[e->depth * pixels + e->pixel];
-  int triangle = PM_AS_INT(pos.w);
+  float2 hit = kg->shade_hit[e->depth * pixels + e->pixel];
+  int triangle = PM_AS_INT(hit.y);
   if (triangle < 0) return 0;
-  Vec3 direction = camera_primary_ray(&p->camera, e->pixel % p->width, e->pixel / p->width, p->width, p->height).direction;
+  Ray camera = camera_primary_ray(&p->camera, e->pixel % p->width, e->pixel / p->width, p->width, p->height);
+  Vec3 origin = camera.origin, direction = camera.direction;
   Vec3 weight = vec3_splat(1.0f);
   for (uint depth = 0u; depth < e->depth; ++depth) { /* the mirrors before it (kernel_camera_pass) */
-    float4 mirror_position = kg->shade_position[depth * pixels + e->pixel];
-    int mirror_triangle = PM_AS_INT(mirror_position.w);
-    Material mirror = shading_point_material(kg, mirror_triangle, vec3_from_float4(mirror_position));
+    float2 mirror_hit = kg->shade_hit[depth * pixels + e->pixel];
+    int mirror_triangle = PM_AS_INT(mirror_hit.y);
+    Vec3 mirror_position = vec3_madd(origin, direction, mirror_hit.x);
+    Material mirror = shading_point_material(kg, mirror_triangle, mirror_position);
     weight = vec3_mul(weight, material_mirror(&mirror));
-    direction = vec3_reflect(direction, shading_normal_facing(kg, mirror_triangle, direction));
+    Vec3 n = shading_normal_facing(kg, mirror_triangle, direction);
+    float offset = ray_offset_distance(origin, mirror_hit.x, p->ray_epsilon);
+    origin = offset_ray_origin(mirror_position, n, offset);
+    direction = vec3_reflect(direction, n);
   }
-  sp->position = vec3_from_float4(pos);
+  sp->position = vec3_madd(origin, direction, hit.x);
   sp->triangle = triangle;
   sp->material = shading_point_material(kg, triangle, sp->position);
   sp->normal = shading_normal_facing(kg, triangle, direction);
@@ -134,7 +140,7 @@ PM_DEVICE int eye_path_next(const KernelGlobals* kg, const LaunchParams* p, EyeP
 
 PM_DEVICE void shading_point_clear(const KernelGlobals* kg, uint record)
 {
-  kg->shade_position[record] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_AS_FLOAT(-1));
+  kg->shade_hit[record] = PM_MAKE_FLOAT2(0.0f, PM_AS_FLOAT(-1));
 }
 
 /* Work item = pixel in tile order (pixel_order.h). */
@@ -170,9 +176,9 @@ PM_DEVICE void kernel_camera_pass(const KernelGlobals* kg, const LaunchParams* p
       direct = vec3_add(direct, sampled_light_direct(kg, p, kind, &m, pos, n, wo, offset, p->area_light_samples, pixel,
                                                      depth * p->area_light_samples, 0u));
     radiance = vec3_add(radiance, vec3_mul(throughput, direct));
-    /* wo, throughput, the normal and the material are not kept: the readers replay them
+    /* pos, wo, throughput, the normal and the material are not kept: the readers replay them
        (eye_path_next); the triangle also tells radiosity what to interpolate on. */
-    kg->shade_position[record] = vec3_to_float4(pos, PM_AS_FLOAT(hit.triangle));
+    kg->shade_hit[record] = PM_MAKE_FLOAT2(hit.t, PM_AS_FLOAT(hit.triangle));
 
     if (!material_has_mirror(&m) || depth == p->mirror_depth) { ++depth; break; }
     throughput = vec3_mul(throughput, material_mirror(&m));

@@ -42,30 +42,30 @@ PM_DEVICE int scene_triangle_object(PM_GLOBAL const float4* triangles, int tri)
 
 PM_DEVICE void kernel_film_layers(const KernelGlobals* kg, const LaunchParams* p, uint pixel)
 {
-  float4 first = kg->shade_position[pixel];
-  int first_triangle = PM_AS_INT(first.w);
-  if (first_triangle < 0) {
+  EyePath eye = eye_path_begin(pixel);
+  ShadingPoint sp;
+  if (!eye_path_next(kg, p, &eye, &sp)) {
     kg->film_albedo[pixel] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_AS_FLOAT(-1));
     kg->film_normal[pixel] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_LAYER_MISS_DEPTH);
     kg->film_position[pixel] = PM_MAKE_FLOAT4(0.0f, 0.0f, 0.0f, PM_AS_FLOAT(-1));
     return;
   }
+  Vec3 first = sp.position;
+  int first_triangle = sp.triangle;
   int first_material = scene_triangle_material(kg->triangles, first_triangle);
-  float depth = vec3_length(vec3_sub(vec3_from_float4(first), vec3_from_float4(p->camera.position)));
-  kg->film_position[pixel] = vec3_to_float4(vec3_from_float4(first), PM_AS_FLOAT(scene_triangle_object(kg->triangles, first_triangle)));
+  float depth = vec3_length(vec3_sub(first, vec3_from_float4(p->camera.position)));
+  kg->film_position[pixel] = vec3_to_float4(first, PM_AS_FLOAT(scene_triangle_object(kg->triangles, first_triangle)));
 
   /* Through the mirrors the camera pass followed; none left (the path ended at a mirror or left
      the scene after one): no surface to describe, black albedo and a zero normal, as for the
      background. */
   Vec3 albedo = vec3_splat(0.0f), normal = vec3_splat(0.0f);
-  EyePath eye = eye_path_begin(pixel);
-  ShadingPoint sp;
-  while (eye_path_next(kg, p, &eye, &sp)) {
+  do {
     if (material_is_pure_mirror(&sp.material)) continue;
     albedo = vec3_mul(sp.weight, material_layer_albedo(&sp.material));
     normal = sp.normal;
     break;
-  }
+  } while (eye_path_next(kg, p, &eye, &sp));
   kg->film_albedo[pixel] = vec3_to_float4(albedo, PM_AS_FLOAT(first_material));
   kg->film_normal[pixel] = vec3_to_float4(normal, depth);
 }

@@ -69,12 +69,12 @@ TEST(OpenclRender, ShadingPointsAreKeptForTheMirrorsTheSceneHas) {
   RenderSettings settings;
   settings.width = settings.height = 32;
   settings.mirror_depth = 2;
-  const uint64_t record_bytes = 32 * 32 * sizeof(float4);
+  const uint64_t record_bytes = 32 * 32 * sizeof(float2);
   const Scene plain = builtin_cornell_box();
   {
     Renderer renderer(*device, plain, settings);
     EXPECT_EQ(renderer.mirror_depth(), 0);
-    EXPECT_EQ(renderer.buffers()[BufferSlot::shade_position].bytes(), record_bytes);
+    EXPECT_EQ(renderer.buffers()[BufferSlot::shade_hit].bytes(), record_bytes);
   }
   Scene mirrored = plain;
   MaterialDesc& white = mirrored.materials.at(0);  // floor, ceiling, back wall and blocks
@@ -86,7 +86,7 @@ TEST(OpenclRender, ShadingPointsAreKeptForTheMirrorsTheSceneHas) {
     settings.mirror_depth = depth;
     Renderer renderer(*device, mirrored, settings);
     EXPECT_EQ(renderer.mirror_depth(), depth);
-    EXPECT_EQ(renderer.buffers()[BufferSlot::shade_position].bytes(), uint64_t(depth + 1) * record_bytes);
+    EXPECT_EQ(renderer.buffers()[BufferSlot::shade_hit].bytes(), uint64_t(depth + 1) * record_bytes);
     const FrameImage image = renderer.render_frame(0);
     const ImageLayer* direct = image.find("direct");
     ASSERT_NE(direct, nullptr);

@@ -68,7 +68,7 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   auto power = read_slot<float4>(device, renderer, BufferSlot::map_power, n);
   auto incident = read_slot<float4>(device, renderer, BufferSlot::map_incident, n);
   const size_t pixels = size_t(width) * height, depths = size_t(renderer.mirror_depth()) + 1, records = depths * pixels;
-  auto sp = read_slot<float4>(device, renderer, BufferSlot::shade_position, records);
+  auto sp = read_slot<float2>(device, renderer, BufferSlot::shade_hit, records);
   auto indirect = read_slot<float4>(device, renderer, BufferSlot::film_indirect_sum, pixels);  // one pass: the sums are the image
   // A scene without mirrors makes no caustics, and its film keeps no caustic sum.
   auto caustic = renderer.has_caustic_film() ? read_slot<float4>(device, renderer, BufferSlot::film_caustic_sum, pixels)
@@ -89,9 +89,9 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   KernelGlobals scene_globals{};
   scene_globals.scene_nodes = scene_nodes.data();
   scene_globals.triangles = triangles.data();
-  // The shading points' directions towards the viewer and mirror weights, replayed as the kernels
-  // replay them (eye_path_next).
-  scene_globals.shade_position = sp.data();
+  // The shading points' positions, directions towards the viewer and mirror weights, replayed as
+  // the kernels replay them (eye_path_next).
+  scene_globals.shade_hit = sp.data();
   scene_globals.materials = materials.data();
   const LaunchParams& gather_params = method->last_gather_params();
   const double region_stretch = 1.0 / std::pow(double(knn_region_thickness(&gather_params)), 2) - 1.0;

@@ -21,13 +21,13 @@ struct HostCameraPass {
         lights(to_device_lights(scene.lights)),
         pixels(size_t(width) * size_t(height)) {
     const size_t records = pixels * size_t(mirror_depth + 1);
-    position.resize(records);
+    hits.resize(records);
     direct.resize(pixels);
     kg.scene_nodes = bvh.nodes.data();
     kg.triangles = bvh.triangles.data();
     kg.materials = materials.data();
     kg.lights = lights.data();
-    kg.shade_position = position.data();
+    kg.shade_hit = hits.data();
     kg.film_direct = direct.data();
     p.camera = make_camera_params(scene.camera, width, height);
     p.width = uint32_t(width);
@@ -47,7 +47,8 @@ struct HostCameraPass {
   std::vector<Material> materials;
   std::vector<PointLight> lights;
   size_t pixels;
-  std::vector<float4> position, direct;
+  std::vector<float2> hits;  // per shading point: distance along its ray, triangle (camera_pass.h)
+  std::vector<float4> direct;
   KernelGlobals kg{};
   LaunchParams p{};
 };
