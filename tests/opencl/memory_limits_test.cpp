@@ -63,9 +63,9 @@ TEST_F(MemoryLimits, AFrameTooLargeForTheHostIsRefusedBeforeTheDeviceOpens) {
 }
 
 TEST_F(MemoryLimits, DeviceBuffersThatDoNotFitTheHostAreRefusedBeforeTheFirstFrame) {
-  // The frame's 8 GiB fit under 9 GB, but not beside a CPU device's buffers (3.3 GiB, host memory:
-  // 52 bytes a pixel in a box without mirrors: the film's two float4 and a float, and one shading
-  // point's float4).
+  // The frame's 8 GiB fit under 9 GB, but not beside a CPU device's buffers (2.8 GiB, host memory:
+  // 44 bytes a pixel in a box without mirrors: the film's two float4 and a float, and one shading
+  // point's float2).
   // PoCL 3 creates the buffers lazily, and the total is refused; PoCL 5 derives its one-buffer
   // limit from the address space, and the first buffer over it is refused. Either way: exit 2,
   // one line with the numbers, before the first frame.
@@ -77,7 +77,7 @@ TEST_F(MemoryLimits, DeviceBuffersThatDoNotFitTheHostAreRefusedBeforeTheFirstFra
   EXPECT_EQ(r.err.rfind("pmrender: ", 0), 0u) << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_NE(r.err.find("; lower --resolution or --photons"), std::string::npos) << r.err;
-  const bool total = r.err.find("the render needs 3.3 GiB of device memory and 8.0 GiB for the frame on the host; "
+  const bool total = r.err.find("the render needs 2.8 GiB of device memory and 8.0 GiB for the frame on the host; "
                                 "the buffers of ") != std::string::npos &&
                      r.err.find("GiB are available (RLIMIT_AS (ulimit -v))") != std::string::npos;
   const bool one_buffer = r.err.find(" in one buffer, but ") != std::string::npos &&

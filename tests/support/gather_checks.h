@@ -51,8 +51,8 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   settings.mirror_depth = 1;
   settings.passes = 1;  // one pass: the map holds every hit
   settings.method = std::make_shared<PhotonSettings>(photons);
-  // The device's own shading normals, for the points of depth 0 (below).
-  settings.layers = parse_film_layers("normal");
+  // The device's own shading normals and positions, for the points of depth 0 (below).
+  settings.layers = parse_film_layers("normal,position");
   Renderer renderer(device, scene, settings);
   renderer.render_frame(0);
   const auto* method = dynamic_cast<const PhotonMapping*>(renderer.method());
@@ -73,11 +73,14 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
   // A scene without mirrors makes no caustics, and its film keeps no caustic sum.
   auto caustic = renderer.has_caustic_film() ? read_slot<float4>(device, renderer, BufferSlot::film_caustic_sum, pixels)
                                              : std::vector<float4>(pixels, float4{0, 0, 0, 0});
-  // A shading point's normal is its triangle's, computed by each side in its own arithmetic:
-  // CUDA's fast math may differ from the host's in the last bits, enough to change which photon
-  // is knn's k-th. The brute force takes the device's normals where the normal layer has them
-  // (the first point of every pixel in a scene without mirrors, as the scenes here are).
+  // A shading point's normal is its triangle's, and its position the camera ray's at its distance,
+  // computed by each side in its own arithmetic: the device's fused multiply-adds and CUDA's fast
+  // math may differ from the host's in the last bits, enough to change which footprint reaches a
+  // point on its edge or which photon is knn's k-th. The brute force takes the device's normals
+  // and positions where the layers have them (the first point of every pixel in a scene without
+  // mirrors, as the scenes here are).
   auto device_normal = read_slot<float4>(device, renderer, BufferSlot::film_normal, pixels);
+  auto device_position = read_slot<float4>(device, renderer, BufferSlot::film_position, pixels);
   std::vector<Material> materials = to_device_materials(scene);
   // knn's region (its clip at the walls and its covered area) is measured on the host by the
   // kernels' own function over the device's scene BVH; what is checked is the search and the sum.
@@ -105,7 +108,10 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
     while (eye_path_next(&scene_globals, &gather_params, &eye, &point)) {
       const size_t depth = eye.depth - 1;
       const Material& m = point.material;
-      if (depth == 0 && renderer.mirror_depth() == 0) point.normal = v3(device_normal[px]);
+      if (depth == 0 && renderer.mirror_depth() == 0) {
+        point.normal = v3(device_normal[px]);
+        point.position = v3(device_position[px]);
+      }
       const Vec3 x = point.position, nrm = point.normal, wo = point.outgoing, weight = point.weight;
       std::vector<std::pair<double, size_t>> near;  // knn: (distance^2, index)
       for (size_t k = 0; k < n; ++k) {
