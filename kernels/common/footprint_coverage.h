@@ -30,11 +30,9 @@
 #include "rng.h"
 #include "scene_traverse.h"
 
-/* Probes per footprint. 16 puts the share's quantisation at about
-   6 % of a footprint, which averages out over the tens to hundreds of footprints of a gather. */
-#define PM_FOOTPRINT_PROBES 16
-/* Probes of the second pattern, for footprints that the first finds partly covered. */
-#define PM_FOOTPRINT_EDGE_PROBES 64
+/* Probes per footprint: PM_FOOTPRINT_PROBES (types.h), 16, puts the share's quantisation at about
+   6 % of a footprint, which averages out over the tens to hundreds of footprints of a gather;
+   PM_FOOTPRINT_EDGE_PROBES more for footprints that the first pattern finds partly covered. */
 /* The golden angle, pi (3 - sqrt(5)). */
 #define PM_GOLDEN_ANGLE 2.39996323f
 /* Random stream of the probe pattern's turn per hit. */
@@ -106,6 +104,17 @@ PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, const Footprint
   return 0.0f;
 }
 
+/* Whether the cuts keep probe j of a `count`-probe pattern turned by `turn`; if so its disc point
+   (x, y) and its kernel weight w. */
+PM_DEVICE int footprint_probe_kept(const FootprintCut* cut, uint j, uint count, float turn, uint shape, float* x,
+                                   float* y, float* w)
+{
+  footprint_probe_point(j, count, turn, x, y);
+  if (!footprint_cut_keeps(cut, *x, *y)) return 0;
+  *w = shape == PM_KERNEL_EPANECHNIKOV ? kernel_epanechnikov(*x * *x + *y * *y) : 1.0f;
+  return 1;
+}
+
 /* Covered and kept kernel weights of a `count`-probe pattern (see footprint_covered_share). */
 PM_DEVICE void footprint_probe_pattern(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut, Vec3 center,
                                        Vec3 n, float offset, float turn, uint shape, uint area_mode, Vec3 wi,
@@ -115,14 +124,23 @@ PM_DEVICE void footprint_probe_pattern(const KernelGlobals* kg, const Footprint*
   *covered = 0.0f;
   *kept_probes = 0u;
   for (uint j = 0; j < count; ++j) {
-    float x, y;
-    footprint_probe_point(j, count, turn, &x, &y);
-    if (!footprint_cut_keeps(cut, x, y)) continue;
-    float w = shape == PM_KERNEL_EPANECHNIKOV ? kernel_epanechnikov(x * x + y * y) : 1.0f;
+    float x, y, w;
+    if (!footprint_probe_kept(cut, j, count, turn, shape, &x, &y, &w)) continue;
     *kept += w;
     ++*kept_probes;
     *covered += w * footprint_probe_covered(kg, f, center, n, offset, x, y, area_mode, wi);
   }
+}
+
+/* Whether the first pattern's sums call for the second: partly covered, or (area modes) tilted. */
+PM_DEVICE int footprint_pattern_at_edge(float kept, float covered) { return covered > 0.0f && covered != kept; }
+
+/* The covered share from a pattern's sums. A footprint whose probes all miss (a sliver, a thin
+   rail) still covers its own hit, which lies on the surface: it counts as half a probe's cell. */
+PM_DEVICE float footprint_share_of(float kept, float covered, uint kept_probes)
+{
+  if (!(kept > 0.0f)) return 1.0f; /* no probe inside the cuts: the clip's kept fraction is all we know */
+  return covered > 0.0f ? covered / kept : 0.5f / (float)kept_probes;
 }
 
 /* Share of the kernel mass kept by `cut` that lies over accepted surface, in (0, 1] (with an area
@@ -131,7 +149,9 @@ PM_DEVICE void footprint_probe_pattern(const KernelGlobals* kg, const Footprint*
    partly covered (or, with an area mode, tilted) is measured again with PM_FOOTPRINT_EDGE_PROBES: the flux is divided by the share, and
    1 / share is convex, so its noise is a bias (+1.0 % in Sponza's first bounce with 16 probes
    throughout, at the smallest footprints measured; docs/accuracy.md). Footprints wholly on a surface,
-   most of them, cost the first pattern only. */
+   most of them, cost the first pattern only. One work item measures the whole pattern here (the
+   knn gather's region about a shading point); the photon map's footprints spread theirs over a
+   work item per probe (footprint_probes.h). */
 PM_DEVICE float footprint_covered_share(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut,
                                         Vec3 center, Vec3 n, float offset, float turn, uint shape, uint area_mode,
                                         Vec3 wi)
@@ -140,13 +160,10 @@ PM_DEVICE float footprint_covered_share(const KernelGlobals* kg, const Footprint
   uint kept_probes;
   footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, area_mode, wi, PM_FOOTPRINT_PROBES, &kept,
                           &covered, &kept_probes);
-  if (covered > 0.0f && covered != kept)
+  if (footprint_pattern_at_edge(kept, covered))
     footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, area_mode, wi, PM_FOOTPRINT_EDGE_PROBES, &kept,
                             &covered, &kept_probes);
-  if (!(kept > 0.0f)) return 1.0f; /* no probe inside the cuts: the clip's kept fraction is all we know */
-  /* The hit itself lies on the surface: a footprint whose probes all miss (a sliver, a thin
-     rail) still covers something; count it as half a probe's cell. */
-  return covered > 0.0f ? covered / kept : 0.5f / (float)kept_probes;
+  return footprint_share_of(kept, covered, kept_probes);
 }
 
 #endif

@@ -8,7 +8,11 @@
   K(camera_pass)       /* S5: eye rays, mirror recursion, direct light, shading points */    \
   K(photon_trace)      /* S1+S2: emit, trace, record hits with differentials */              \
   K(photon_footprint_scale) /* S3: per-tile footprint area at s = 1 (automatic smoothing) */ \
-  K(photon_footprint)  /* S3: footprints of the sorted hits: AABBs, gather data, area */    \
+  K(photon_footprint)  /* S3: footprints of the sorted hits, clipped, stashed for the probes */ \
+  K(photon_footprint_probe)      /* S3: coverage, one work item per probe of the first pattern */ \
+  K(photon_footprint_pattern)    /* S3: coverage, the first pattern's sums; footprints at edges */ \
+  K(photon_footprint_edge_probe) /* S3: coverage, the second pattern of footprints at edges */   \
+  K(photon_footprint_store)      /* S3: AABBs, gather data and area of the sorted hits */       \
   K(photon_reduce)     /* S4: per-tile hit bounds and count (Morton bounds, compaction) */  \
   K(photon_morton)     /* S4: 30-bit Morton keys (empty slots sort last) */                  \
   K(photon_map_nodes)  /* S4: Karras radix tree inner nodes */                               \

@@ -11,6 +11,7 @@
 #include "footprint.h"
 #include "footprint_clip.h"
 #include "footprint_coverage.h"
+#include "footprint_probes.h"
 #include "kernel_globals.h"
 #include "photon_map.h"
 #include "photon_trace.h"
@@ -44,13 +45,9 @@ PM_DEVICE Footprint hit_footprint(const KernelGlobals* kg, const LaunchParams* p
   return f;
 }
 
-/* Work item = sorted position k < hit_count: the gather data of hit sorted_slots[k], written at
-   k, so the photon map's leaves and the gather read contiguous memory. The gather data of a hit: the footprint clipped at the geometry around it (footprint_clip.h),
-   its bounds, the rows of the inverse of its basis, whose w hold the first cut (mu, mv, t): the
-   gather accepts x where mu (row_u . (x - hit)) + mv (row_v . (x - hit)) <= t, a second cut in
-   map_cut (flagged PM_HIT_SECOND_CUT), and flux / (area * covered share); the gather divides by the kernel mass the cuts keep about each shading point. For
-   knn the bounds are the point box hit +- r_max the knn traversal expects, and the power is the
-   flux (the knn gather divides by its own area). */
+/* Work item = sorted position k < hit_count: the footprint of hit sorted_slots[k] (scaled for a
+   shrinking pass), clipped at the geometry around it (footprint_clip.h), stashed at k for the
+   coverage probes and photon_footprint_store (the layout: footprint_probes.h). */
 PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchParams* p, uint k)
 {
   uint slot = kg->sorted_slots[k];
@@ -71,33 +68,51 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
   if (p->footprint_clip && p->estimator != PM_ESTIMATOR_KNN)
     cut = footprint_clip(kg, &f, center, normal,
                          ray_offset_distance(center, 0.0f, p->ray_epsilon), p->kernel_shape);
-  float coverage = 1.0f;
-  if (p->footprint_coverage && p->estimator != PM_ESTIMATOR_KNN) {
-    /* The pattern's turn: drawn per photon and record, the same on every backend and for any
-       slot layout. */
-    uint per_photon = p->hit_slots_per_photon > 0u ? p->hit_slots_per_photon : 1u;
-    uint frame = p->photon_sequence == PM_PHOTON_SEQUENCE_HALTON ? 0u : p->photon_frame; /* the same every frame */
-    float turn = PM_TWO_PI * rng_to_unit(rng_bits4(p->seed, frame, p->photon_offset + slot / per_photon,
-                                                   slot % per_photon, PM_STREAM_FOOTPRINT_PROBE,
-                                                   p->photon_offset_hi).b0);
-    coverage = footprint_covered_share(kg, &f, &cut, center, normal,
-                                       ray_offset_distance(center, 0.0f, p->ray_epsilon), turn, p->kernel_shape,
-                                       p->facet_weighting ? PM_COVERAGE_LIT_AREA : PM_COVERAGE_CELLS,
-                                       vec3_from_float4(photon_hit_part(kg, record, PM_RECORD_INCIDENT)));
-  }
+  /* The probe pattern's turn: drawn per photon and record, the same on every backend and for any
+     slot layout. */
+  uint per_photon = p->hit_slots_per_photon > 0u ? p->hit_slots_per_photon : 1u;
+  uint frame = p->photon_sequence == PM_PHOTON_SEQUENCE_HALTON ? 0u : p->photon_frame; /* the same every frame */
+  float turn = PM_TWO_PI * rng_to_unit(rng_bits4(p->seed, frame, p->photon_offset + slot / per_photon,
+                                                 slot % per_photon, PM_STREAM_FOOTPRINT_PROBE,
+                                                 p->photon_offset_hi).b0);
+  uint flags = hit_flags | (cut.t[1] < 1.0f ? PM_HIT_SECOND_CUT : 0u);
+  kg->map_row_u[k] = vec3_to_float4(f.axis_u, cut.mu[0]);
+  kg->map_row_v[k] = vec3_to_float4(f.axis_v, cut.mv[0]);
+  kg->map_row_n[k] = vec3_to_float4(f.axis_n, cut.t[0]);
+  kg->map_cut[k] = PM_MAKE_FLOAT4(cut.mu[1], cut.mv[1], cut.t[1], cut.kept);
+  kg->map_center[k] = vec3_to_float4(center, PM_UINT_AS_FLOAT(flags));
+  kg->map_lo[k] = vec3_to_float4(normal, turn);
+  kg->map_power[k] = vec3_to_float4(photon_hit_flux(kg, record), 0.0f);
+  kg->map_incident[k] = photon_hit_part(kg, record, PM_RECORD_INCIDENT);
+}
+
+/* Work item = sorted position k < hit_count: the gather data of the footprint stashed at k,
+   written at k, so the photon map's leaves and the gather read contiguous memory: its bounds,
+   the rows of the inverse of its basis, whose w hold the first cut (mu, mv, t): the gather
+   accepts x where mu (row_u . (x - hit)) + mv (row_v . (x - hit)) <= t, a second cut in map_cut
+   (flagged PM_HIT_SECOND_CUT), and flux / (area * covered share); the gather divides by the
+   kernel mass the cuts keep about each shading point. For knn the bounds are the point box hit
+   +- r_max the knn traversal expects, and the power is the flux (the knn gather divides by its
+   own area). */
+PM_DEVICE void kernel_photon_footprint_store(const KernelGlobals* kg, const LaunchParams* p, uint k)
+{
+  Footprint f = footprint_stashed(kg, k);
+  Vec3 center = vec3_from_float4(kg->map_center[k]);
+  float kept = kg->map_cut[k].w;
+  float coverage = p->footprint_coverage && p->estimator != PM_ESTIMATOR_KNN ? footprint_stashed_share(kg, p, k) : 1.0f;
   Vec3 lo, hi;
   footprint_bounds(f, center, &lo, &hi);
   /* The footprint's area on the surface (T_auto, the histogram); the flux is divided by the
      ellipse's area times its coverage only: the gather divides by the kept mass about each
      shading point (footprint_kept_about, gather_reach.h). */
-  float area = footprint_area(f) * cut.kept * coverage;
+  float area = footprint_area(f) * kept * coverage;
   float spread = footprint_area(f) * coverage;
 
   /* Inverse of the basis (a_u, a_v, a_n): its rows are the reciprocal basis vectors. */
   Vec3 c_vn = vec3_cross(f.axis_v, f.axis_n), c_nu = vec3_cross(f.axis_n, f.axis_u), c_uv = vec3_cross(f.axis_u, f.axis_v);
   float det = vec3_dot(f.axis_u, c_vn);
   float inv_det = det != 0.0f && pm_isfinite(det) ? 1.0f / det : 0.0f; /* singular: contains nothing */
-  Vec3 flux = photon_hit_flux(kg, record);
+  Vec3 flux = vec3_from_float4(kg->map_power[k]);
   Vec3 power = area > 0.0f && spread > 0.0f ? vec3_scale(flux, 1.0f / spread) : vec3_splat(0.0f);
   if (inv_det == 0.0f || !pm_isfinite(power.x + power.y + power.z)) {
     power = vec3_splat(0.0f);
@@ -109,16 +124,13 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
     power = flux;
     area = 0.0f; /* no footprint area: T_auto stays at 1 for the knn map, as before clipping */
   }
-  uint flags = hit_flags | (cut.t[1] < 1.0f ? PM_HIT_SECOND_CUT : 0u);
   kg->map_lo[k] = vec3_to_float4(lo, area);
   kg->map_hi[k] = vec3_to_float4(hi, 0.0f);
-  kg->map_center[k] = vec3_to_float4(center, PM_UINT_AS_FLOAT(flags));
-  kg->map_row_u[k] = vec3_to_float4(vec3_scale(c_vn, inv_det), cut.mu[0]);
-  kg->map_row_v[k] = vec3_to_float4(vec3_scale(c_nu, inv_det), cut.mv[0]);
-  kg->map_row_n[k] = vec3_to_float4(vec3_scale(c_uv, inv_det), cut.t[0]);
-  kg->map_cut[k] = PM_MAKE_FLOAT4(cut.mu[1], cut.mv[1], cut.t[1], 0.0f);
+  kg->map_row_u[k] = vec3_to_float4(vec3_scale(c_vn, inv_det), kg->map_row_u[k].w);
+  kg->map_row_v[k] = vec3_to_float4(vec3_scale(c_nu, inv_det), kg->map_row_v[k].w);
+  kg->map_row_n[k] = vec3_to_float4(vec3_scale(c_uv, inv_det), kg->map_row_n[k].w);
+  kg->map_cut[k].w = 0.0f;
   kg->map_power[k] = vec3_to_float4(power, 0.0f);
-  kg->map_incident[k] = photon_hit_part(kg, record, PM_RECORD_INCIDENT);
 }
 
 #endif

@@ -1,0 +1,156 @@
+/* The photon map's coverage probes, one work item per probe (stage S3, footprint_coverage.h says
+   what a probe measures). Traced in a loop per footprint, the probes left a warp's lanes on 32
+   different footprints, each with its own rays, cut and edge: the footprint stage ran at 7.6 of
+   32 active threads per warp instruction and was most of the production frame (docs/benchmarks.md).
+   Here the PM_FOOTPRINT_PROBES lanes of a footprint trace its probes together: parallel rays a
+   footprint apart, which visit the same nodes and triangles.
+
+   The stage's launches over the sorted hits (render/photon/photon_mapping.cpp runs them):
+   1. photon_footprint (photon_footprint.h): the footprint and its cuts, stashed at k;
+   2. photon_footprint_probe: probe j of hit k's first pattern, its covered weight kept;
+   3. photon_footprint_pattern: the first pattern's sums, and whether the footprint is at an edge;
+   4. photon_footprint_edge_probe: for footprints at an edge only, the second pattern, lane j
+      tracing probes j, j + 16, j + 32, j + 48 and keeping their weighted sum;
+   5. photon_footprint_store (photon_footprint.h): the share from those sums, the gather data.
+
+   What launch 1 stashes at k, in the gather arrays that launch 5 then overwrites:
+     map_row_u, map_row_v, map_row_n: (a_u, mu_0), (a_v, mv_0), (a_n, t_0), the scaled semiaxes
+       (their w are the first cut's, as stored for the gather);
+     map_cut: (mu_1, mv_1, t_1, the kept fraction);  map_center: as stored for the gather;
+     map_lo: (the unit normal, the pattern's turn);  map_power: (the flux, 0);
+     map_incident: as stored for the gather;  map_hi: launch 3's sums.
+   The probes' values, PM_FOOTPRINT_PROBES floats per hit at 16 k, live in the hit records, which
+   launch 1 has read for the last time (80 bytes a record, at least one record per valid hit). */
+#ifndef PM_FOOTPRINT_PROBES_H
+#define PM_FOOTPRINT_PROBES_H
+
+#include "footprint_coverage.h"
+#include "kernel_globals.h"
+#include "ray.h"
+
+/* Rounds of PM_FOOTPRINT_PROBES lanes that trace the second pattern. */
+#define PM_FOOTPRINT_EDGE_ROUNDS (PM_FOOTPRINT_EDGE_PROBES / PM_FOOTPRINT_PROBES)
+/* The probes' values of hit k. */
+#define PM_FOOTPRINT_PROBE_VALUES(kg, k) ((PM_GLOBAL float*)(kg)->hit_records + PM_FOOTPRINT_PROBES * (k))
+
+/* The footprint stashed at k by photon_footprint. */
+PM_DEVICE Footprint footprint_stashed(const KernelGlobals* kg, uint k)
+{
+  Footprint f;
+  f.axis_u = vec3_from_float4(kg->map_row_u[k]);
+  f.axis_v = vec3_from_float4(kg->map_row_v[k]);
+  f.axis_n = vec3_from_float4(kg->map_row_n[k]);
+  return f;
+}
+
+/* The cuts stashed at k (their kept fraction included). */
+PM_DEVICE FootprintCut footprint_stashed_cut(const KernelGlobals* kg, uint k)
+{
+  FootprintCut cut = footprint_uncut();
+  float4 second = kg->map_cut[k];
+  cut.mu[0] = kg->map_row_u[k].w;
+  cut.mv[0] = kg->map_row_v[k].w;
+  cut.t[0] = kg->map_row_n[k].w;
+  cut.mu[1] = second.x;
+  cut.mv[1] = second.y;
+  cut.t[1] = second.z;
+  cut.kept = second.w;
+  return cut;
+}
+
+/* Covered weight of probe j of a `count`-probe pattern of the footprint stashed at k
+   (footprint_probe_covered), and in w its kernel weight; both 0 where the cuts drop it. */
+PM_DEVICE float footprint_stashed_probe(const KernelGlobals* kg, const LaunchParams* p, const Footprint* f,
+                                        const FootprintCut* cut, uint k, uint j, uint count, float* w)
+{
+  float4 normal_turn = kg->map_lo[k];
+  float x, y;
+  *w = 0.0f;
+  if (!footprint_probe_kept(cut, j, count, normal_turn.w, p->kernel_shape, &x, &y, w)) return 0.0f;
+  Vec3 center = vec3_from_float4(kg->map_center[k]);
+  return footprint_probe_covered(kg, f, center, vec3_from_float4(normal_turn),
+                                 ray_offset_distance(center, 0.0f, p->ray_epsilon), x, y,
+                                 p->facet_weighting ? PM_COVERAGE_LIT_AREA : PM_COVERAGE_CELLS,
+                                 vec3_from_float4(kg->map_incident[k]));
+}
+
+/* Work item = PM_FOOTPRINT_PROBES * (k - batch_first) + j: probe j of hit k's first pattern. Its
+   covered weight alone is kept (launch 3 weighs it, in the order of footprint_probe_pattern). */
+PM_DEVICE void kernel_photon_footprint_probe(const KernelGlobals* kg, const LaunchParams* p, uint index)
+{
+  uint k = p->batch_first + index / PM_FOOTPRINT_PROBES, j = index % PM_FOOTPRINT_PROBES;
+  Footprint f = footprint_stashed(kg, k);
+  FootprintCut cut = footprint_stashed_cut(kg, k);
+  float w;
+  PM_FOOTPRINT_PROBE_VALUES(kg, k)[j] = footprint_stashed_probe(kg, p, &f, &cut, k, j, PM_FOOTPRINT_PROBES, &w);
+}
+
+/* Work item = hit k: the first pattern's kept and covered weights, summed in footprint_probe_pattern's
+   order, in map_hi[k] = (kept, covered, kept probes, at an edge). */
+PM_DEVICE void kernel_photon_footprint_pattern(const KernelGlobals* kg, const LaunchParams* p, uint k)
+{
+  FootprintCut cut = footprint_stashed_cut(kg, k);
+  float turn = kg->map_lo[k].w;
+  PM_GLOBAL const float* values = PM_FOOTPRINT_PROBE_VALUES(kg, k);
+  float kept = 0.0f, covered = 0.0f;
+  uint kept_probes = 0u;
+  for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) {
+    float x, y, w;
+    if (!footprint_probe_kept(&cut, j, PM_FOOTPRINT_PROBES, turn, p->kernel_shape, &x, &y, &w)) continue;
+    kept += w;
+    ++kept_probes;
+    covered += w * values[j];
+  }
+  kg->map_hi[k] = PM_MAKE_FLOAT4(kept, covered, PM_UINT_AS_FLOAT(kept_probes),
+                                 PM_UINT_AS_FLOAT((uint)footprint_pattern_at_edge(kept, covered)));
+}
+
+/* Work item = PM_FOOTPRINT_PROBES * (k - batch_first) + j: for a footprint at an edge, the
+   weighted covered sum of second-pattern probes j + PM_FOOTPRINT_PROBES r, r < PM_FOOTPRINT_EDGE_ROUNDS. */
+PM_DEVICE void kernel_photon_footprint_edge_probe(const KernelGlobals* kg, const LaunchParams* p, uint index)
+{
+  uint k = p->batch_first + index / PM_FOOTPRINT_PROBES, j = index % PM_FOOTPRINT_PROBES;
+  if (PM_AS_UINT(kg->map_hi[k].w) == 0u) return;
+  Footprint f = footprint_stashed(kg, k);
+  FootprintCut cut = footprint_stashed_cut(kg, k);
+  float covered = 0.0f;
+  for (uint r = 0; r < PM_FOOTPRINT_EDGE_ROUNDS; ++r) {
+    float w;
+    float c = footprint_stashed_probe(kg, p, &f, &cut, k, j + PM_FOOTPRINT_PROBES * r, PM_FOOTPRINT_EDGE_PROBES, &w);
+    covered += w * c; /* a dropped probe adds 0 */
+  }
+  PM_FOOTPRINT_PROBE_VALUES(kg, k)[j] = covered;
+}
+
+/* The covered share of the footprint at k from launches 3 and 4 (footprint_covered_share's
+   answer; at an edge the second pattern's weights are summed per lane, then over the lanes). */
+PM_DEVICE float footprint_stashed_share(const KernelGlobals* kg, const LaunchParams* p, uint k)
+{
+  float4 first = kg->map_hi[k];
+  float kept = first.x, covered = first.y;
+  uint kept_probes = PM_AS_UINT(first.z);
+  if (PM_AS_UINT(first.w) != 0u) {
+    FootprintCut cut = footprint_stashed_cut(kg, k);
+    float turn = kg->map_lo[k].w;
+    PM_GLOBAL const float* values = PM_FOOTPRINT_PROBE_VALUES(kg, k);
+    kept = 0.0f;
+    covered = 0.0f;
+    kept_probes = 0u;
+    for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) {
+      float lane_kept = 0.0f;
+      for (uint r = 0; r < PM_FOOTPRINT_EDGE_ROUNDS; ++r) {
+        float x, y, w;
+        if (!footprint_probe_kept(&cut, j + PM_FOOTPRINT_PROBES * r, PM_FOOTPRINT_EDGE_PROBES, turn, p->kernel_shape,
+                                  &x, &y, &w))
+          continue;
+        lane_kept += w;
+        ++kept_probes;
+      }
+      kept += lane_kept;
+      covered += values[j];
+    }
+  }
+  return footprint_share_of(kept, covered, kept_probes);
+}
+
+#endif
