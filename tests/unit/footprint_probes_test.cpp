@@ -1,0 +1,175 @@
+// Unit tests of the coverage probes spread over a work item each (kernels/common/footprint_probes.h)
+// on the host, with the scene BVH the device uses: footprints stashed along a ledge, a step and a
+// bend, their probes, pattern sums and second pattern run item by item in shuffled order and in
+// two batches, give the covered share that one work item measuring the whole pattern gives
+// (footprint_covered_share, footprint_coverage.h).
+#include "kernels/common/compat_host.h"
+#include "kernels/common/footprint_probes.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+#include <vector>
+
+#include "support/host_scene.h"
+#include "support/room_scenes.h"
+
+namespace pm {
+namespace {
+
+// A 4 x 4 m floor at y = 0 for x < 0 that bends down at x = 0 into a slope of 20 degrees, and a
+// ledge: a 1 m wide shelf at y = 0.2 over -1.5 < z < -0.5 that ends in the air at x = -1.
+Scene ledge_and_bend() {
+  Scene s;
+  s.name = "ledge-and-bend";
+  s.source = "test";
+  s.materials = {test::diffuse_material("white", {0.7f, 0.7f, 0.7f})};
+  const float drop = 2.0f * std::tan(0.349066f);
+  test::add_quad(s, {-2, 0, -2}, {-2, 0, 2}, {0, 0, 2}, {0, 0, -2});
+  test::add_quad(s, {0, 0, -2}, {0, 0, 2}, {2, -drop, 2}, {2, -drop, -2});
+  test::add_quad(s, {-2, 0.2f, -1.5f}, {-2, 0.2f, -0.5f}, {-1, 0.2f, -0.5f}, {-1, 0.2f, -1.5f});
+  return s;
+}
+
+struct Stash {
+  std::vector<float4> row_u, row_v, row_n, cut, center, lo, hi, power, incident, records;
+  KernelGlobals kg;
+};
+
+struct Case {
+  Footprint f;
+  FootprintCut cut;
+  Vec3 center, normal, wi;
+  float turn;
+};
+
+// Footprints of radius 0.3 m along a line across the shelf's rim, the floor and the bend, some
+// tilted, some cut by a wall's line.
+std::vector<Case> cases() {
+  std::vector<Case> out;
+  const Vec3 wi = vec3_normalize(vec3(0.3f, 1.0f, -0.2f));
+  for (int i = 0; i < 24; ++i) {
+    Case c;
+    const float x = -1.6f + 0.12f * float(i);
+    const bool on_shelf = i % 3 == 0 && x < -1.0f + 0.25f;
+    const float tilt = i % 4 == 1 ? 0.25f : 0.0f;
+    c.normal = vec3(std::sin(tilt), std::cos(tilt), 0.0f);
+    c.center = vec3(x, on_shelf ? 0.2f : 0.0f, on_shelf ? -1.0f : 0.7f);
+    Vec3 t, b;
+    vec3_onb(c.normal, &t, &b);
+    c.f.axis_u = vec3_scale(t, 0.3f);
+    c.f.axis_v = vec3_scale(b, 0.2f + 0.01f * float(i));
+    c.f.axis_n = vec3_scale(c.normal, 0.05f);
+    c.cut = footprint_uncut();
+    if (i % 5 == 2) {  // a wall's line through the disc, as footprint_clip leaves it
+      c.cut.mu[0] = 0.8f;
+      c.cut.mv[0] = 0.6f;
+      c.cut.t[0] = 0.3f;
+      c.cut.kept = 0.7f;
+    }
+    c.turn = 0.37f * float(i);
+    c.wi = wi;
+    out.push_back(c);
+  }
+  return out;
+}
+
+// The stash of footprint_probes.h, written as photon_footprint writes it.
+void stash(Stash& s, const std::vector<Case>& all) {
+  const size_t n = all.size();
+  for (auto* v : {&s.row_u, &s.row_v, &s.row_n, &s.cut, &s.center, &s.lo, &s.hi, &s.power, &s.incident})
+    v->assign(n, float4{0, 0, 0, 0});
+  s.records.assign(PM_RECORD_FLOAT4S * n, float4{-1, -1, -1, -1});  // spent records, poisoned
+  for (size_t k = 0; k < n; ++k) {
+    const Case& c = all[k];
+    s.row_u[k] = vec3_to_float4(c.f.axis_u, c.cut.mu[0]);
+    s.row_v[k] = vec3_to_float4(c.f.axis_v, c.cut.mv[0]);
+    s.row_n[k] = vec3_to_float4(c.f.axis_n, c.cut.t[0]);
+    s.cut[k] = float4{c.cut.mu[1], c.cut.mv[1], c.cut.t[1], c.cut.kept};
+    s.center[k] = vec3_to_float4(c.center, 0.0f);
+    s.lo[k] = vec3_to_float4(c.normal, c.turn);
+    s.incident[k] = vec3_to_float4(c.wi, 0.0f);
+  }
+  s.kg.map_row_u = s.row_u.data();
+  s.kg.map_row_v = s.row_v.data();
+  s.kg.map_row_n = s.row_n.data();
+  s.kg.map_cut = s.cut.data();
+  s.kg.map_center = s.center.data();
+  s.kg.map_lo = s.lo.data();
+  s.kg.map_hi = s.hi.data();
+  s.kg.map_power = s.power.data();
+  s.kg.map_incident = s.incident.data();
+  s.kg.hit_records = s.records.data();
+}
+
+// Runs `item` over [0, count) in a shuffled order.
+template <class F>
+void shuffled(uint count, uint32_t seed, F&& item) {
+  std::vector<uint> ids(count);
+  std::iota(ids.begin(), ids.end(), 0u);
+  std::shuffle(ids.begin(), ids.end(), std::mt19937(seed));
+  for (uint i : ids) item(i);
+}
+
+// Launches 2-4 of footprint_probes.h, each probe launch in two batches as the host splits them.
+void run_probes(const KernelGlobals* kg, LaunchParams p, uint hits) {
+  const uint split = hits / 3;
+  for (int edge = 0; edge < 2; ++edge) {
+    for (uint first : {0u, split}) {
+      p.batch_first = first;
+      const uint count = (first == 0 ? split : hits - split) * PM_FOOTPRINT_PROBES;
+      shuffled(count, 7u + first, [&](uint i) {
+        if (edge) kernel_photon_footprint_edge_probe(kg, &p, i);
+        else kernel_photon_footprint_probe(kg, &p, i);
+      });
+    }
+    if (!edge) shuffled(hits, 11u, [&](uint k) { kernel_photon_footprint_pattern(kg, &p, k); });
+  }
+}
+
+void expect_shares_match(uint shape, int facet_weighting) {
+  const test::HostScene scene(ledge_and_bend());
+  const std::vector<Case> all = cases();
+  Stash s;
+  s.kg = scene.kg;
+  stash(s, all);
+  LaunchParams p{};
+  p.kernel_shape = shape;
+  p.facet_weighting = uint(facet_weighting);
+  p.ray_epsilon = 1e-4f;
+  run_probes(&s.kg, p, uint(all.size()));
+  int at_edge = 0, whole = 0;
+  for (size_t k = 0; k < all.size(); ++k) {
+    const Case& c = all[k];
+    const float offset = ray_offset_distance(c.center, 0.0f, p.ray_epsilon);
+    const float expected =
+        footprint_covered_share(&s.kg, &c.f, &c.cut, c.center, c.normal, offset, c.turn, shape,
+                                facet_weighting ? PM_COVERAGE_LIT_AREA : PM_COVERAGE_CELLS, c.wi);
+    const float share = footprint_stashed_share(&s.kg, &p, uint(k));
+    // The second pattern's weights are summed per lane first: the same sum in another order.
+    if (shape == PM_KERNEL_CONSTANT && !facet_weighting) EXPECT_EQ(share, expected) << "footprint " << k;
+    else EXPECT_NEAR(share, expected, 2e-6f * expected) << "footprint " << k;
+    (PM_AS_UINT(s.hi[k].w) ? at_edge : whole)++;
+  }
+  // The line crosses the shelf's rim, the bend and the floor: both kinds of footprint are there.
+  EXPECT_GE(at_edge, 3);
+  EXPECT_GE(whole, 3);
+}
+
+TEST(FootprintProbes, AWorkItemPerProbeGivesTheShareOfOneItemPerFootprint) {
+  expect_shares_match(PM_KERNEL_CONSTANT, 0);
+}
+
+TEST(FootprintProbes, AWorkItemPerProbeGivesTheShareWithTheEpanechnikovKernel) {
+  expect_shares_match(PM_KERNEL_EPANECHNIKOV, 0);
+}
+
+TEST(FootprintProbes, AWorkItemPerProbeGivesTheLitAreaOfFacetWeighting) {
+  expect_shares_match(PM_KERNEL_CONSTANT, 1);
+}
+
+}  // namespace
+}  // namespace pm
