@@ -77,8 +77,8 @@ PM_DEVICE int footprint_cut_keeps(const FootprintCut* cut, float x, float y)
 #define PM_COVERAGE_CELLS 0u        /* a covered probe counts its cell once */
 #define PM_COVERAGE_SURFACE_AREA 1u /* the surface area over its cell */
 #define PM_COVERAGE_LIT_AREA 2u     /* the surface area over its cell where wi lies above the surface */
-PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, const Footprint* f, Vec3 center, Vec3 n, float offset,
-                                        float x, float y, uint area_mode, Vec3 wi)
+PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, int root, const Footprint* f, Vec3 center, Vec3 n,
+                                        float offset, float x, float y, uint area_mode, Vec3 wi)
 {
   float reach = vec3_length(f->axis_n) * pm_sqrtf(pm_fmaxf(1.0f - x * x - y * y, 0.0f)) + offset;
   Vec3 at = vec3_add(center, vec3_add(vec3_scale(f->axis_u, x), vec3_scale(f->axis_v, y)));
@@ -86,7 +86,7 @@ PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, const Footprint
   float t_min = 0.0f;
   float gap = pm_fmaxf(1.0e-3f * reach, offset);
   for (int k = 0; k < PM_FOOTPRINT_PROBE_HITS; ++k) {
-    SceneHit hit = scene_trace(kg, &ray, t_min, 2.0f * reach, 0);
+    SceneHit hit = scene_trace_from(kg, root, &ray, t_min, 2.0f * reach, 0);
     if (hit.triangle < 0) return 0.0f;
     /* Triangles are two-sided: either side may face the gather's shading point. */
     Vec3 surface_normal = scene_triangle_normal(kg->triangles, hit.triangle);
@@ -102,6 +102,24 @@ PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, const Footprint
     t_min = hit.t + gap;
   }
   return 0.0f;
+}
+
+/* Bounds of every probe ray of the footprint (footprint_probe_covered: over the disc, from
+   reach above to reach below it along n, reach <= |a_n| + offset), widened so that a ray inside
+   them cannot enter a box outside them by rounding: the box of the probes' traversal
+   (scene_node_holding). */
+PM_DEVICE void footprint_probe_bounds(const Footprint* f, Vec3 center, Vec3 n, float offset, Vec3* lo, Vec3* hi)
+{
+  Vec3 u = f->axis_u, v = f->axis_v;
+  float reach = vec3_length(f->axis_n) + offset;
+  Vec3 ext = vec3(pm_sqrtf(u.x * u.x + v.x * v.x) + pm_fabsf(n.x) * reach,
+                  pm_sqrtf(u.y * u.y + v.y * v.y) + pm_fabsf(n.y) * reach,
+                  pm_sqrtf(u.z * u.z + v.z * v.z) + pm_fabsf(n.z) * reach);
+  float scale = pm_fmaxf(pm_fmaxf(pm_fabsf(center.x), pm_fabsf(center.y)), pm_fmaxf(pm_fabsf(center.z), 0.0f));
+  float margin = 2.0f * offset + 1.0e-5f * (scale + pm_fmaxf(pm_fmaxf(ext.x, ext.y), ext.z));
+  ext = vec3_add(ext, vec3_splat(margin));
+  *lo = vec3_sub(center, ext);
+  *hi = vec3_add(center, ext);
 }
 
 /* Whether the cuts keep probe j of a `count`-probe pattern turned by `turn`; if so its disc point
@@ -128,7 +146,7 @@ PM_DEVICE void footprint_probe_pattern(const KernelGlobals* kg, const Footprint*
     if (!footprint_probe_kept(cut, j, count, turn, shape, &x, &y, &w)) continue;
     *kept += w;
     ++*kept_probes;
-    *covered += w * footprint_probe_covered(kg, f, center, n, offset, x, y, area_mode, wi);
+    *covered += w * footprint_probe_covered(kg, 0, f, center, n, offset, x, y, area_mode, wi);
   }
 }
 

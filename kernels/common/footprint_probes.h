@@ -17,7 +17,8 @@
      map_row_u, map_row_v, map_row_n: (a_u, mu_0), (a_v, mv_0), (a_n, t_0), the scaled semiaxes
        (their w are the first cut's, as stored for the gather);
      map_cut: (mu_1, mv_1, t_1, the kept fraction);  map_center: as stored for the gather;
-     map_lo: (the unit normal, the pattern's turn);  map_power: (the flux, 0);
+     map_lo: (the unit normal, the pattern's turn);
+     map_power: (the flux, the scene BVH node under which the probes' triangles lie);
      map_incident: as stored for the gather;  map_hi: launch 3's sums.
    The probes' values, PM_FOOTPRINT_PROBES floats per hit at 16 k, live in the hit records, which
    launch 1 has read for the last time (80 bytes a record, at least one record per valid hit). */
@@ -68,7 +69,7 @@ PM_DEVICE float footprint_stashed_probe(const KernelGlobals* kg, const LaunchPar
   *w = 0.0f;
   if (!footprint_probe_kept(cut, j, count, normal_turn.w, p->kernel_shape, &x, &y, w)) return 0.0f;
   Vec3 center = vec3_from_float4(kg->map_center[k]);
-  return footprint_probe_covered(kg, f, center, vec3_from_float4(normal_turn),
+  return footprint_probe_covered(kg, (int)PM_AS_UINT(kg->map_power[k].w), f, center, vec3_from_float4(normal_turn),
                                  ray_offset_distance(center, 0.0f, p->ray_epsilon), x, y,
                                  p->facet_weighting ? PM_COVERAGE_LIT_AREA : PM_COVERAGE_CELLS,
                                  vec3_from_float4(kg->map_incident[k]));

@@ -75,6 +75,13 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
   float turn = PM_TWO_PI * rng_to_unit(rng_bits4(p->seed, frame, p->photon_offset + slot / per_photon,
                                                  slot % per_photon, PM_STREAM_FOOTPRINT_PROBE,
                                                  p->photon_offset_hi).b0);
+  /* The probes' traversal starts below the nodes that hold nothing near the footprint. */
+  int probe_root = 0;
+  if (p->footprint_coverage && p->estimator != PM_ESTIMATOR_KNN) {
+    Vec3 lo, hi;
+    footprint_probe_bounds(&f, center, normal, ray_offset_distance(center, 0.0f, p->ray_epsilon), &lo, &hi);
+    probe_root = scene_node_holding(kg, lo, hi);
+  }
   uint flags = hit_flags | (cut.t[1] < 1.0f ? PM_HIT_SECOND_CUT : 0u);
   kg->map_row_u[k] = vec3_to_float4(f.axis_u, cut.mu[0]);
   kg->map_row_v[k] = vec3_to_float4(f.axis_v, cut.mv[0]);
@@ -82,7 +89,7 @@ PM_DEVICE void kernel_photon_footprint(const KernelGlobals* kg, const LaunchPara
   kg->map_cut[k] = PM_MAKE_FLOAT4(cut.mu[1], cut.mv[1], cut.t[1], cut.kept);
   kg->map_center[k] = vec3_to_float4(center, PM_UINT_AS_FLOAT(flags));
   kg->map_lo[k] = vec3_to_float4(normal, turn);
-  kg->map_power[k] = vec3_to_float4(photon_hit_flux(kg, record), 0.0f);
+  kg->map_power[k] = vec3_to_float4(photon_hit_flux(kg, record), PM_UINT_AS_FLOAT((uint)probe_root));
   kg->map_incident[k] = photon_hit_part(kg, record, PM_RECORD_INCIDENT);
 }
 

@@ -41,8 +41,10 @@ PM_DEVICE int scene_intersect_leaf(const KernelGlobals* kg, const Ray* ray, int 
   return found;
 }
 
-/* Closest hit in (t_min, t_max), or with any_hit set the first one found (shadow rays). */
-PM_DEVICE SceneHit scene_trace(const KernelGlobals* kg, const Ray* ray, float t_min, float t_max, int any_hit)
+/* Closest hit in (t_min, t_max), or with any_hit set the first one found (shadow rays), among the
+   triangles under inner node `root` (0: the whole scene; scene_node_holding). */
+PM_DEVICE SceneHit scene_trace_from(const KernelGlobals* kg, int root, const Ray* ray, float t_min, float t_max,
+                                    int any_hit)
 {
   PM_GLOBAL const float4* nodes = kg->scene_nodes;
   SceneHit hit;
@@ -50,7 +52,7 @@ PM_DEVICE SceneHit scene_trace(const KernelGlobals* kg, const Ray* ray, float t_
   hit.triangle = -1;
   int stack[PM_TRAVERSAL_STACK];
   int sp = 0;
-  int node = 0;
+  int node = root;
   for (;;) {
     float4 n0 = PM_LOAD(&nodes[4 * node + 0]);
     float4 n1 = PM_LOAD(&nodes[4 * node + 1]);
@@ -95,6 +97,41 @@ PM_DEVICE SceneHit scene_trace(const KernelGlobals* kg, const Ray* ray, float t_
     }
   }
   return hit;
+}
+
+PM_DEVICE SceneHit scene_trace(const KernelGlobals* kg, const Ray* ray, float t_min, float t_max, int any_hit)
+{
+  return scene_trace_from(kg, 0, ray, t_min, t_max, any_hit);
+}
+
+/* Whether box [lo, hi] meets the box [b_lo, b_hi] (an empty child's inverted box meets nothing). */
+PM_DEVICE int scene_boxes_meet(Vec3 lo, Vec3 hi, Vec3 b_lo, Vec3 b_hi)
+{
+  return b_lo.x <= hi.x && b_lo.y <= hi.y && b_lo.z <= hi.z && lo.x <= b_hi.x && lo.y <= b_hi.y && lo.z <= b_hi.z;
+}
+
+/* The deepest inner node under which lie all the triangles whose boxes meet [lo, hi]: from the
+   root down while exactly one child's box meets it and that child is an inner node. Rays that
+   stay inside [lo, hi] find from there what they find from the root, since they can enter no
+   box that they skip, with none of the descent: the footprint's coverage probes, tens of short
+   rays in one small box, start there (footprint_probes.h). */
+PM_DEVICE int scene_node_holding(const KernelGlobals* kg, Vec3 lo, Vec3 hi)
+{
+  PM_GLOBAL const float4* nodes = kg->scene_nodes;
+  int node = 0;
+  for (int level = 0; level < PM_TRAVERSAL_STACK; ++level) {
+    float4 n0 = PM_LOAD(&nodes[4 * node + 0]);
+    float4 n1 = PM_LOAD(&nodes[4 * node + 1]);
+    float4 n2 = PM_LOAD(&nodes[4 * node + 2]);
+    float4 n3 = PM_LOAD(&nodes[4 * node + 3]);
+    int left = scene_boxes_meet(lo, hi, vec3(n0.x, n0.z, n2.x), vec3(n0.y, n0.w, n2.y));
+    int right = scene_boxes_meet(lo, hi, vec3(n1.x, n1.z, n2.z), vec3(n1.y, n1.w, n2.w));
+    if (left == right) return node; /* both, or neither (nothing there to find) */
+    int child = PM_AS_INT(left ? n3.x : n3.y), count = PM_AS_INT(left ? n3.z : n3.w);
+    if (count > 0 || child < 0) return node; /* a leaf is intersected from its parent */
+    node = child;
+  }
+  return node;
 }
 
 #endif

@@ -34,6 +34,8 @@ Scene ledge_and_bend() {
   return s;
 }
 
+constexpr float kRayEpsilon = 1e-4f;
+
 struct Stash {
   std::vector<float4> row_u, row_v, row_n, cut, center, lo, hi, power, incident, records;
   KernelGlobals kg;
@@ -91,6 +93,9 @@ void stash(Stash& s, const std::vector<Case>& all) {
     s.cut[k] = float4{c.cut.mu[1], c.cut.mv[1], c.cut.t[1], c.cut.kept};
     s.center[k] = vec3_to_float4(c.center, 0.0f);
     s.lo[k] = vec3_to_float4(c.normal, c.turn);
+    Vec3 lo, hi;  // the probes' traversal starts below the root where it can
+    footprint_probe_bounds(&c.f, c.center, c.normal, ray_offset_distance(c.center, 0.0f, kRayEpsilon), &lo, &hi);
+    s.power[k] = vec3_to_float4(vec3(1, 1, 1), PM_UINT_AS_FLOAT(uint(scene_node_holding(&s.kg, lo, hi))));
     s.incident[k] = vec3_to_float4(c.wi, 0.0f);
   }
   s.kg.map_row_u = s.row_u.data();
@@ -139,7 +144,7 @@ void expect_shares_match(uint shape, int facet_weighting) {
   LaunchParams p{};
   p.kernel_shape = shape;
   p.facet_weighting = uint(facet_weighting);
-  p.ray_epsilon = 1e-4f;
+  p.ray_epsilon = kRayEpsilon;
   run_probes(&s.kg, p, uint(all.size()));
   int at_edge = 0, whole = 0;
   for (size_t k = 0; k < all.size(); ++k) {

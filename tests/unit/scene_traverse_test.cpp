@@ -174,6 +174,40 @@ TEST(SceneTraverse, ClosestHitEqualsBruteForce) {
   EXPECT_GT(hits, 500);
 }
 
+TEST(SceneTraverse, ShortRaysFindFromTheNodeHoldingTheirBoxWhatTheyFindFromTheRoot) {
+  // Segments of random direction inside small boxes about random points of a dense soup: traced
+  // from scene_node_holding's node, the closest hit is the root's, bit for bit, and the node is
+  // below the root for most boxes.
+  Scene scene = random_soup(20000, 6);
+  SceneBvh bvh = build_scene_bvh(scene);
+  KernelGlobals kg{};  // geometry only: no material has a mask, so traversal reads nothing else
+  kg.scene_nodes = bvh.nodes.data();
+  kg.triangles = bvh.triangles.data();
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> pos(-10.0f, 10.0f), unit(0.0f, 1.0f);
+  int hits = 0, below_root = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const Vec3 centre = vec3(pos(rng), pos(rng), pos(rng));
+    const float half = 0.05f + 0.5f * unit(rng);
+    const Vec3 lo = vec3_sub(centre, vec3_splat(half)), hi = vec3_add(centre, vec3_splat(half));
+    const int node = scene_node_holding(&kg, lo, hi);
+    below_root += node != 0;
+    // A segment from one point of the box to another.
+    const Vec3 a = vec3(lo.x + 2 * half * unit(rng), lo.y + 2 * half * unit(rng), lo.z + 2 * half * unit(rng));
+    const Vec3 b = vec3(lo.x + 2 * half * unit(rng), lo.y + 2 * half * unit(rng), lo.z + 2 * half * unit(rng));
+    const float length = vec3_length(vec3_sub(b, a));
+    if (!(length > 0.0f)) continue;
+    Ray ray = ray_make(a, vec3_scale(vec3_sub(b, a), 1.0f / length));
+    const SceneHit from_root = scene_trace(&kg, &ray, 0.0f, length, 0);
+    const SceneHit from_node = scene_trace_from(&kg, node, &ray, 0.0f, length, 0);
+    ASSERT_EQ(from_node.triangle, from_root.triangle) << "segment " << i << " from node " << node;
+    EXPECT_EQ(from_node.t, from_root.t);
+    hits += from_root.triangle >= 0;
+  }
+  EXPECT_GT(hits, 200);
+  EXPECT_GT(below_root, 3000);
+}
+
 TEST(SceneTraverse, AxisAlignedRaysHitFlatWalls) {
   // A wall in the plane z = 5, hit by rays with exactly zero x and y direction components.
   Scene scene;
