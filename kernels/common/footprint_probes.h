@@ -8,9 +8,11 @@
    The stage's launches over the sorted hits (render/photon/photon_mapping.cpp runs them):
    1. photon_footprint (photon_footprint.h): the footprint and its cuts, stashed at k;
    2. photon_footprint_probe: probe j of hit k's first pattern, its covered weight kept;
-   3. photon_footprint_pattern: the first pattern's sums, and whether the footprint is at an edge;
-   4. photon_footprint_edge_probe: for footprints at an edge only, the second pattern, lane j
-      tracing probes j, j + 16, j + 32, j + 48 and keeping their weighted sum;
+   3. photon_footprint_pattern: the first pattern's sums, and whether the footprint is at an edge:
+      those that are join a list (in any order: each writes only its own values);
+   4. photon_footprint_edge_probe: the second pattern of the listed footprints, lane j tracing
+      probes j, j + 16, j + 32, j + 48 and keeping their weighted sum, so that a warp's lanes all
+      work on footprints at edges;
    5. photon_footprint_store (photon_footprint.h): the share from those sums, the gather data.
 
    What launch 1 stashes at k, in the gather arrays that launch 5 then overwrites:
@@ -20,8 +22,10 @@
      map_lo: (the unit normal, the pattern's turn);
      map_power: (the flux, the scene BVH node under which the probes' triangles lie);
      map_incident: as stored for the gather;  map_hi: launch 3's sums.
-   The probes' values, PM_FOOTPRINT_PROBES floats per hit at 16 k, live in the hit records, which
-   launch 1 has read for the last time (80 bytes a record, at least one record per valid hit). */
+   The probes' values, PM_FOOTPRINT_PROBES floats per hit at 16 k, and after them the list of
+   footprints at edges live in the hit records, which launch 1 has read for the last time (80
+   bytes a record, at least one record per valid hit); the list's length is counted in
+   hit_record_count[0], which the host has read and set to 0. */
 #ifndef PM_FOOTPRINT_PROBES_H
 #define PM_FOOTPRINT_PROBES_H
 
@@ -33,6 +37,9 @@
 #define PM_FOOTPRINT_EDGE_ROUNDS (PM_FOOTPRINT_EDGE_PROBES / PM_FOOTPRINT_PROBES)
 /* The probes' values of hit k. */
 #define PM_FOOTPRINT_PROBE_VALUES(kg, k) ((PM_GLOBAL float*)(kg)->hit_records + PM_FOOTPRINT_PROBES * (k))
+
+/* The list of footprints at edges, after the probes' values of hit_count hits. */
+#define PM_FOOTPRINT_EDGE_LIST(kg, p) ((PM_GLOBAL uint*)(kg)->hit_records + PM_FOOTPRINT_PROBES * (p)->hit_count)
 
 /* The footprint stashed at k by photon_footprint. */
 PM_DEVICE Footprint footprint_stashed(const KernelGlobals* kg, uint k)
@@ -102,16 +109,19 @@ PM_DEVICE void kernel_photon_footprint_pattern(const KernelGlobals* kg, const La
     ++kept_probes;
     covered += w * values[j];
   }
-  kg->map_hi[k] = PM_MAKE_FLOAT4(kept, covered, PM_UINT_AS_FLOAT(kept_probes),
-                                 PM_UINT_AS_FLOAT((uint)footprint_pattern_at_edge(kept, covered)));
+  uint at_edge = (uint)footprint_pattern_at_edge(kept, covered);
+  kg->map_hi[k] = PM_MAKE_FLOAT4(kept, covered, PM_UINT_AS_FLOAT(kept_probes), PM_UINT_AS_FLOAT(at_edge));
+  if (at_edge) PM_FOOTPRINT_EDGE_LIST(kg, p)[pm_atomic_add_u32(&kg->hit_record_count[0], 1u)] = k;
 }
 
-/* Work item = PM_FOOTPRINT_PROBES * (k - batch_first) + j: for a footprint at an edge, the
-   weighted covered sum of second-pattern probes j + PM_FOOTPRINT_PROBES r, r < PM_FOOTPRINT_EDGE_ROUNDS. */
+/* Work item = PM_FOOTPRINT_PROBES * (e - batch_first) + j for entry e of the list of footprints at
+   edges (items past its end do nothing: the launch is sized for every hit): the weighted covered
+   sum of second-pattern probes j + PM_FOOTPRINT_PROBES r, r < PM_FOOTPRINT_EDGE_ROUNDS. */
 PM_DEVICE void kernel_photon_footprint_edge_probe(const KernelGlobals* kg, const LaunchParams* p, uint index)
 {
-  uint k = p->batch_first + index / PM_FOOTPRINT_PROBES, j = index % PM_FOOTPRINT_PROBES;
-  if (PM_AS_UINT(kg->map_hi[k].w) == 0u) return;
+  uint e = p->batch_first + index / PM_FOOTPRINT_PROBES, j = index % PM_FOOTPRINT_PROBES;
+  if (e >= kg->hit_record_count[0]) return;
+  uint k = PM_FOOTPRINT_EDGE_LIST(kg, p)[e];
   Footprint f = footprint_stashed(kg, k);
   FootprintCut cut = footprint_stashed_cut(kg, k);
   float covered = 0.0f;

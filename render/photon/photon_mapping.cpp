@@ -41,10 +41,13 @@ std::vector<uint32_t> share_photons_by_power(const std::vector<LightDesc>& light
 }
 
 // S3 over the sorted hits (kernels/common/footprint_probes.h): the footprints, their coverage with
-// a work item per probe (in launches of at most 2^31 items), then the gather data.
-static void launch_footprints(Device& device, LaunchParams params, uint32_t hits) {
+// a work item per probe (in launches of at most 2^31 items), then the gather data. The records'
+// counter, read since the trace, counts the footprints at edges.
+static void launch_footprints(Device& device, DeviceBuffer& counter, LaunchParams params, uint32_t hits) {
   device.launch(KernelId::photon_footprint, hits, params);
   if (params.footprint_coverage && params.estimator != PM_ESTIMATOR_KNN) {
+    const uint32_t zero = 0;
+    device.upload(counter, &zero, sizeof(zero));
     const uint32_t hits_per_launch = (1u << 31) / PM_FOOTPRINT_PROBES;
     for (const KernelId probes : {KernelId::photon_footprint_probe, KernelId::photon_footprint_edge_probe}) {
       for (uint32_t first = 0; first < hits; first += hits_per_launch) {
@@ -334,7 +337,7 @@ void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
   const uint32_t map_tiles = photon_map_bounds_tile_count(bounds.count);
   {
     StageScope scope(timer, "footprints");
-    launch_footprints(device_, params, bounds.count);
+    launch_footprints(device_, buffers_[BufferSlot::hit_record_count], params, bounds.count);
     device_.launch(KernelId::photon_map_area, map_tiles, params);
   }
   device_.download(buffers_[BufferSlot::map_partials], partials.data(), 2 * size_t(map_tiles) * sizeof(float4));

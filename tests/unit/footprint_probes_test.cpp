@@ -38,6 +38,7 @@ constexpr float kRayEpsilon = 1e-4f;
 
 struct Stash {
   std::vector<float4> row_u, row_v, row_n, cut, center, lo, hi, power, incident, records;
+  std::vector<uint> counter;
   KernelGlobals kg;
 };
 
@@ -108,6 +109,8 @@ void stash(Stash& s, const std::vector<Case>& all) {
   s.kg.map_power = s.power.data();
   s.kg.map_incident = s.incident.data();
   s.kg.hit_records = s.records.data();
+  s.counter = {0u, 0u};  // as the host leaves it for the list of footprints at edges
+  s.kg.hit_record_count = s.counter.data();
 }
 
 // Runs `item` over [0, count) in a shuffled order.
@@ -145,6 +148,7 @@ void expect_shares_match(uint shape, int facet_weighting) {
   p.kernel_shape = shape;
   p.facet_weighting = uint(facet_weighting);
   p.ray_epsilon = kRayEpsilon;
+  p.hit_count = uint(all.size());
   run_probes(&s.kg, p, uint(all.size()));
   int at_edge = 0, whole = 0;
   for (size_t k = 0; k < all.size(); ++k) {
@@ -159,6 +163,7 @@ void expect_shares_match(uint shape, int facet_weighting) {
     else EXPECT_NEAR(share, expected, 2e-6f * expected) << "footprint " << k;
     (PM_AS_UINT(s.hi[k].w) ? at_edge : whole)++;
   }
+  EXPECT_EQ(s.counter[0], uint(at_edge));  // each footprint at an edge listed once
   // The line crosses the shelf's rim, the bend and the floor: both kinds of footprint are there.
   EXPECT_GE(at_edge, 3);
   EXPECT_GE(whole, 3);
