@@ -78,7 +78,7 @@
   X(photon, uint, hit_slots, hit_slots, 1)       /* PM_HIT_* flags | record << PM_HIT_RECORD_SHIFT, 0: none */\
   X(photon, float4, hit_records, hit_records, 5) /* 5 float4 per record (PM_RECORD_*, photon_trace.h); */ \
                                                  /* the photon map's nodes once spent (PM_MAP_NODES) */     \
-  X(photon, uint, hit_record_count, counters, 2) /* [0] records the trace took (atomic), [1] their room */ \
+  X(photon, uint, hit_record_count, counters, 2) /* [0] records the trace took (atomic), [1] their room; then [0] the footprints at edges (footprint_probes.h) */ \
   /* photon mapping, S3 footprints and S4 photon map: the valid hits in sorted order */                     \
   X(photon, float4, map_partials, bounds_tiles, 2) /* per tile: (lo, area sum), (hi, count) */              \
   X(photon, float4, map_lo, map_hits, 1)       /* footprint AABB; lo.w = footprint area */                  \
