@@ -3,6 +3,7 @@
 // k^2 (the same radiance everywhere), and translating it.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 
@@ -35,6 +36,18 @@ inline MaterialDesc diffuse_material(const char* name, Float3 albedo) {
   m.name = name;
   m.diffuse = albedo;
   return m;
+}
+
+// A 4 x 4 m floor at y = 0 for x < 0 that bends down at x = 0 into a slope of 20 degrees, white.
+inline Scene bent_floor_scene() {
+  Scene s;
+  s.name = "bent-floor";
+  s.source = "test";
+  s.materials = {diffuse_material("white", {0.7f, 0.7f, 0.7f})};
+  const float drop = 2.0f * std::tan(0.349066f);  // 20 degrees
+  add_quad(s, {-2, 0, -2}, {-2, 0, 2}, {0, 0, 2}, {0, 0, -2});
+  add_quad(s, {0, 0, -2}, {0, 0, 2}, {2, -drop, 2}, {2, -drop, -2});
+  return s;
 }
 
 // A closed 4 x 2.5 x 5 m room [0, 4] x [0, 2.5] x [0, 5] (one corner at the world origin, so its

@@ -38,18 +38,6 @@ TEST(TiltGain, IsTheRatioOfTheBeamsCosinesOnTheFacetAndOnItsOwnSurface) {
   EXPECT_EQ(gather_tilt_gain(row_of(up, 1.0f), unit(1.0f, 0.01f, 0), unit(0.6f, 0.8f, 0)), PM_GATHER_MAX_TILT_GAIN);
 }
 
-// A 4 x 4 m floor at y = 0 for x < 0 that bends down at x = 0 into a slope of 20 degrees.
-Scene bent_floor() {
-  Scene s;
-  s.name = "bent-floor";
-  s.source = "test";
-  s.materials = {test::diffuse_material("white", {0.7f, 0.7f, 0.7f})};
-  const float drop = 2.0f * std::tan(0.349066f);
-  test::add_quad(s, {-2, 0, -2}, {-2, 0, 2}, {0, 0, 2}, {0, 0, -2});
-  test::add_quad(s, {0, 0, -2}, {0, 0, 2}, {2, -drop, 2}, {2, -drop, -2});
-  return s;
-}
-
 // A footprint of radius 0.5 m at the origin with normal n, `thickness` metres thick along it.
 Footprint disc(Vec3 n, float thickness) {
   Vec3 t, b;
@@ -69,7 +57,7 @@ float covered_share(const test::HostScene& scene, const Footprint& f, Vec3 n, ui
 TEST(LitArea, IsTheSurfaceAreaUnderTheFootprintWhereThePhotonsLightArrivesAboveIt) {
   // A footprint tilted 20 degrees from the floor it lies on (thick enough that every probe reaches
   // the floor): each probe's cell covers 1 / cos 20 degrees of floor.
-  Scene floor_only = bent_floor();
+  Scene floor_only = test::bent_floor_scene();
   floor_only.positions.resize(4);
   floor_only.indices.resize(6);
   floor_only.triangle_material.resize(2);
@@ -88,7 +76,7 @@ TEST(LitArea, IsTheSurfaceAreaUnderTheFootprintWhereThePhotonsLightArrivesAboveI
 
 TEST(LitArea, LeavesOutTheFacetsThePhotonsLightDoesNotReach) {
   // A footprint at the bend: light from under the slope lights the floor's half of the disc only.
-  const test::HostScene scene(bent_floor());
+  const test::HostScene scene(test::bent_floor_scene());
   const Vec3 n = vec3(0, 1, 0);
   const Footprint f = disc(n, 0.5f);
   const Vec3 from_above = unit(0.2f, 1.0f, 0.1f), under_slope = unit(-1.0f, 0.2f, 0.0f);

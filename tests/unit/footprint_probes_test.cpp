@@ -20,16 +20,11 @@
 namespace pm {
 namespace {
 
-// A 4 x 4 m floor at y = 0 for x < 0 that bends down at x = 0 into a slope of 20 degrees, and a
-// ledge: a 1 m wide shelf at y = 0.2 over -1.5 < z < -0.5 that ends in the air at x = -1.
+// The bent floor (20 degrees down at x = 0) and a ledge: a 1 m wide shelf at y = 0.2 over
+// -1.5 < z < -0.5 that ends in the air at x = -1.
 Scene ledge_and_bend() {
-  Scene s;
+  Scene s = test::bent_floor_scene();
   s.name = "ledge-and-bend";
-  s.source = "test";
-  s.materials = {test::diffuse_material("white", {0.7f, 0.7f, 0.7f})};
-  const float drop = 2.0f * std::tan(0.349066f);
-  test::add_quad(s, {-2, 0, -2}, {-2, 0, 2}, {0, 0, 2}, {0, 0, -2});
-  test::add_quad(s, {0, 0, -2}, {0, 0, 2}, {2, -drop, 2}, {2, -drop, -2});
   test::add_quad(s, {-2, 0.2f, -1.5f}, {-2, 0.2f, -0.5f}, {-1, 0.2f, -0.5f}, {-1, 0.2f, -1.5f});
   return s;
 }

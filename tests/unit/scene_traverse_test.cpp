@@ -147,12 +147,18 @@ Scene random_soup(int triangles, uint32_t seed) {
   return scene;
 }
 
+// The kernels' view of a BVH's geometry: no material has a mask, so traversal reads nothing else.
+KernelGlobals geometry_of(SceneBvh& bvh) {
+  KernelGlobals kg{};
+  kg.scene_nodes = bvh.nodes.data();
+  kg.triangles = bvh.triangles.data();
+  return kg;
+}
+
 TEST(SceneTraverse, ClosestHitEqualsBruteForce) {
   Scene scene = random_soup(3000, 4);
   SceneBvh bvh = build_scene_bvh(scene);
-  KernelGlobals kg{};  // geometry only: no material has a mask, so traversal reads nothing else
-  kg.scene_nodes = bvh.nodes.data();
-  kg.triangles = bvh.triangles.data();
+  const KernelGlobals kg = geometry_of(bvh);
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> pos(-12.0f, 12.0f);
   int hits = 0;
@@ -180,9 +186,7 @@ TEST(SceneTraverse, ShortRaysFindFromTheNodeHoldingTheirBoxWhatTheyFindFromTheRo
   // below the root for most boxes.
   Scene scene = random_soup(20000, 6);
   SceneBvh bvh = build_scene_bvh(scene);
-  KernelGlobals kg{};  // geometry only: no material has a mask, so traversal reads nothing else
-  kg.scene_nodes = bvh.nodes.data();
-  kg.triangles = bvh.triangles.data();
+  const KernelGlobals kg = geometry_of(bvh);
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> pos(-10.0f, 10.0f), unit(0.0f, 1.0f);
   int hits = 0, below_root = 0;
@@ -215,9 +219,7 @@ TEST(SceneTraverse, AxisAlignedRaysHitFlatWalls) {
   scene.indices = {0, 1, 2, 0, 2, 3};
   scene.triangle_material = {0, 0};
   SceneBvh bvh = build_scene_bvh(scene);
-  KernelGlobals kg{};  // geometry only: no material has a mask, so traversal reads nothing else
-  kg.scene_nodes = bvh.nodes.data();
-  kg.triangles = bvh.triangles.data();
+  const KernelGlobals kg = geometry_of(bvh);
   for (float x = -0.9f; x < 0.9f; x += 0.1f) {
     Ray ray = ray_make(vec3(x, 0.3f, 0.0f), vec3(0.0f, 0.0f, 1.0f));
     SceneHit hit = scene_trace(&kg, &ray, 0.0f, 1e30f, 0);
