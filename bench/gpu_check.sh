@@ -83,7 +83,7 @@ for step in "$@"; do
       ;;
     ncu)
       "$ncu_bin" --clock-control none \
-        -k 'regex:pm_(gather|photon_trace|camera_pass|photon_map_bottom_up|photon_map_nodes|photon_footprint|photon_morton|sort_scatter)$' \
+        -k 'regex:pm_(gather|photon_trace|camera_pass|photon_map_bottom_up|photon_map_nodes|photon_footprint[a-z_]*|photon_morton|sort_scatter)$' \
         --launch-count 60 --section SpeedOfLight --section Occupancy --section LaunchStats \
         --section WarpStateStats --section MemoryWorkloadAnalysis \
         --metrics smsp__thread_inst_executed_per_inst_executed.ratio,l1tex__t_sector_hit_rate.pct,lts__t_sector_hit_rate.pct \
