@@ -24,6 +24,9 @@ struct DeviceInfo {
   uint64_t memory_bytes = 0;
   int compute_units = 0;
   bool buffers_in_host_memory = false;  // a CPU device (PoCL): its buffers are the process's memory
+  // Work items run in lockstep groups (a GPU's warps): neighbouring work items should share their
+  // work's path (the footprints' coverage probes, kernels/common/footprint_probes.h).
+  bool lockstep_lanes = true;
 };
 
 class Device;

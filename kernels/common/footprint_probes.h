@@ -14,6 +14,10 @@
       probes j, j + 16, j + 32, j + 48 and keeping their weighted sum, so that a warp's lanes all
       work on footprints at edges;
    5. photon_footprint_store (photon_footprint.h): the share from those sums, the gather data.
+   On devices whose work items do not run in lockstep (CPUs: PoCL) one work item per footprint
+   measures both patterns (photon_footprint_coverage) in place of launches 2 to 4, with the same
+   sums in the same order: there the probes' own launches only added work items (PoCL, Sponza:
+   the footprint stage 20-40 % slower).
 
    What launch 1 stashes at k, in the gather arrays that launch 5 then overwrites:
      map_row_u, map_row_v, map_row_n: (a_u, mu_0), (a_v, mv_0), (a_n, t_0), the scaled semiaxes
@@ -131,6 +135,46 @@ PM_DEVICE void kernel_photon_footprint_edge_probe(const KernelGlobals* kg, const
     covered += w * c; /* a dropped probe adds 0 */
   }
   PM_FOOTPRINT_PROBE_VALUES(kg, k)[j] = covered;
+}
+
+/* Work item = hit k, on devices whose work items do not run in lockstep: the sums of launches 2
+   to 4 for the footprint stashed at k, each probe weighed and added as they add it (a dropped
+   probe has weight 0 and adds 0; a kept one has weight > 0, its point lying inside the unit disc),
+   in map_hi[k] as launch 3 leaves them for a footprint that needs no second pattern. */
+PM_DEVICE void kernel_photon_footprint_coverage(const KernelGlobals* kg, const LaunchParams* p, uint k)
+{
+  Footprint f = footprint_stashed(kg, k);
+  FootprintCut cut = footprint_stashed_cut(kg, k);
+  float kept = 0.0f, covered = 0.0f;
+  uint kept_probes = 0u;
+  for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) {
+    float w;
+    float c = footprint_stashed_probe(kg, p, &f, &cut, k, j, PM_FOOTPRINT_PROBES, &w);
+    if (!(w > 0.0f)) continue;
+    kept += w;
+    ++kept_probes;
+    covered += w * c;
+  }
+  if (footprint_pattern_at_edge(kept, covered)) {
+    kept = 0.0f;
+    covered = 0.0f;
+    kept_probes = 0u;
+    for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) {
+      float lane_kept = 0.0f, lane_covered = 0.0f;
+      for (uint r = 0; r < PM_FOOTPRINT_EDGE_ROUNDS; ++r) {
+        float w;
+        float c = footprint_stashed_probe(kg, p, &f, &cut, k, j + PM_FOOTPRINT_PROBES * r, PM_FOOTPRINT_EDGE_PROBES, &w);
+        lane_covered += w * c;
+        if (w > 0.0f) {
+          lane_kept += w;
+          ++kept_probes;
+        }
+      }
+      kept += lane_kept;
+      covered += lane_covered;
+    }
+  }
+  kg->map_hi[k] = PM_MAKE_FLOAT4(kept, covered, PM_UINT_AS_FLOAT(kept_probes), 0.0f);
 }
 
 /* The covered share of the footprint at k from launches 3 and 4 (footprint_covered_share's

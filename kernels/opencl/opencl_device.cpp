@@ -74,6 +74,7 @@ DeviceInfo describe(const DeviceEntry& entry, int index) {
   info.memory_bytes = memory;
   info.compute_units = static_cast<int>(units);
   info.buffers_in_host_memory = (type & CL_DEVICE_TYPE_CPU) != 0;
+  info.lockstep_lanes = (type & CL_DEVICE_TYPE_GPU) != 0;
   return info;
 }
 

@@ -41,11 +41,15 @@ std::vector<uint32_t> share_photons_by_power(const std::vector<LightDesc>& light
 }
 
 // S3 over the sorted hits (kernels/common/footprint_probes.h): the footprints, their coverage with
-// a work item per probe (in launches of at most 2^31 items), then the gather data. The records'
-// counter, read since the trace, counts the footprints at edges.
+// a work item per probe (in launches of at most 2^31 items; on devices without lockstep lanes a
+// work item per footprint), then the gather data. The records' counter, read since the trace,
+// counts the footprints at edges.
 static void launch_footprints(Device& device, DeviceBuffer& counter, LaunchParams params, uint32_t hits) {
   device.launch(KernelId::photon_footprint, hits, params);
-  if (params.footprint_coverage && params.estimator != PM_ESTIMATOR_KNN) {
+  const bool coverage = params.footprint_coverage && params.estimator != PM_ESTIMATOR_KNN;
+  if (coverage && !device.info().lockstep_lanes) {
+    device.launch(KernelId::photon_footprint_coverage, hits, params);
+  } else if (coverage) {
     const uint32_t zero = 0;
     device.upload(counter, &zero, sizeof(zero));
     const uint32_t hits_per_launch = (1u << 31) / PM_FOOTPRINT_PROBES;

@@ -2,7 +2,8 @@
 // on the host, with the scene BVH the device uses: footprints stashed along a ledge, a step and a
 // bend, their probes, pattern sums and second pattern run item by item in shuffled order and in
 // two batches, give the covered share that one work item measuring the whole pattern gives
-// (footprint_covered_share, footprint_coverage.h).
+// (footprint_covered_share, footprint_coverage.h), and bit for bit the share of the work item per
+// footprint that devices without lockstep lanes run (photon_footprint_coverage).
 #include "kernels/common/compat_host.h"
 #include "kernels/common/footprint_probes.h"
 
@@ -136,15 +137,18 @@ void run_probes(const KernelGlobals* kg, LaunchParams p, uint hits) {
 void expect_shares_match(uint shape, int facet_weighting) {
   const test::HostScene scene(ledge_and_bend());
   const std::vector<Case> all = cases();
-  Stash s;
-  s.kg = scene.kg;
+  Stash s, one_item;
+  s.kg = one_item.kg = scene.kg;
   stash(s, all);
+  stash(one_item, all);
   LaunchParams p{};
   p.kernel_shape = shape;
   p.facet_weighting = uint(facet_weighting);
   p.ray_epsilon = kRayEpsilon;
   p.hit_count = uint(all.size());
   run_probes(&s.kg, p, uint(all.size()));
+  // The same footprints a work item each, as devices without lockstep lanes measure them.
+  shuffled(uint(all.size()), 13u, [&](uint k) { kernel_photon_footprint_coverage(&one_item.kg, &p, k); });
   int at_edge = 0, whole = 0;
   for (size_t k = 0; k < all.size(); ++k) {
     const Case& c = all[k];
@@ -153,6 +157,8 @@ void expect_shares_match(uint shape, int facet_weighting) {
         footprint_covered_share(&s.kg, &c.f, &c.cut, c.center, c.normal, offset, c.turn, shape,
                                 facet_weighting ? PM_COVERAGE_LIT_AREA : PM_COVERAGE_CELLS, c.wi);
     const float share = footprint_stashed_share(&s.kg, &p, uint(k));
+    // A work item per footprint sums the same weights in the same order: the same bits.
+    EXPECT_EQ(footprint_stashed_share(&one_item.kg, &p, uint(k)), share) << "footprint " << k;
     // The second pattern's weights are summed per lane first: the same sum in another order.
     if (shape == PM_KERNEL_CONSTANT && !facet_weighting) EXPECT_EQ(share, expected) << "footprint " << k;
     else EXPECT_NEAR(share, expected, 2e-6f * expected) << "footprint " << k;
