@@ -10,9 +10,10 @@
    2. photon_footprint_probe: probe j of hit k's first pattern, its covered weight kept;
    3. photon_footprint_pattern: the first pattern's sums, and whether the footprint is at an edge:
       those that are join a list (in any order: each writes only its own values);
-   4. photon_footprint_edge_probe: the second pattern of the listed footprints, lane j tracing
-      probes j, j + 16, j + 32, j + 48 and keeping their weighted sum, so that a warp's lanes all
-      work on footprints at edges;
+   4. photon_footprint_edge_probe: the second pattern of the listed footprints, so that a warp's
+      lanes all work on footprints at edges: its 64 probes taken in the order of their angles,
+      lane j tracing those of rank j, j + 16, j + 32, j + 48 (round r a quarter of the disc, whose
+      probes mostly lie on one side of the edge) and keeping their weighted sum;
    5. photon_footprint_store (photon_footprint.h): the share from those sums, the gather data.
    On devices whose work items do not run in lockstep (CPUs: PoCL) one work item per footprint
    measures both patterns (photon_footprint_coverage) in place of launches 2 to 4, with the same
@@ -44,6 +45,27 @@
 
 /* The list of footprints at edges, after the probes' values of hit_count hits. */
 #define PM_FOOTPRINT_EDGE_LIST(kg, p) ((PM_GLOBAL uint*)(kg)->hit_records + PM_FOOTPRINT_PROBES * (p)->hit_count)
+
+/* The probe after probe q of the second pattern in the order of their angles about the centre
+   (golden angle * q, turned alike for every probe). By the three-distance theorem the angles of
+   q golden-angle steps leave between neighbours the gaps of 55, 34 and 21 steps (Fibonacci
+   numbers, 21 + 34 = 55): the next angle is that of q + 55, else q - 34, else q + 21, the first
+   that lies in the pattern (tests/unit/footprint_probes_test.cpp checks the order). Only for
+   PM_FOOTPRINT_EDGE_PROBES = 64. */
+PM_DEVICE uint footprint_edge_probe_next(uint q)
+{
+  return q + 55u < PM_FOOTPRINT_EDGE_PROBES ? q + 55u : (q >= 34u ? q - 34u : q + 21u);
+}
+
+/* The second pattern's probes in the order of their angles, from probe 0's: order[rank]. */
+PM_DEVICE void footprint_edge_probe_order(uint* order)
+{
+  uint q = 0u;
+  for (uint rank = 0; rank < PM_FOOTPRINT_EDGE_PROBES; ++rank) {
+    order[rank] = q;
+    q = footprint_edge_probe_next(q);
+  }
+}
 
 /* The footprint stashed at k by photon_footprint. */
 PM_DEVICE Footprint footprint_stashed(const KernelGlobals* kg, uint k)
@@ -120,7 +142,8 @@ PM_DEVICE void kernel_photon_footprint_pattern(const KernelGlobals* kg, const La
 
 /* Work item = PM_FOOTPRINT_PROBES * (e - batch_first) + j for entry e of the list of footprints at
    edges (items past its end do nothing: the launch is sized for every hit): the weighted covered
-   sum of second-pattern probes j + PM_FOOTPRINT_PROBES r, r < PM_FOOTPRINT_EDGE_ROUNDS. */
+   sum of the second-pattern probes of rank j + PM_FOOTPRINT_PROBES r, r < PM_FOOTPRINT_EDGE_ROUNDS,
+   in the order of their angles. */
 PM_DEVICE void kernel_photon_footprint_edge_probe(const KernelGlobals* kg, const LaunchParams* p, uint index)
 {
   uint e = p->batch_first + index / PM_FOOTPRINT_PROBES, j = index % PM_FOOTPRINT_PROBES;
@@ -128,11 +151,14 @@ PM_DEVICE void kernel_photon_footprint_edge_probe(const KernelGlobals* kg, const
   uint k = PM_FOOTPRINT_EDGE_LIST(kg, p)[e];
   Footprint f = footprint_stashed(kg, k);
   FootprintCut cut = footprint_stashed_cut(kg, k);
+  uint q = 0u;
+  for (uint step = 0; step < j; ++step) q = footprint_edge_probe_next(q);
   float covered = 0.0f;
   for (uint r = 0; r < PM_FOOTPRINT_EDGE_ROUNDS; ++r) {
     float w;
-    float c = footprint_stashed_probe(kg, p, &f, &cut, k, j + PM_FOOTPRINT_PROBES * r, PM_FOOTPRINT_EDGE_PROBES, &w);
+    float c = footprint_stashed_probe(kg, p, &f, &cut, k, q, PM_FOOTPRINT_EDGE_PROBES, &w);
     covered += w * c; /* a dropped probe adds 0 */
+    for (uint step = 0; step < PM_FOOTPRINT_PROBES; ++step) q = footprint_edge_probe_next(q);
   }
   PM_FOOTPRINT_PROBE_VALUES(kg, k)[j] = covered;
 }
@@ -156,6 +182,8 @@ PM_DEVICE void kernel_photon_footprint_coverage(const KernelGlobals* kg, const L
     covered += w * c;
   }
   if (footprint_pattern_at_edge(kept, covered)) {
+    uint order[PM_FOOTPRINT_EDGE_PROBES];
+    footprint_edge_probe_order(order);
     kept = 0.0f;
     covered = 0.0f;
     kept_probes = 0u;
@@ -163,7 +191,8 @@ PM_DEVICE void kernel_photon_footprint_coverage(const KernelGlobals* kg, const L
       float lane_kept = 0.0f, lane_covered = 0.0f;
       for (uint r = 0; r < PM_FOOTPRINT_EDGE_ROUNDS; ++r) {
         float w;
-        float c = footprint_stashed_probe(kg, p, &f, &cut, k, j + PM_FOOTPRINT_PROBES * r, PM_FOOTPRINT_EDGE_PROBES, &w);
+        float c = footprint_stashed_probe(kg, p, &f, &cut, k, order[j + PM_FOOTPRINT_PROBES * r],
+                                          PM_FOOTPRINT_EDGE_PROBES, &w);
         lane_covered += w * c;
         if (w > 0.0f) {
           lane_kept += w;
@@ -188,6 +217,8 @@ PM_DEVICE float footprint_stashed_share(const KernelGlobals* kg, const LaunchPar
     FootprintCut cut = footprint_stashed_cut(kg, k);
     float turn = kg->map_lo[k].w;
     PM_GLOBAL const float* values = PM_FOOTPRINT_PROBE_VALUES(kg, k);
+    uint order[PM_FOOTPRINT_EDGE_PROBES];
+    footprint_edge_probe_order(order);
     kept = 0.0f;
     covered = 0.0f;
     kept_probes = 0u;
@@ -195,8 +226,8 @@ PM_DEVICE float footprint_stashed_share(const KernelGlobals* kg, const LaunchPar
       float lane_kept = 0.0f;
       for (uint r = 0; r < PM_FOOTPRINT_EDGE_ROUNDS; ++r) {
         float x, y, w;
-        if (!footprint_probe_kept(&cut, j + PM_FOOTPRINT_PROBES * r, PM_FOOTPRINT_EDGE_PROBES, turn, p->kernel_shape,
-                                  &x, &y, &w))
+        if (!footprint_probe_kept(&cut, order[j + PM_FOOTPRINT_PROBES * r], PM_FOOTPRINT_EDGE_PROBES, turn,
+                                  p->kernel_shape, &x, &y, &w))
           continue;
         lane_kept += w;
         ++kept_probes;

@@ -170,6 +170,24 @@ void expect_shares_match(uint shape, int facet_weighting) {
   EXPECT_GE(whole, 3);
 }
 
+TEST(FootprintProbes, TheSecondPatternsOrderVisitsEveryProbeOnceByAngle) {
+  uint order[PM_FOOTPRINT_EDGE_PROBES];
+  footprint_edge_probe_order(order);
+  std::vector<int> seen(PM_FOOTPRINT_EDGE_PROBES, 0);
+  double last = -1.0;
+  for (uint rank = 0; rank < PM_FOOTPRINT_EDGE_PROBES; ++rank) {
+    ASSERT_LT(order[rank], PM_FOOTPRINT_EDGE_PROBES);
+    ++seen[order[rank]];
+    float x, y;
+    footprint_probe_point(order[rank], PM_FOOTPRINT_EDGE_PROBES, 0.0f, &x, &y);
+    double angle = std::atan2(double(y), double(x));
+    if (angle < 0) angle += 2 * M_PI;
+    EXPECT_GT(angle, last) << "rank " << rank << ", probe " << order[rank];
+    last = angle;
+  }
+  for (int count : seen) EXPECT_EQ(count, 1);
+}
+
 TEST(FootprintProbes, AWorkItemPerProbeGivesTheShareOfOneItemPerFootprint) {
   expect_shares_match(PM_KERNEL_CONSTANT, 0);
 }
