@@ -16,9 +16,9 @@
       probes mostly lie on one side of the edge) and keeping their weighted sum;
    5. photon_footprint_store (photon_footprint.h): the share from those sums, the gather data.
    On devices whose work items do not run in lockstep (CPUs: PoCL) one work item per footprint
-   measures both patterns (photon_footprint_coverage) in place of launches 2 to 4, with the same
-   sums in the same order: there the probes' own launches only added work items (PoCL, Sponza:
-   the footprint stage 20-40 % slower).
+   runs launches 2 to 4 for it (photon_footprint_coverage), the same functions in the same order:
+   there the probes' own launches only added work items (PoCL, Sponza: the footprint stage 20-40 %
+   slower).
 
    What launch 1 stashes at k, in the gather arrays that launch 5 then overwrites:
      map_row_u, map_row_v, map_row_n: (a_u, mu_0), (a_v, mv_0), (a_n, t_0), the scaled semiaxes
@@ -119,9 +119,10 @@ PM_DEVICE void kernel_photon_footprint_probe(const KernelGlobals* kg, const Laun
   PM_FOOTPRINT_PROBE_VALUES(kg, k)[j] = footprint_stashed_probe(kg, p, &f, &cut, k, j, PM_FOOTPRINT_PROBES, &w);
 }
 
-/* Work item = hit k: the first pattern's kept and covered weights, summed in footprint_probe_pattern's
-   order, in map_hi[k] = (kept, covered, kept probes, at an edge). */
-PM_DEVICE void kernel_photon_footprint_pattern(const KernelGlobals* kg, const LaunchParams* p, uint k)
+/* The first pattern's kept and covered weights of the footprint at k, summed in
+   footprint_probe_pattern's order from its probes' values, in map_hi[k] = (kept, covered, kept
+   probes, at an edge). Returns whether the footprint is at an edge. */
+PM_DEVICE uint footprint_first_pattern_sums(const KernelGlobals* kg, const LaunchParams* p, uint k)
 {
   FootprintCut cut = footprint_stashed_cut(kg, k);
   float turn = kg->map_lo[k].w;
@@ -137,18 +138,21 @@ PM_DEVICE void kernel_photon_footprint_pattern(const KernelGlobals* kg, const La
   }
   uint at_edge = (uint)footprint_pattern_at_edge(kept, covered);
   kg->map_hi[k] = PM_MAKE_FLOAT4(kept, covered, PM_UINT_AS_FLOAT(kept_probes), PM_UINT_AS_FLOAT(at_edge));
-  if (at_edge) PM_FOOTPRINT_EDGE_LIST(kg, p)[pm_atomic_add_u32(&kg->hit_record_count[0], 1u)] = k;
+  return at_edge;
 }
 
-/* Work item = PM_FOOTPRINT_PROBES * (e - batch_first) + j for entry e of the list of footprints at
-   edges (items past its end do nothing: the launch is sized for every hit): the weighted covered
-   sum of the second-pattern probes of rank j + PM_FOOTPRINT_PROBES r, r < PM_FOOTPRINT_EDGE_ROUNDS,
-   in the order of their angles. */
-PM_DEVICE void kernel_photon_footprint_edge_probe(const KernelGlobals* kg, const LaunchParams* p, uint index)
+/* Work item = hit k: the first pattern's sums (footprint_first_pattern_sums); a footprint at an
+   edge joins the list. */
+PM_DEVICE void kernel_photon_footprint_pattern(const KernelGlobals* kg, const LaunchParams* p, uint k)
 {
-  uint e = p->batch_first + index / PM_FOOTPRINT_PROBES, j = index % PM_FOOTPRINT_PROBES;
-  if (e >= kg->hit_record_count[0]) return;
-  uint k = PM_FOOTPRINT_EDGE_LIST(kg, p)[e];
+  if (footprint_first_pattern_sums(kg, p, k))
+    PM_FOOTPRINT_EDGE_LIST(kg, p)[pm_atomic_add_u32(&kg->hit_record_count[0], 1u)] = k;
+}
+
+/* The weighted covered sum of lane j's second-pattern probes for the footprint at k: those of
+   rank j + PM_FOOTPRINT_PROBES r, r < PM_FOOTPRINT_EDGE_ROUNDS, in the order of their angles. */
+PM_DEVICE float footprint_edge_lane_sum(const KernelGlobals* kg, const LaunchParams* p, uint k, uint j)
+{
   Footprint f = footprint_stashed(kg, k);
   FootprintCut cut = footprint_stashed_cut(kg, k);
   uint q = 0u;
@@ -160,50 +164,33 @@ PM_DEVICE void kernel_photon_footprint_edge_probe(const KernelGlobals* kg, const
     covered += w * c; /* a dropped probe adds 0 */
     for (uint step = 0; step < PM_FOOTPRINT_PROBES; ++step) q = footprint_edge_probe_next(q);
   }
-  PM_FOOTPRINT_PROBE_VALUES(kg, k)[j] = covered;
+  return covered;
 }
 
-/* Work item = hit k, on devices whose work items do not run in lockstep: the sums of launches 2
-   to 4 for the footprint stashed at k, each probe weighed and added as they add it (a dropped
-   probe has weight 0 and adds 0; a kept one has weight > 0, its point lying inside the unit disc),
-   in map_hi[k] as launch 3 leaves them for a footprint that needs no second pattern. */
+/* Work item = PM_FOOTPRINT_PROBES * (e - batch_first) + j for entry e of the list of footprints at
+   edges (items past its end do nothing: the launch is sized for every hit): lane j's sum of the
+   second pattern (footprint_edge_lane_sum). */
+PM_DEVICE void kernel_photon_footprint_edge_probe(const KernelGlobals* kg, const LaunchParams* p, uint index)
+{
+  uint e = p->batch_first + index / PM_FOOTPRINT_PROBES, j = index % PM_FOOTPRINT_PROBES;
+  if (e >= kg->hit_record_count[0]) return;
+  uint k = PM_FOOTPRINT_EDGE_LIST(kg, p)[e];
+  PM_FOOTPRINT_PROBE_VALUES(kg, k)[j] = footprint_edge_lane_sum(kg, p, k, j);
+}
+
+/* Work item = hit k, on devices whose work items do not run in lockstep: launches 2 to 4 for the
+   footprint at k in one work item, one probe or lane after another, leaving what they leave. */
 PM_DEVICE void kernel_photon_footprint_coverage(const KernelGlobals* kg, const LaunchParams* p, uint k)
 {
   Footprint f = footprint_stashed(kg, k);
   FootprintCut cut = footprint_stashed_cut(kg, k);
-  float kept = 0.0f, covered = 0.0f;
-  uint kept_probes = 0u;
+  PM_GLOBAL float* values = PM_FOOTPRINT_PROBE_VALUES(kg, k);
   for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) {
     float w;
-    float c = footprint_stashed_probe(kg, p, &f, &cut, k, j, PM_FOOTPRINT_PROBES, &w);
-    if (!(w > 0.0f)) continue;
-    kept += w;
-    ++kept_probes;
-    covered += w * c;
+    values[j] = footprint_stashed_probe(kg, p, &f, &cut, k, j, PM_FOOTPRINT_PROBES, &w);
   }
-  if (footprint_pattern_at_edge(kept, covered)) {
-    uint order[PM_FOOTPRINT_EDGE_PROBES];
-    footprint_edge_probe_order(order);
-    kept = 0.0f;
-    covered = 0.0f;
-    kept_probes = 0u;
-    for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) {
-      float lane_kept = 0.0f, lane_covered = 0.0f;
-      for (uint r = 0; r < PM_FOOTPRINT_EDGE_ROUNDS; ++r) {
-        float w;
-        float c = footprint_stashed_probe(kg, p, &f, &cut, k, order[j + PM_FOOTPRINT_PROBES * r],
-                                          PM_FOOTPRINT_EDGE_PROBES, &w);
-        lane_covered += w * c;
-        if (w > 0.0f) {
-          lane_kept += w;
-          ++kept_probes;
-        }
-      }
-      kept += lane_kept;
-      covered += lane_covered;
-    }
-  }
-  kg->map_hi[k] = PM_MAKE_FLOAT4(kept, covered, PM_UINT_AS_FLOAT(kept_probes), 0.0f);
+  if (footprint_first_pattern_sums(kg, p, k))
+    for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) values[j] = footprint_edge_lane_sum(kg, p, k, j);
 }
 
 /* The covered share of the footprint at k from launches 3 and 4 (footprint_covered_share's
