@@ -278,7 +278,7 @@ PM_DEVICE void footprint_clip_triangle(FootprintClip* c, Vec3 v0, Vec3 v1, Vec3 
    crosses it (the surface the photon hit, its coplanar neighbours, a ceiling above). */
 PM_DEVICE int footprint_box_overlaps(float4 xy, float z_min, float z_max, Vec3 lo, Vec3 hi, Vec3 n, float level)
 {
-  if (!(xy.x <= hi.x && xy.y >= lo.x && xy.z <= hi.y && xy.w >= lo.y && z_min <= hi.z && z_max >= lo.z)) return 0;
+  if (!scene_boxes_meet(lo, hi, vec3(xy.x, xy.z, z_min), vec3(xy.y, xy.w, z_max))) return 0;
   float cx = 0.5f * (xy.x + xy.y), cy = 0.5f * (xy.z + xy.w), cz = 0.5f * (z_min + z_max);
   float reach = 0.5f * (pm_fabsf(n.x) * (xy.y - xy.x) + pm_fabsf(n.y) * (xy.w - xy.z) + pm_fabsf(n.z) * (z_max - z_min));
   return pm_fabsf(n.x * cx + n.y * cy + n.z * cz - level) <= reach;
