@@ -53,6 +53,7 @@ class PhotonOptions final : public MethodOptions {
   std::string facet_weighting = "auto";
   std::string overlap = "auto";
   std::string alpha = "auto";
+  std::string tile_gather = "auto";
 
   std::shared_ptr<const MethodSettings> settings(bool budgeted) const override {
     auto s = std::make_shared<PhotonSettings>(settings_);
@@ -76,6 +77,9 @@ class PhotonOptions final : public MethodOptions {
       if (!(v < 1)) throw InputError("alpha: 1 is not below 1");
       return v;
     }));
+    if (tile_gather == "off") s->tile_gather = 0;
+    else if (tile_gather == "auto") s->tile_gather = PhotonSettings::kTileGatherAuto;
+    else s->tile_gather = float(auto_or("tile-gather", tile_gather, "off, or a positive number", positive));
     s->leaf_threshold = int(auto_or("leaf", leaf, "a positive integer", [](const std::string& text) {
       return double(parse_unsigned("", text, 1, uint64_t(std::numeric_limits<int>::max())));
     }));
@@ -161,6 +165,12 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
   cmd->add_option("--alpha", o->alpha,
                   "shrink: r_i^2 = r_(i-1)^2 (i + alpha) / (i + 1), 0 < alpha < 1; auto: 0.3 for pd, 2/3 for "
                   "knn, radius and final gathering (docs/progressive.md)")
+      ->capture_default_str()->group(group);
+  cmd->add_option("--tile-gather", o->tile_gather,
+                  "The gather's 8 x 4 pixel tiles walk the photon map together where their first shading "
+                  "points lie within N mean footprint radii (faster on GPUs, the same image): auto (" +
+                      std::to_string(kTileGatherReach).substr(0, 3) +
+                      " on GPUs, off on CPUs), off, or N (docs/benchmarks.md)")
       ->capture_default_str()->group(group);
   return o;
 }

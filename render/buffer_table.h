@@ -35,6 +35,7 @@ struct BufferExtents {
   uint64_t hit_records = 0;     // valid hits whose records the trace has room for (grown as needed)
   uint64_t map_hits = 0;        // valid hits the photon map holds room for (grown as needed)
   uint64_t bounds_tiles = 0;    // hit slots / PM_PHOTON_MAP_BOUNDS_TILE, rounded up
+  uint64_t gather_tiles = 0;    // pixel tiles (pixel_order.h) when the gather walks the map by tile, else 0
   uint64_t counters = 1;        // small fixed-size counter arrays
   uint64_t elements = 0;        // radiosity elements
   uint64_t link_batch = 0;      // radiosity elements per link batch

@@ -90,7 +90,9 @@
   X(photon, float4, map_power, map_hits, 1)    /* rgb flux / (ellipse area x covered share) */            \
   X(photon, float4, map_incident, map_hits, 1)                                                              \
   X(photon, float4, map_cut, map_hits, 1)      /* second cut of a clipped footprint (footprint_clip.h) */   \
-  X(photon, uint, gather_stats, counters, 2)   /* [0] hits accepted, [1] shading points (collect_stats) */ \
+  X(photon, uint, gather_stats, counters, 3)   /* [0] hits accepted, [1] shading points, [2] of them walked */ \
+                                               /* with their tile's box (collect_stats) */                  \
+  X(photon, float4, gather_tiles, gather_tiles, 2) /* S6 per pixel tile: its first shading points' box (lo, hi) */\
   X(photon, uint, map_tile_offsets, bounds_tiles, 1) /* S4: first compacted key of each tile's valid hits */\
   /* (the sort's input: PM_SORT_KEYS, PM_SORT_SLOTS above) */                                              \
   X(photon, uint, sorted_keys, map_hits, 1)    /* S4 output of the sort: keys ascending */                 \

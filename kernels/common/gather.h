@@ -11,6 +11,7 @@
 #include "film.h"
 #include "footprint.h"
 #include "gather_reach.h"
+#include "gather_tiles.h"
 #include "kernel_globals.h"
 #include "pixel_order.h"
 #include "knn_gather.h"
@@ -19,14 +20,18 @@
 
 /* Radiance towards wo at x from the photon map, split into indirect and caustic parts; with
    `facet_weighting` (a constant where the kernels inline it) each photon weighed by its tilt gain
-   there (gather_reach.h). */
-PM_DEVICE void gather_at(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 x, Vec3 n, Vec3 wo,
-                         Vec3* indirect, Vec3* caustic, uint* accepted, int facet_weighting)
+   there (gather_reach.h). The map is walked with the box [lo, hi] around x: x itself, or the box
+   of x's pixel tile (gather_tiles.h), whose candidates count only where their own box holds x
+   (`own_box`), so that either walk sums the same photons in the same order. */
+PM_DEVICE void gather_within(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 x, Vec3 n,
+                             Vec3 wo, Vec3 lo, Vec3 hi, int own_box, Vec3* indirect, Vec3* caustic, uint* accepted,
+                             int facet_weighting)
 {
   PhotonMapQuery q;
-  photon_map_query_begin(&q, x, p->hit_count, PM_TRAVERSAL_STACK);
+  photon_map_query_begin_box(&q, lo, hi, p->hit_count, PM_TRAVERSAL_STACK);
   int k;
   while ((k = photon_map_query_next(&q, PM_MAP_NODES(kg), kg->map_lo, kg->map_hi)) >= 0) {
+    if (own_box && !photon_map_box_contains(PM_LOAD(&kg->map_lo[k]), PM_LOAD(&kg->map_hi[k]), x)) continue;
     float4 c = PM_LOAD(&kg->map_center[k]);
     float r2, at_u, at_v;
     if (!footprint_reaches_at(kg, k, c, x, n, &r2, &at_u, &at_v)) continue;
@@ -40,6 +45,13 @@ PM_DEVICE void gather_at(const KernelGlobals* kg, const LaunchParams* p, const M
     else *indirect = vec3_add(*indirect, contribution);
     ++*accepted;
   }
+}
+
+/* The same, the map walked at x alone. */
+PM_DEVICE void gather_at(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 x, Vec3 n, Vec3 wo,
+                         Vec3* indirect, Vec3* caustic, uint* accepted, int facet_weighting)
+{
+  gather_within(kg, p, m, x, n, wo, x, x, 0, indirect, caustic, accepted, facet_weighting);
 }
 
 /* How gather_pixel reads the map: the footprint gather, the same with facet weighting, or the knn
@@ -57,16 +69,22 @@ PM_DEVICE void gather_pixel(const KernelGlobals* kg, const LaunchParams* p, uint
   uint pixel;
   if (!pixel_of_work_item(item, p->width, p->height, &pixel)) return;
   Vec3 indirect = vec3_splat(0.0f), caustic = vec3_splat(0.0f);
-  uint accepted = 0, points = 0;
+  uint accepted = 0, points = 0, tiled = 0;
   EyePath eye = eye_path_begin(pixel);
   ShadingPoint sp;
   for (uint depth = 0; eye_path_next(kg, p, &eye, &sp); ++depth) {
     const Material* m = &sp.material;
     if (channel_mean(material_diffuse(m)) + channel_mean(material_glossy(m)) <= 0.0f) continue;
     Vec3 point_indirect = vec3_splat(0.0f), point_caustic = vec3_splat(0.0f);
+    Vec3 tile_lo, tile_hi; /* a first point walks the map with its tile's box where that is compact */
     if (mode == PM_GATHER_KNN)
       knn_gather_at(kg, p, m, sp.position, sp.normal, sp.outgoing, knn_region_turn(p, pixel, depth), &point_indirect,
                     &point_caustic, &accepted);
+    else if (depth == 0u && gather_tile_box(kg, p, item, &tile_lo, &tile_hi)) {
+      gather_within(kg, p, m, sp.position, sp.normal, sp.outgoing, tile_lo, tile_hi, 1, &point_indirect,
+                    &point_caustic, &accepted, mode == PM_GATHER_FACETS);
+      ++tiled;
+    }
     else
       gather_at(kg, p, m, sp.position, sp.normal, sp.outgoing, &point_indirect, &point_caustic, &accepted,
                 mode == PM_GATHER_FACETS);
@@ -78,6 +96,7 @@ PM_DEVICE void gather_pixel(const KernelGlobals* kg, const LaunchParams* p, uint
   if (p->collect_stats) {
     pm_atomic_add_u32(&kg->gather_stats[0], accepted);
     pm_atomic_add_u32(&kg->gather_stats[1], points);
+    pm_atomic_add_u32(&kg->gather_stats[2], tiled);
   }
 }
 

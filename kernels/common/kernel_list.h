@@ -19,6 +19,7 @@
   K(photon_map_nodes)  /* S4: Karras radix tree inner nodes */                               \
   K(photon_map_bottom_up) /* S4: boxes, counts, leaf fusion under T */                       \
   K(photon_map_area)      /* S3: per-tile footprint area of the sorted hits (T_auto) */       \
+  K(gather_tile_bounds) /* S6: per pixel tile, its first shading points' box (gather_tiles.h) */ \
   K(gather)            /* S6: indirect and caustic radiance at every shading point */        \
   K(facet_gather)      /* S6 with --facet-weighting: photons weighed by what they deliver on tilted facets */ \
   K(knn_gather)        /* S6 for knn: the k nearest photons over their region's covered area */ \

@@ -17,7 +17,8 @@
                                    zeroes the visit counter of node i.
      5. photon_map_bottom_up       k < n: child boxes, counts and leaf fusion, from the leaf boxes
                                    in sorted order.
-     6. photon_map_query_begin / photon_map_query_next per shading point (gather, S6).
+     6. photon_map_query_begin / photon_map_query_next per shading point (gather, S6), or
+        photon_map_query_begin_box per box of shading points (a tile's, gather.h).
 
    Node layout (4 float4 per inner node p = 0 .. n-2, root = 0; both CHILD boxes live in the
    parent, as in section 6.3, so one traversal step reads one node):
@@ -289,12 +290,12 @@ PM_DEVICE void photon_map_bottom_up(uint k, uint n, uint leaf_threshold, PM_GLOB
   }
 }
 
-/* ---- 6. query: every hit whose footprint AABB contains x (section 6.3) ---- */
+/* ---- 6. query: every hit whose footprint AABB contains x (section 6.3), or meets a box ---- */
 
 #define PM_PHOTON_MAP_NO_NODE 0xFFFFFFFFu
 
 typedef struct PhotonMapQuery {
-  Vec3 x;
+  Vec3 lo, hi;         /* the query box; a point query's is the point (lo == hi == x) */
   uint cur, end;       /* sorted positions still to scan: [cur, end) */
   uint check;          /* nonzero: test each scanned hit's own AABB (fused leaf or overflow) */
   uint node;           /* inner node to visit next without a pop, or PM_PHOTON_MAP_NO_NODE */
@@ -311,14 +312,28 @@ PM_DEVICE int photon_map_box_contains(float4 lo, float4 hi, Vec3 x)
   return lo.x <= x.x && x.x <= hi.x && lo.y <= x.y && x.y <= hi.y && lo.z <= x.z && x.z <= hi.z;
 }
 
+/* Whether the box [lo, hi] meets the query box [q_lo, q_hi], faces included: for a point query
+   (q_lo == q_hi == x) the same comparisons as photon_map_box_contains. */
+PM_DEVICE int photon_map_box_meets(float4 lo, float4 hi, Vec3 q_lo, Vec3 q_hi)
+{
+  return lo.x <= q_hi.x && q_lo.x <= hi.x && lo.y <= q_hi.y && q_lo.y <= hi.y && lo.z <= q_hi.z && q_lo.z <= hi.z;
+}
+
 /* stack_limit: PM_TRAVERSAL_STACK for rendering; smaller values (down to 0) force the overflow
    path in tests. Only a node with two inner children containing x pushes one of them, so the
    stack never holds more entries than the tree has levels; a radix tree over (30-bit code, 32-bit
    position) keys has at most 62 inner levels, so 64 entries do not overflow. The fallback keeps
    the result exact anyway: a child that cannot be pushed is scanned as its interval of hits. */
-PM_DEVICE void photon_map_query_begin(PhotonMapQuery* q, Vec3 x, uint n, uint stack_limit)
+/* A query for every hit whose AABB meets the box [lo, hi]. The traversal's order does not depend
+   on the query (at each node the leaf children's hits first, in sorted order, then the inner
+   child with more hits, then the other), so the hits whose boxes contain a point x inside [lo,
+   hi] come in the same order as a point query at x returns them: a box query filtered by each
+   hit's own box at x finds what x's point query finds, in its order (tests/unit/photon_map_test.cpp).
+   The stack never fills (see below), which that order needs. */
+PM_DEVICE void photon_map_query_begin_box(PhotonMapQuery* q, Vec3 lo, Vec3 hi, uint n, uint stack_limit)
 {
-  q->x = x;
+  q->lo = lo;
+  q->hi = hi;
   q->cur = 0;
   q->end = n >= 2 ? 0u : n; /* no tree for 0 or 1 hits: scan them */
   q->check = 1;
@@ -329,8 +344,13 @@ PM_DEVICE void photon_map_query_begin(PhotonMapQuery* q, Vec3 x, uint n, uint st
   q->overflows = 0;
 }
 
-/* Next sorted position whose hit AABB contains q->x, or -1 when done. Each such hit is returned
-   exactly once; the caller evaluates the ellipsoid itself (section 6.3: accumulate the hits whose
+PM_DEVICE void photon_map_query_begin(PhotonMapQuery* q, Vec3 x, uint n, uint stack_limit)
+{
+  photon_map_query_begin_box(q, x, x, n, stack_limit);
+}
+
+/* Next sorted position whose hit AABB meets the query's box (for a point query: contains the
+   point), or -1 when done. Each such hit is returned exactly once; the caller evaluates the ellipsoid itself (section 6.3: accumulate the hits whose
    footprints overlap x). Read-only inputs: nodes and sorted_lo/hi from step 5. */
 PM_DEVICE int photon_map_query_next(PhotonMapQuery* q, PM_GLOBAL const float4* nodes,
                                     PM_GLOBAL const float4* sorted_lo, PM_GLOBAL const float4* sorted_hi)
@@ -338,7 +358,7 @@ PM_DEVICE int photon_map_query_next(PhotonMapQuery* q, PM_GLOBAL const float4* n
   for (;;) {
     while (q->cur < q->end) {
       uint k = q->cur++;
-      if (!q->check || photon_map_box_contains(PM_LOAD(&sorted_lo[k]), PM_LOAD(&sorted_hi[k]), q->x))
+      if (!q->check || photon_map_box_meets(PM_LOAD(&sorted_lo[k]), PM_LOAD(&sorted_hi[k]), q->lo, q->hi))
         return (int)k;
     }
     uint node = q->node;
@@ -356,7 +376,7 @@ PM_DEVICE int photon_map_query_next(PhotonMapQuery* q, PM_GLOBAL const float4* n
     for (uint side = 0; side < 2u; ++side) {
       float4 lo = PM_LOAD(&nodes[4 * node + 2 * side]);
       float4 hi = PM_LOAD(&nodes[4 * node + 2 * side + 1]);
-      if (!photon_map_box_contains(lo, hi, q->x)) continue;
+      if (!photon_map_box_meets(lo, hi, q->lo, q->hi)) continue;
       uint ref = PM_AS_UINT(lo.w);
       uint count = PM_AS_UINT(hi.w);
       if (ref & PM_PHOTON_MAP_LEAF) {

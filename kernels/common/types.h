@@ -184,6 +184,8 @@ typedef struct LaunchParams {
                                  and its footprint's area is the lit surface area (gather_reach.h); 0: in full */
   uint control_lanes;         /* bias control: work items per control pixel, each a share of its paths (bias_control.h) */
   uint film_caustic;          /* 1: the film has a caustic sum (a scene with mirrors, film.h); 0: caustics are none */
+  float tile_gather_reach;    /* photon gather: a tile whose first shading points' box has at most this diagonal
+                                 walks the photon map as one box (gather_tiles.h), metres; 0: every point alone */
 } LaunchParams;
 
 /* Environment lights (environment_light.h): none, one radiance from every direction, or an

@@ -76,6 +76,15 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
   shading_points_ = context.shading_points;
   extents_.hit_slots = hit_slots();
   extents_.bounds_tiles = (extents_.hit_slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
+  // Tiles walk the map together where lanes run in lockstep (kernels/common/gather_tiles.h); the
+  // knn gather and final gathering read the map at points of their own.
+  const float tile_gather = settings_.tile_gather != PhotonSettings::kTileGatherAuto ? settings_.tile_gather
+                            : device_.info().lockstep_lanes                          ? kTileGatherReach
+                                                                                     : 0.0f;
+  const bool tiles_apply = settings_.estimator != PM_ESTIMATOR_KNN && settings_.final_gather == 0;
+  tile_gather_ = tiles_apply ? tile_gather : 0.0f;
+  gather_tiles_ = pixel_work_items(uint32_t(context.width), uint32_t(context.height)) / (PM_TILE_W * PM_TILE_H);
+  extents_.gather_tiles = tile_gather_ > 0 ? gather_tiles_ : 0;
   // The hit records start with room for half as many hits as photons (Sponza and Sibenik record
   // about that many); a first pass that records more traces again with room for what it recorded
   // (room_for: its noise, no margin for change yet), so the room ends near the hits a pass
@@ -156,6 +165,11 @@ void PhotonMapping::begin_frame(const FrameContext& frame, const FrameChange& ch
   stats_.set("photons_reused", 0);
   stats_.set("photons_per_pass", photons_per_pass_);
   stats_.set("hits", 0);
+  // The tiles' boxes of this frame's shading points, for every pass's gather.
+  if (tile_gather_ > 0 && photons_per_pass_ > 0) {
+    StageScope scope(frame.timer, "gather");
+    device_.launch(KernelId::gather_tile_bounds, gather_tiles_, frame.params);
+  }
 }
 
 void PhotonMapping::run_pass(const FrameContext& frame, uint32_t pass) {
@@ -163,7 +177,7 @@ void PhotonMapping::run_pass(const FrameContext& frame, uint32_t pass) {
   LaunchParams params = pass_params(frame, pass);
   const bool reuse = frame.reuse_lighting && map_intact_ && map_photon_frame_ == photon_frame_ && map_pass_ == pass;
   uint32_t* counters = nullptr;
-  uint32_t counts[2] = {0, 0};
+  uint32_t counts[3] = {0, 0, 0};
   if (frame.collect_stats) {
     device_.fill_zero(buffers_[BufferSlot::gather_stats], buffers_[BufferSlot::gather_stats].bytes());
     counters = counts;
@@ -195,6 +209,8 @@ void PhotonMapping::run_pass(const FrameContext& frame, uint32_t pass) {
     stats_.set("gathered", stats_.get("gathered") + counts[0]);
     stats_.set("shading_points", counts[1]);
     stats_.set("photons_per_gather", counts[1] ? stats_.get("gathered") / ((pass + 1.0) * counts[1]) : 0.0);
+    // The share of shading points whose tile walked the map together (kernels/common/gather_tiles.h).
+    if (tile_gather_ > 0) stats_.set("tile_walked_share", counts[1] ? double(counts[2]) / counts[1] : 0.0);
   }
 }
 
@@ -204,7 +220,13 @@ void PhotonMapping::gather(const LaunchParams& params, StageTimer* timer) {
                     : params.facet_weighting  ? KernelId::facet_gather
                                               : KernelId::gather;
   if (settings_.final_gather > 0) gather = KernelId::final_gather;
-  device_.launch(gather, pixel_work_items(params.width, params.height), params);
+  LaunchParams launch = params;
+  // A tile's reach: tile_gather_ of this pass's mean footprint radii (the footprints' total area
+  // over their count, as discs).
+  if (tile_gather_ > 0 && params.hit_count > 0)
+    launch.tile_gather_reach =
+        float(tile_gather_ * std::sqrt(map_footprint_area_ / (double(params.hit_count) * PM_PI)));
+  device_.launch(gather, pixel_work_items(params.width, params.height), launch);
 }
 
 uint64_t PhotonMapping::growing_bytes(uint64_t map_hits, uint64_t hit_records) const {

@@ -69,6 +69,10 @@ class PhotonMapping final : public IndirectMethod {
   // The most valid hits a pass is expected to record: the room the memory checks count.
   uint32_t expected_most_hits() const;
   void gather(const LaunchParams& params, StageTimer* timer);
+  // The gather's tiles walk the map together when their first shading points lie within this
+  // many mean footprint radii (PhotonSettings::tile_gather resolved for the device; 0: never).
+  float tile_gather_ = 0;
+  uint32_t gather_tiles_ = 0;  // pixel tiles of the film (pixel_order.h)
 
   Device& device_;
   BufferTable& buffers_;

@@ -51,6 +51,8 @@ void PhotonSettings::validate() const {
   if (final_gather > 0 && estimator == PM_ESTIMATOR_KNN)
     throw SettingError("final-gather", "reads the footprints of --estimator pd or radius, not knn");
   if (final_gather > 0 && bounces < 1) throw SettingError("final-gather", "needs --bounces 1 or more");
+  if (!(tile_gather == kTileGatherAuto || (tile_gather >= 0 && std::isfinite(tile_gather))))
+    throw SettingError("tile-gather", "expected auto, off or a positive number, got " + std::to_string(tile_gather));
   if (!(alpha >= 0 && alpha < 1))
     throw SettingError("alpha", "expected auto or a number between 0 and 1 (exclusive), got " + std::to_string(alpha));
   if (photons * hit_slots_per_photon() > kMaxHitSlots)
@@ -90,7 +92,9 @@ std::string PhotonSettings::describe() const {
     << " footprint_coverage=" << name_of(kFootprintClipNames, footprint_coverage ? 1 : 0)
     << " footprint_thickness=" << footprint_thickness << " facet_weighting="
     << (facet_weighting == kFacetWeightingAuto ? "auto" : name_of(kFootprintClipNames, facet_weighting ? 1 : 0))
-    << " progressive=" << name_of(kProgressiveNames, progressive);
+    << " progressive=" << name_of(kProgressiveNames, progressive) << " tile_gather=";
+  if (tile_gather > 0) s << tile_gather;
+  else s << (tile_gather == kTileGatherAuto ? "auto" : "off");
   if (progressive == kProgressiveShrink) s << " alpha=" << alpha_or_default();
   return s.str();
 }

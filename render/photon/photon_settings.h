@@ -38,6 +38,10 @@ constexpr float kShrinkAlpha = 2.0f / 3.0f;
 // Final gathering reads the map at its gather rays' hits, where the blur of larger footprints
 // averages out: its map keeps the overlap it was measured at (docs/final-gathering.md).
 constexpr double kFinalGatherOverlap = 200.0;
+// The largest spread of a pixel tile's first shading points, in mean footprint radii, at which
+// its lanes walk the photon map together (docs/benchmarks.md, "Pixel tiles walk the photon map
+// together").
+constexpr float kTileGatherReach = 3.0f;
 
 class PhotonSettings final : public MethodSettings {
  public:
@@ -78,6 +82,12 @@ class PhotonSettings final : public MethodSettings {
   // Final gathering (kernels/common/final_gather.h): gather rays per shading point and pass, the
   // map read at their hits and traced with one bounce fewer; 0: the map read at the shading point.
   uint32_t final_gather = 0;
+  // The gather's pixel tiles walk the photon map together (kernels/common/gather_tiles.h) when
+  // their first shading points lie within this many of the pass's mean footprint radii (the box
+  // diagonal); 0: every point walks alone; kTileGatherAuto: kTileGatherReach on devices whose
+  // lanes run in lockstep (GPUs), 0 elsewhere. The same image either way.
+  float tile_gather = kTileGatherAuto;
+  static constexpr float kTileGatherAuto = -1.0f;
 
   const char* method_name() const override { return "photon"; }
   void validate() const override;

@@ -74,6 +74,46 @@ TEST_F(OpenclGather, NearestNeighboursWithTheConstantKernelEqualBruteForce) {
                                         without_coverage(photons(PM_ESTIMATOR_KNN, PM_KERNEL_CONSTANT, 4)), 24, 24);
 }
 
+// The gather's pixel tiles may walk the photon map with their points' box (kernels/common/
+// gather_tiles.h; on by default where lanes run in lockstep, forced here on the CPU): each point
+// keeps the photons its own walk finds, in its order, so the image is the same bits. Tiles walk
+// together for none, some and all of the points (the statistic counts them), for pd with both
+// kernels, with facet weighting, and for the fixed radius, in a box with a mirror.
+TEST_F(OpenclGather, TilesWalkingTheMapTogetherRenderTheSameBits) {
+  PhotonSettings facets = photons(PM_ESTIMATOR_PD, PM_KERNEL_EPANECHNIKOV, 4);
+  facets.facet_weighting = 1;
+  for (const PhotonSettings& base : {photons(PM_ESTIMATOR_PD, PM_KERNEL_CONSTANT, 0), facets,
+                                     photons(PM_ESTIMATOR_RADIUS, PM_KERNEL_CONSTANT, 4)}) {
+    std::vector<float> alone, alone_combined;
+    double shares[3] = {0, 0, 0};
+    const float reaches[3] = {0.0f, 3.0f, 1e6f};
+    for (int i = 0; i < 3; ++i) {
+      PhotonSettings p = base;
+      p.tile_gather = reaches[i];
+      RenderSettings settings = test::photon_render_settings(p);
+      settings.width = 40;
+      settings.height = 28;
+      settings.mirror_depth = 1;
+      Renderer renderer(*device_, builtin_cornell_box(), settings);
+      renderer.set_collect_stats(true);
+      const auto frame = renderer.render_frame(2);
+      const std::vector<float>& image = frame.find("indirect")->rgb;
+      shares[i] = renderer.method()->stats().get("tile_walked_share", -1);
+      if (i == 0) {
+        alone = image;
+        alone_combined = frame.find("")->rgb;
+        continue;
+      }
+      EXPECT_EQ(image, alone) << "tile reach " << reaches[i] << ", estimator " << base.estimator;
+      EXPECT_EQ(frame.find("")->rgb, alone_combined) << "tile reach " << reaches[i];
+    }
+    EXPECT_EQ(shares[0], -1) << "no tile walks without a reach";
+    EXPECT_GT(shares[1], 0.05) << "a short reach lets some tiles walk together: " << shares[1] << " of " << shares[2];
+    EXPECT_LT(shares[1], shares[2]) << "and not all of them";
+    EXPECT_GT(shares[2], 0.7) << "every tile with a first point that is not a mirror's";
+  }
+}
+
 // The photon map is rebuilt in parallel every frame: the same frame must come out bit-identical,
 // whatever order the work items ran in (atomics decide only who finishes a node, not its value).
 TEST_F(OpenclGather, SameFrameRendersBitIdentically) {

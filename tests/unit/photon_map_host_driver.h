@@ -187,16 +187,29 @@ struct QueryResult {
   uint overflows = 0;
 };
 
-inline QueryResult query(const HostPhotonMap& m, Vec3 x, uint stack_limit)
+inline QueryResult run_query(const HostPhotonMap& m, PhotonMapQuery* q)
 {
   QueryResult r;
+  for (int k; (k = photon_map_query_next(q, m.nodes.data(), m.sorted_lo.data(), m.sorted_hi.data())) >= 0;)
+    r.hits.push_back(m.sorted_index[k]);
+  r.nodes_visited = q->nodes_visited;
+  r.overflows = q->overflows;
+  return r;
+}
+
+inline QueryResult query(const HostPhotonMap& m, Vec3 x, uint stack_limit)
+{
   PhotonMapQuery q;
   photon_map_query_begin(&q, x, m.n, stack_limit);
-  for (int k; (k = photon_map_query_next(&q, m.nodes.data(), m.sorted_lo.data(), m.sorted_hi.data())) >= 0;)
-    r.hits.push_back(m.sorted_index[k]);
-  r.nodes_visited = q.nodes_visited;
-  r.overflows = q.overflows;
-  return r;
+  return run_query(m, &q);
+}
+
+// The hits whose boxes meet [lo, hi], in the order the iterator gives them.
+inline QueryResult query_box(const HostPhotonMap& m, Vec3 lo, Vec3 hi)
+{
+  PhotonMapQuery q;
+  photon_map_query_begin_box(&q, lo, hi, m.n, PM_TRAVERSAL_STACK);
+  return run_query(m, &q);
 }
 
 }  // namespace pm_photon_map_test

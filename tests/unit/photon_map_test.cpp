@@ -4,7 +4,9 @@
 // overflow fallback). Built and run through the host driver in photon_map_host_driver.h.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
+#include <random>
 
 #include "photon_map_host_driver.h"
 
@@ -362,6 +364,41 @@ TEST(PhotonMapQuery, EqualsBruteForce)
     for (uint T : {1u, 4u, 32u}) {
       HostPhotonMap m = build(h.pos, h.lo, h.hi, T, Order::kRandom, n + T);
       EXPECT_EQ(expect_queries_exact(m, h, queries, PM_TRAVERSAL_STACK), 0u);
+    }
+  }
+}
+
+// The gather's pixel tiles (kernels/common/gather_tiles.h) walk the map with their points' box and
+// keep, at each point, the hits whose own box holds it: that must be the point query's hits in
+// the point query's order, for the sums to be the same bits. Boxes from a point (empty extent) to
+// the whole map, some with a face on a hit box's face.
+TEST(PhotonMapQuery, ABoxQueryKeptAtAPointIsThatPointsQueryInItsOrder)
+{
+  std::mt19937 rng(4242);
+  std::uniform_real_distribution<float> u(0.0f, 1.0f);
+  for (uint n : {2u, 3u, 1000u, 50000u}) {
+    Hits h = make_hits(n, 700 + n, n == 1000 ? 5 : 0, n >= 1000 ? 0.08f : 1.0f);
+    std::vector<Vec3> points = make_queries(h, n == 50000 ? 150 : 100, n + 1);
+    for (uint T : {1u, 4u, 32u}) {
+      HostPhotonMap m = build(h.pos, h.lo, h.hi, T, Order::kRandom, n + T + 5);
+      for (size_t i = 0; i < points.size(); ++i) {
+        const Vec3 x = points[i];
+        const float reach = (i % 4 == 0) ? 0.0f : (i % 4 == 1) ? 0.02f : (i % 4 == 2) ? 0.3f : 6.0f;
+        const Vec3 lo = vec3(x.x - reach * u(rng), x.y - reach * u(rng), x.z - reach * u(rng));
+        const Vec3 hi = vec3(x.x + reach * u(rng), x.y + reach * u(rng), x.z + reach * u(rng));
+        const std::vector<uint> met = query_box(m, lo, hi).hits;
+        std::vector<uint> sorted_met = met, expected_met;
+        std::sort(sorted_met.begin(), sorted_met.end());
+        for (uint k = 0; k < n; ++k)
+          if (h.lo[k].x <= hi.x && lo.x <= h.hi[k].x && h.lo[k].y <= hi.y && lo.y <= h.hi[k].y &&
+              h.lo[k].z <= hi.z && lo.z <= h.hi[k].z)
+            expected_met.push_back(k);
+        ASSERT_EQ(sorted_met, expected_met) << "the box query's hits, n=" << n << " T=" << T << " point " << i;
+        std::vector<uint> kept;
+        for (uint k : met)
+          if (photon_map_box_contains(h.lo[k], h.hi[k], x)) kept.push_back(k);
+        ASSERT_EQ(kept, query(m, x, PM_TRAVERSAL_STACK).hits) << "n=" << n << " T=" << T << " point " << i;
+      }
     }
   }
 }
