@@ -41,7 +41,7 @@ constexpr double kFinalGatherOverlap = 200.0;
 // The largest spread of a pixel tile's first shading points, in mean footprint radii, at which
 // its lanes walk the photon map together (docs/benchmarks.md, "Pixel tiles walk the photon map
 // together").
-constexpr float kTileGatherReach = 3.0f;
+constexpr float kTileGatherReach = 4.5f;
 
 class PhotonSettings final : public MethodSettings {
  public:
