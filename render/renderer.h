@@ -77,6 +77,9 @@ class Renderer {
   // (render/scene_upload.h); null: this renderer prepares its own.
   Renderer(Device& device, const Scene& scene, const RenderSettings& settings,
            std::shared_ptr<const SceneUpload> upload = nullptr);
+  // The renderer keeps a reference to its scene: a temporary one would be gone by the first frame.
+  Renderer(Device& device, const Scene&& scene, const RenderSettings& settings,
+           std::shared_ptr<const SceneUpload> upload = nullptr) = delete;
   ~Renderer();
 
   // Renders the scene as it is at `frame` (its tracks evaluated at frame / frame_rate): the

@@ -80,6 +80,7 @@ TEST_F(OpenclGather, NearestNeighboursWithTheConstantKernelEqualBruteForce) {
 // together for none, some and all of the points (the statistic counts them), for pd with both
 // kernels, with facet weighting, and for the fixed radius, in a box with a mirror.
 TEST_F(OpenclGather, TilesWalkingTheMapTogetherRenderTheSameBits) {
+  const Scene box = builtin_cornell_box();
   PhotonSettings facets = photons(PM_ESTIMATOR_PD, PM_KERNEL_EPANECHNIKOV, 4);
   facets.facet_weighting = 1;
   for (const PhotonSettings& base : {photons(PM_ESTIMATOR_PD, PM_KERNEL_CONSTANT, 0), facets,
@@ -94,7 +95,7 @@ TEST_F(OpenclGather, TilesWalkingTheMapTogetherRenderTheSameBits) {
       settings.width = 40;
       settings.height = 28;
       settings.mirror_depth = 1;
-      Renderer renderer(*device_, builtin_cornell_box(), settings);
+      Renderer renderer(*device_, box, settings);
       renderer.set_collect_stats(true);
       const auto frame = renderer.render_frame(2);
       const std::vector<float>& image = frame.find("indirect")->rgb;
