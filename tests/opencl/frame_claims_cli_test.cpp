@@ -33,9 +33,11 @@ using test::ProcessResult;
 
 std::string scene_path() { return test::test_data_dir() + "/animation/moving_room.json"; }
 
-// Frames of a few hundred milliseconds on PoCL, so that processes overlap and a kill lands in one;
-// without the error estimate, whose control paths grow with the frame's own time.
-const char kFrameOptions[] = " --backend opencl --resolution 48x36 --photons 75000 --control-paths 0";
+// Frames of a few hundred milliseconds on any device (passes until 0.3 s are spent; one pass takes
+// about that on PoCL, a few milliseconds on a GPU, where a frame of one pass let the first process
+// finish every frame before the second had started), so that processes overlap and a kill lands in
+// one; without the error estimate, whose control paths grow with the frame's own time.
+const char kFrameOptions[] = " --backend opencl --resolution 48x36 --photons 75000 --time 0.3 --control-paths 0";
 
 
 class FrameClaimsCli : public test::PmrenderProcessTest {
