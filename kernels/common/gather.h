@@ -15,7 +15,7 @@
 #include "kernel_globals.h"
 #include "pixel_order.h"
 #include "knn_gather.h"
-#include "photon_map.h"
+#include "photon_map_query.h"
 #include "photon_trace.h"
 
 /* Radiance towards wo at x from the photon map, split into indirect and caustic parts; with

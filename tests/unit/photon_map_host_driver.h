@@ -16,6 +16,7 @@
 #include "kernels/common/vec3.h"
 #include "kernels/common/types.h"
 #include "kernels/common/photon_map.h"
+#include "kernels/common/photon_map_query.h"
 // clang-format on
 
 namespace pm_photon_map_test {

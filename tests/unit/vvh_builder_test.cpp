@@ -18,6 +18,7 @@
 #include "kernels/common/vec3.h"
 #include "kernels/common/types.h"
 #include "kernels/common/photon_map.h"
+#include "kernels/common/photon_map_query.h"
 #include "render/photon/vvh_builder.h"
 
 namespace {
