@@ -56,8 +56,9 @@ PM_DEVICE void gather_at(const KernelGlobals* kg, const LaunchParams* p, const M
 
 /* How gather_pixel reads the map: the footprint gather, the same with facet weighting, or the knn
    gather. Each kernel inlines gather_pixel with its own constant, so the footprint gather carries
-   neither the knn gather's traversals nor the facet weighting's loads and registers (72 registers
-   on sm_90 against 79 with facet weighting, which made Sponza's gather 10 % slower on an H100). */
+   neither the knn gather's traversals nor the facet weighting's loads and registers (without
+   launch bounds, 72 registers on sm_90 against 79 with facet weighting, which made Sponza's
+   gather 10 % slower on an H100). */
 #define PM_GATHER_FOOTPRINTS 0
 #define PM_GATHER_FACETS 1
 #define PM_GATHER_KNN 2
@@ -77,17 +78,17 @@ PM_DEVICE void gather_pixel(const KernelGlobals* kg, const LaunchParams* p, uint
     if (channel_mean(material_diffuse(m)) + channel_mean(material_glossy(m)) <= 0.0f) continue;
     Vec3 point_indirect = vec3_splat(0.0f), point_caustic = vec3_splat(0.0f);
     Vec3 tile_lo, tile_hi; /* a first point walks the map with its tile's box where that is compact */
-    if (mode == PM_GATHER_KNN)
+    if (mode == PM_GATHER_KNN) {
       knn_gather_at(kg, p, m, sp.position, sp.normal, sp.outgoing, knn_region_turn(p, pixel, depth), &point_indirect,
                     &point_caustic, &accepted);
-    else if (depth == 0u && gather_tile_box(kg, p, item, &tile_lo, &tile_hi)) {
+    } else if (depth == 0u && gather_tile_box(kg, p, item, &tile_lo, &tile_hi)) {
       gather_within(kg, p, m, sp.position, sp.normal, sp.outgoing, tile_lo, tile_hi, 1, &point_indirect,
                     &point_caustic, &accepted, mode == PM_GATHER_FACETS);
       ++tiled;
-    }
-    else
+    } else {
       gather_at(kg, p, m, sp.position, sp.normal, sp.outgoing, &point_indirect, &point_caustic, &accepted,
                 mode == PM_GATHER_FACETS);
+    }
     indirect = vec3_add(indirect, vec3_mul(sp.weight, point_indirect));
     caustic = vec3_add(caustic, vec3_mul(sp.weight, point_caustic));
     ++points;
