@@ -37,6 +37,17 @@ double auto_or(const char* setting, const std::string& text, const char* expecte
 
 double positive(const std::string& text) { return parse_positive("", text, std::numeric_limits<float>::max()); }
 
+// --tile-gather: auto, off (0) or a reach in mean footprint radii.
+float tile_gather_reach(const std::string& text) {
+  if (text == "auto") return PhotonSettings::kTileGatherAuto;
+  if (text == "off") return 0.0f;
+  try {
+    return float(positive(text));
+  } catch (const InputError&) {
+  }
+  throw SettingError("tile-gather", "expected auto, off or a positive number, got '" + text + "'");
+}
+
 class PhotonOptions final : public MethodOptions {
  public:
   PhotonSettings settings_;
@@ -77,9 +88,7 @@ class PhotonOptions final : public MethodOptions {
       if (!(v < 1)) throw InputError("alpha: 1 is not below 1");
       return v;
     }));
-    if (tile_gather == "off") s->tile_gather = 0;
-    else if (tile_gather == "auto") s->tile_gather = PhotonSettings::kTileGatherAuto;
-    else s->tile_gather = float(auto_or("tile-gather", tile_gather, "off, or a positive number", positive));
+    s->tile_gather = tile_gather_reach(tile_gather);
     s->leaf_threshold = int(auto_or("leaf", leaf, "a positive integer", [](const std::string& text) {
       return double(parse_unsigned("", text, 1, uint64_t(std::numeric_limits<int>::max())));
     }));

@@ -58,6 +58,8 @@ TEST_F(OptionMessages, FloatOptionsRefuseNonFiniteAndJunk) {
   expect_refused("render --overlap -5", "--overlap: expected auto or a positive number, got '-5'");
   expect_refused("render --alpha 1", "--alpha: expected auto or a number between 0 and 1 (exclusive), got '1'");
   expect_refused("render --alpha 0", "--alpha: expected auto or a number between 0 and 1 (exclusive), got '0'");
+  expect_refused("render --tile-gather 0", "--tile-gather: expected auto, off or a positive number, got '0'");
+  expect_refused("render --tile-gather near", "--tile-gather: expected auto, off or a positive number, got 'near'");
   expect_refused("render --rmax 1e39", "--rmax: expected a finite number");
   expect_refused("render --rmax -1", "--rmax: must be a positive length in metres");
   expect_refused("render --rmax 0x1p3", "--rmax");
