@@ -66,8 +66,9 @@ PM_DEVICE void photon_map_query_begin(PhotonMapQuery* q, Vec3 x, uint n, uint st
 }
 
 /* Next sorted position whose hit AABB meets the query's box (for a point query: contains the
-   point), or -1 when done. Each such hit is returned exactly once; the caller evaluates the ellipsoid itself (section 6.3: accumulate the hits whose
-   footprints overlap x). Read-only inputs: nodes and sorted_lo/hi from step 5. */
+   point), or -1 when done. Each such hit is returned exactly once; the caller evaluates the
+   ellipsoid itself (section 6.3: accumulate the hits whose footprints overlap x). Read-only
+   inputs: nodes and sorted_lo/hi from step 5. */
 PM_DEVICE int photon_map_query_next(PhotonMapQuery* q, PM_GLOBAL const float4* nodes,
                                     PM_GLOBAL const float4* sorted_lo, PM_GLOBAL const float4* sorted_hi)
 {
@@ -84,7 +85,7 @@ PM_DEVICE int photon_map_query_next(PhotonMapQuery* q, PM_GLOBAL const float4* n
     }
     q->node = PM_PHOTON_MAP_NO_NODE;
     q->nodes_visited++;
-    /* Leaf children containing x are scanned. The two children's intervals are adjacent (left
+    /* Leaf children meeting the query's box are scanned. The two children's intervals are adjacent (left
        ends where right starts), so whatever has to be scanned is one interval [begin, end). */
     uint begin = 0xFFFFFFFFu, end = 0u, check = 0u;
     uint left_ref = PM_PHOTON_MAP_NO_NODE, right_ref = PM_PHOTON_MAP_NO_NODE;
@@ -108,7 +109,7 @@ PM_DEVICE int photon_map_query_next(PhotonMapQuery* q, PM_GLOBAL const float4* n
         right_count = count;
       }
     }
-    /* Inner children: descend into one directly; when both contain x, defer the one with fewer
+    /* Inner children: descend into one directly; when both meet the box, defer the one with fewer
        hits (cheaper to scan should the stack be full). An absent child has count 0, so with one
        inner child that one is always "near". */
     uint defer_left = left_count < right_count;
