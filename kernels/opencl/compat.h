@@ -29,8 +29,17 @@ typedef int int32_t;
 #define pm_fabsf fabs
 #define pm_fminf fmin
 #define pm_fmaxf fmax
+/* On NVIDIA's OpenCL the hardware's sine and cosine, as CUDA's --use_fast_math gives its kernels:
+   the full-range functions are inlined into every caller (84 of them in the footprint gather) and
+   cost NVIDIA's production gathers 1-2 % (docs/benchmarks.md, "NVIDIA's OpenCL against CUDA").
+   PoCL keeps the full functions. */
+#if defined(cl_nv_pragma_unroll)
+#define pm_sinf native_sin
+#define pm_cosf native_cos
+#else
 #define pm_sinf sin
 #define pm_cosf cos
+#endif
 #define pm_tanf tan
 #define pm_asinf asin
 #define pm_acosf acos
@@ -52,7 +61,11 @@ static inline float pm_mul_rn(float a, float b)
 #define pm_fmaf fma
 #define pm_copysignf copysign
 #define pm_isfinite(x) isfinite(x)
+#if defined(cl_nv_pragma_unroll)
+#define pm_sincosf(a, s, c) (*(s) = native_sin(a), *(c) = native_cos(a))
+#else
 #define pm_sincosf(a, s, c) (*(s) = sincos((a), (c)))
+#endif
 #define pm_clz(x) ((int)clz((uint)(x)))
 #define pm_min_i(a, b) min((int)(a), (int)(b))
 #define pm_max_i(a, b) max((int)(a), (int)(b))
