@@ -273,6 +273,18 @@ PM_DEVICE void footprint_clip_triangle(FootprintClip* c, Vec3 v0, Vec3 v1, Vec3 
   footprint_add_cut(c, mu, mv, t);
 }
 
+/* Cuts at the triangle of records (r0, r1, r2) (triangles.h) if it crosses the lifted plane
+   n . x = level. Masked triangles (foliage, fences) are no walls: light passes their holes, and
+   a cut would darken what lies behind them everywhere, holes included. */
+PM_DEVICE void footprint_clip_record(FootprintClip* c, float4 r0, float4 r1, float4 r2, Vec3 n, float level)
+{
+  if (PM_AS_UINT(r0.w) & PM_TRIANGLE_MASKED) return;
+  Vec3 v0 = vec3_from_float4(r0), v1 = vec3_from_float4(r1), v2 = vec3_from_float4(r2);
+  float h0 = vec3_dot(n, v0) - level, h1 = vec3_dot(n, v1) - level, h2 = vec3_dot(n, v2) - level;
+  if ((h0 < 0.0f) == (h1 < 0.0f) && (h1 < 0.0f) == (h2 < 0.0f)) return;
+  footprint_clip_triangle(c, v0, v1, v2, h0, h1, h2);
+}
+
 /* Whether the child box (stored in its parent's node, scene_bvh.h) overlaps [lo, hi] and
    straddles the lifted plane n . x = level: a box wholly on one side holds no triangle that
    crosses it (the surface the photon hit, its coplanar neighbours, a ceiling above). */
@@ -308,16 +320,17 @@ PM_DEVICE void footprint_clip_scan(const KernelGlobals* kg, FootprintClip* c)
     for (int side = 0; side < 2; ++side) {
       int first = side ? child1 : child0, count = side ? count1 : count0;
       if (!(side ? visit1 : visit0) || count == 0) continue;
-      for (int t = first; t < first + count; ++t) {
-        /* Masked triangles (foliage, fences) are no walls: light passes their holes, and a cut
-           would darken what lies behind them everywhere, holes included. */
-        if (PM_AS_UINT(PM_LOAD(&kg->triangles[3 * t]).w) & PM_TRIANGLE_MASKED) continue;
-        Vec3 v0 = scene_triangle_vertex(kg->triangles, t, 0);
-        Vec3 v1 = scene_triangle_vertex(kg->triangles, t, 1);
-        Vec3 v2 = scene_triangle_vertex(kg->triangles, t, 2);
-        float h0 = vec3_dot(n, v0) - level, h1 = vec3_dot(n, v1) - level, h2 = vec3_dot(n, v2) - level;
-        if ((h0 < 0.0f) == (h1 < 0.0f) && (h1 < 0.0f) == (h2 < 0.0f)) continue;
-        footprint_clip_triangle(c, v0, v1, v2, h0, h1, h2);
+      /* Two triangles a step, both loaded before either is tested: a footprint that meets
+         hundreds of small triangles runs alone at the end of the launch, where each step waits
+         for its loads (docs/benchmarks.md, "the footprint stage's spread"). */
+      for (int t = first; t < first + count; t += 2) {
+        int second = t + 1 < first + count ? t + 1 : t;
+        float4 a0 = PM_LOAD(&kg->triangles[3 * t]), a1 = PM_LOAD(&kg->triangles[3 * t + 1]);
+        float4 a2 = PM_LOAD(&kg->triangles[3 * t + 2]);
+        float4 b0 = PM_LOAD(&kg->triangles[3 * second]), b1 = PM_LOAD(&kg->triangles[3 * second + 1]);
+        float4 b2 = PM_LOAD(&kg->triangles[3 * second + 2]);
+        footprint_clip_record(c, a0, a1, a2, n, level);
+        if (second != t) footprint_clip_record(c, b0, b1, b2, n, level);
       }
       if (side) visit1 = 0;
       else visit0 = 0;
