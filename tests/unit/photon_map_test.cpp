@@ -1,7 +1,7 @@
 // Stage S4 photon map LBVH (kernels/common/photon_map.h): bounds reduction, tree structure
 // against an independent top-down radix split, bottom-up boxes and counts, leaf fusion under T,
-// order independence of the bottom-up pass, and queries against brute force (incl. the stack
-// overflow fallback). Built and run through the host driver in photon_map_host_driver.h.
+// order independence of the bottom-up pass, and the automatic leaf size (the queries:
+// photon_map_query_test.cpp). Built and run through the host driver in photon_map_host_driver.h.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,115 +9,10 @@
 #include <random>
 
 #include "photon_map_host_driver.h"
+#include "photon_map_test_hits.h"
 
 namespace pm_photon_map_test {
 namespace {
-
-struct Hits {
-  std::vector<float4> pos, lo, hi;
-};
-
-// Random hits in [-1, 3]^3 with AABBs of half-size up to max_r per axis (some exactly points).
-// grid > 0 snaps positions to grid^3 points, so many hits share a Morton code.
-Hits make_hits(uint n, uint32_t seed, int grid, float max_r)
-{
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  Hits h;
-  for (uint i = 0; i < n; ++i) {
-    float c[3];
-    for (float& v : c) v = grid > 0 ? -1.0f + 4.0f * (float)(rng() % grid) / (float)grid : -1.0f + 4.0f * u(rng);
-    float r[3];
-    bool point = rng() % 10 == 0;
-    for (float& v : r) v = point ? 0.0f : max_r * u(rng);
-    h.pos.push_back(PM_MAKE_FLOAT4(c[0], c[1], c[2], 0.0f));
-    h.lo.push_back(PM_MAKE_FLOAT4(c[0] - r[0], c[1] - r[1], c[2] - r[2], 0.0f));
-    h.hi.push_back(PM_MAKE_FLOAT4(c[0] + r[0], c[1] + r[1], c[2] + r[2], 0.0f));
-  }
-  return h;
-}
-
-uint w_bits(float4 v) { return PM_AS_UINT(v.w); }
-
-// Walks the tree from the root and checks every property the traversal relies on.
-struct TreeChecker {
-  const HostPhotonMap& m;
-  const Hits& h;
-  std::vector<int> seen;
-  uint max_depth = 0;
-  uint leaves = 0;
-
-  uint64_t key(uint k) const { return ((uint64_t)m.codes[k] << 32) | k; }
-
-  // Exact union of the original hit boxes of sorted positions [first, first + count).
-  void expect_box(float4 lo, float4 hi, uint first, uint count) const
-  {
-    Vec3 ulo = vec3_splat(INFINITY), uhi = vec3_splat(-INFINITY);
-    for (uint k = first; k < first + count; ++k) {
-      ulo = vec3_min(ulo, vec3_from_float4(h.lo[m.sorted_index[k]]));
-      uhi = vec3_max(uhi, vec3_from_float4(h.hi[m.sorted_index[k]]));
-    }
-    ASSERT_TRUE(lo.x == ulo.x && lo.y == ulo.y && lo.z == ulo.z && hi.x == uhi.x && hi.y == uhi.y && hi.z == uhi.z)
-        << "child box is not the union of its hits' AABBs, interval " << first << "+" << count;
-  }
-
-  // Returns the interval of the slot's subtree.
-  std::pair<uint, uint> slot(uint node, uint side, uint parent_count, uint depth)
-  {
-    float4 lo = m.nodes[4 * node + 2 * side], hi = m.nodes[4 * node + 2 * side + 1];
-    uint ref = w_bits(lo), count = w_bits(hi);
-    std::pair<uint, uint> span;
-    if (ref & PM_PHOTON_MAP_LEAF) {
-      span = {ref & ~PM_PHOTON_MAP_LEAF, count};
-      EXPECT_GE(count, 1u);
-      EXPECT_LE(count, std::max(m.threshold, 1u)) << "leaf larger than T";
-      if (node != 0) {
-        EXPECT_GT(parent_count, m.threshold) << "leaf could have been fused with its sibling";
-      }
-      EXPECT_LE(span.first + count, m.n);
-      for (uint k = span.first; k < span.first + count && k < m.n; ++k) seen[k]++;
-      leaves++;
-      max_depth = std::max(max_depth, depth + 1);
-    } else {
-      EXPECT_GT(count, m.threshold) << "inner child at or under T was not fused";
-      EXPECT_LT(ref, m.n - 1);
-      if (ref >= m.n - 1) return {0, 0};
-      span = node_check(ref, depth + 1);
-      EXPECT_EQ(span.second, count) << "stored count differs from the hits below";
-      // Karras: inner node index = right end of a left child's range, left end of a right child's.
-      EXPECT_EQ(ref, side == 0 ? span.first + span.second - 1 : span.first);
-    }
-    expect_box(lo, hi, span.first, span.second);
-    return span;
-  }
-
-  std::pair<uint, uint> node_check(uint node, uint depth)
-  {
-    uint count = w_bits(m.nodes[4 * node + 1]) + w_bits(m.nodes[4 * node + 3]);
-    std::pair<uint, uint> l = slot(node, 0, count, depth), r = slot(node, 1, count, depth);
-    EXPECT_EQ(l.first + l.second, r.first) << "children not adjacent at node " << node;
-    uint first = l.first, last = r.first + r.second - 1;
-    // Independent top-down radix split: the first key with the range's highest differing bit set.
-    if (last > first && last < m.n) {
-      uint64_t diff = key(first) ^ key(last);
-      uint64_t bit = 1ull << (63 - __builtin_clzll(diff));
-      uint split = first;
-      while (!(key(split + 1) & bit)) ++split;
-      EXPECT_EQ(l.first + l.second - 1, split) << "split differs from the top-down radix split";
-    }
-    return {first, count};
-  }
-
-  void run()
-  {
-    seen.assign(m.n, 0);
-    if (m.n < 2) return;
-    std::pair<uint, uint> root = node_check(0, 0);
-    EXPECT_EQ(root.first, 0u);
-    EXPECT_EQ(root.second, m.n);
-    for (uint k = 0; k < m.n; ++k) ASSERT_EQ(seen[k], 1) << "hit at sorted position " << k;
-  }
-};
 
 void check_sorted_boxes(const HostPhotonMap& m, const Hits& h)
 {
@@ -125,68 +20,6 @@ void check_sorted_boxes(const HostPhotonMap& m, const Hits& h)
     ASSERT_EQ(0, memcmp(&m.sorted_lo[k], &h.lo[m.sorted_index[k]], 12));
     ASSERT_EQ(0, memcmp(&m.sorted_hi[k], &h.hi[m.sorted_index[k]], 12));
   }
-}
-
-std::vector<uint> brute_force(const Hits& h, Vec3 x)
-{
-  std::vector<uint> r;
-  for (uint i = 0; i < h.lo.size(); ++i)
-    if (h.lo[i].x <= x.x && h.lo[i].y <= x.y && h.lo[i].z <= x.z && x.x <= h.hi[i].x && x.y <= h.hi[i].y &&
-        x.z <= h.hi[i].z)
-      r.push_back(i);
-  return r;
-}
-
-// Query points: random in and around the bounds, on faces / corners of hit boxes, far outside.
-std::vector<Vec3> make_queries(const Hits& h, uint count, uint32_t seed)
-{
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  std::vector<Vec3> q;
-  for (uint i = 0; i < count; ++i) {
-    const uint hit = rng() % h.lo.size();
-    const float4 lo = h.lo[hit], hi = h.hi[hit];
-    switch (i % 4) {
-      // Coordinates drawn in sequence, z first (as gcc evaluated the arguments when the expected
-      // counts were set): the order of function arguments is unspecified and clang's differs.
-      case 0: {
-        const float z = u(rng), y = u(rng), x = u(rng);
-        q.push_back(vec3(-1.5f + 5.0f * x, -1.5f + 5.0f * y, -1.5f + 5.0f * z));
-        break;
-      }
-      case 1: {  // on a face: one coordinate snapped to lo or hi
-        const float uz = u(rng), uy = u(rng), ux = u(rng);
-        Vec3 x = vec3(lo.x + (hi.x - lo.x) * ux, lo.y + (hi.y - lo.y) * uy, lo.z + (hi.z - lo.z) * uz);
-        float* c[3] = {&x.x, &x.y, &x.z};
-        const float los[3] = {lo.x, lo.y, lo.z}, his[3] = {hi.x, hi.y, hi.z};
-        uint axis = rng() % 3;
-        *c[axis] = rng() % 2 ? los[axis] : his[axis];
-        q.push_back(x);
-        break;
-      }
-      case 2: q.push_back(rng() % 2 ? vec3(lo.x, lo.y, lo.z) : vec3(hi.x, hi.y, hi.z)); break;  // corners
-      default: q.push_back(vec3(10.0f + u(rng), -7.0f, 0.5f)); break;                          // outside
-    }
-  }
-  return q;
-}
-
-// Returns the number of queries that needed the overflow fallback.
-uint expect_queries_exact(const HostPhotonMap& m, const Hits& h, const std::vector<Vec3>& queries,
-                          uint stack_limit)
-{
-  uint overflowed = 0;
-  for (const Vec3& x : queries) {
-    QueryResult r = query(m, x, stack_limit);
-    std::vector<uint> got = r.hits;
-    std::sort(got.begin(), got.end());
-    EXPECT_TRUE(std::adjacent_find(got.begin(), got.end()) == got.end()) << "a hit was returned twice";
-    EXPECT_EQ(got, brute_force(h, x)) << "query (" << x.x << ", " << x.y << ", " << x.z << "), n=" << m.n
-                                      << " T=" << m.threshold << " stack " << stack_limit;
-    if (got != brute_force(h, x)) return overflowed;  // one report per call is enough
-    overflowed += r.overflows > 0;
-  }
-  return overflowed;
 }
 
 TEST(PhotonMapBounds, TilesGiveBoundsCountAndAreaOfValidHitsOnly)
@@ -354,131 +187,6 @@ TEST(PhotonMapTree, BottomUpIndependentOfWorkItemOrder)
       for (uint v : fwd.visits) ASSERT_EQ(v, 2u) << "every inner node is reached by both children";
     }
   }
-}
-
-TEST(PhotonMapQuery, EqualsBruteForce)
-{
-  for (uint n : {1u, 2u, 3u, 1000u, 50000u}) {
-    Hits h = make_hits(n, 500 + n, n == 1000 ? 5 : 0, n >= 1000 ? 0.08f : 1.0f);
-    std::vector<Vec3> queries = make_queries(h, n == 50000 ? 400 : 200, n);
-    for (uint T : {1u, 4u, 32u}) {
-      HostPhotonMap m = build(h.pos, h.lo, h.hi, T, Order::kRandom, n + T);
-      EXPECT_EQ(expect_queries_exact(m, h, queries, PM_TRAVERSAL_STACK), 0u);
-    }
-  }
-}
-
-// The gather's pixel tiles (kernels/common/gather_tiles.h) walk the map with their points' box and
-// keep, at each point, the hits whose own box holds it: that must be the point query's hits in
-// the point query's order, for the sums to be the same bits. Boxes from a point (empty extent) to
-// the whole map, some with a face on a hit box's face.
-TEST(PhotonMapQuery, ABoxQueryKeptAtAPointIsThatPointsQueryInItsOrder)
-{
-  std::mt19937 rng(4242);
-  std::uniform_real_distribution<float> u(0.0f, 1.0f);
-  for (uint n : {2u, 3u, 1000u, 50000u}) {
-    Hits h = make_hits(n, 700 + n, n == 1000 ? 5 : 0, n >= 1000 ? 0.08f : 1.0f);
-    std::vector<Vec3> points = make_queries(h, n == 50000 ? 150 : 100, n + 1);
-    for (uint T : {1u, 4u, 32u}) {
-      HostPhotonMap m = build(h.pos, h.lo, h.hi, T, Order::kRandom, n + T + 5);
-      for (size_t i = 0; i < points.size(); ++i) {
-        const Vec3 x = points[i];
-        const float reach = (i % 4 == 0) ? 0.0f : (i % 4 == 1) ? 0.02f : (i % 4 == 2) ? 0.3f : 6.0f;
-        const Vec3 lo = vec3(x.x - reach * u(rng), x.y - reach * u(rng), x.z - reach * u(rng));
-        const Vec3 hi = vec3(x.x + reach * u(rng), x.y + reach * u(rng), x.z + reach * u(rng));
-        const std::vector<uint> met = query_box(m, lo, hi).hits;
-        std::vector<uint> sorted_met = met, expected_met;
-        std::sort(sorted_met.begin(), sorted_met.end());
-        for (uint k = 0; k < n; ++k)
-          if (h.lo[k].x <= hi.x && lo.x <= h.hi[k].x && h.lo[k].y <= hi.y && lo.y <= h.hi[k].y &&
-              h.lo[k].z <= hi.z && lo.z <= h.hi[k].z)
-            expected_met.push_back(k);
-        ASSERT_EQ(sorted_met, expected_met) << "the box query's hits, n=" << n << " T=" << T << " point " << i;
-        std::vector<uint> kept;
-        for (uint k : met)
-          if (photon_map_box_contains(h.lo[k], h.hi[k], x)) kept.push_back(k);
-        ASSERT_EQ(kept, query(m, x, PM_TRAVERSAL_STACK).hits) << "n=" << n << " T=" << T << " point " << i;
-      }
-    }
-  }
-}
-
-TEST(PhotonMapQuery, PrunesTheTree)
-{
-  Hits h = make_hits(50000, 77, 0, 0.05f);
-  HostPhotonMap m = build(h.pos, h.lo, h.hi, 1, Order::kForward, 0);
-  double visited = 0;
-  std::vector<Vec3> queries = make_queries(h, 400, 78);
-  for (const Vec3& x : queries) visited += query(m, x, PM_TRAVERSAL_STACK).nodes_visited;
-  EXPECT_LT(visited / queries.size(), 500.0) << "traversal visits most of the 49999 nodes";
-}
-
-TEST(PhotonMapQuery, AllHitsAtOnePointAndFlatBounds)
-{
-  const uint n = 3000;
-  Hits h = make_hits(n, 21, 0, 0.3f);
-  for (uint i = 0; i < n; ++i) {  // one position; boxes of all sizes around it, some points
-    float4 d = PM_MAKE_FLOAT4(h.pos[i].x - 1.0f, h.pos[i].y - 1.0f, h.pos[i].z - 1.0f, 0.0f);
-    h.pos[i] = PM_MAKE_FLOAT4(1.0f, 1.0f, 1.0f, 0.0f);
-    h.lo[i] = PM_MAKE_FLOAT4(1.0f - std::fabs(d.x) * 0.1f, 1.0f - std::fabs(d.y) * 0.1f, 1.0f, 0.0f);
-    h.hi[i] = PM_MAKE_FLOAT4(1.0f + std::fabs(d.z) * 0.1f, 1.0f, 1.0f + std::fabs(d.x) * 0.1f, 0.0f);
-  }
-  std::vector<Vec3> queries = make_queries(h, 300, 5);
-  queries.push_back(vec3(1.0f, 1.0f, 1.0f));
-  for (uint T : {1u, 4u, 32u}) {
-    HostPhotonMap m = build(h.pos, h.lo, h.hi, T, Order::kReverse, T);
-    for (uint c : m.codes) ASSERT_EQ(c, 0u);
-    TreeChecker c{m, h, {}};
-    c.run();
-    EXPECT_EQ(expect_queries_exact(m, h, queries, PM_TRAVERSAL_STACK), 0u);
-    EXPECT_EQ(query(m, vec3(1.0f, 1.0f, 1.0f), PM_TRAVERSAL_STACK).hits.size(), n);
-  }
-  // Flat along z: every position in one plane.
-  Hits f = make_hits(2000, 22, 0, 0.1f);
-  for (float4& p : f.pos) p.z = 0.25f;
-  HostPhotonMap m = build(f.pos, f.lo, f.hi, 4, Order::kRandom, 3);
-  TreeChecker c{m, f, {}};
-  c.run();
-  expect_queries_exact(m, f, make_queries(f, 200, 6), PM_TRAVERSAL_STACK);
-}
-
-// Deepest trees the code space allows: a chain of codes 0, 1, 2, 4, ..., 2^29 (one new level per
-// bit) hanging off a long run of duplicate code 0 (index bits add more levels). The tree stays
-// under 62 inner levels, so the full stack never overflows; smaller stack limits force the
-// fallback, which must stay exact.
-TEST(PhotonMapQuery, StackOverflowFallbackIsExact)
-{
-  const uint dup = 4096;
-  std::vector<uint> codes(dup, 0u);
-  for (uint b = 0; b < 30; ++b) codes.push_back(1u << b);
-  for (uint b = 1; b < 30; ++b) codes.push_back((1u << b) | 1u);  // a second chain, interleaved
-  std::sort(codes.begin(), codes.end());
-  const uint n = (uint)codes.size();
-  Hits h = make_hits(n, 31, 0, 2.0f);  // large boxes: many hits contain each query point
-  std::vector<uint> index(n);
-  std::iota(index.begin(), index.end(), 0u);
-  std::vector<Vec3> queries = make_queries(h, 120, 32);
-  for (uint T : {1u, 4u}) {
-    HostPhotonMap m = build_from_sorted(codes, index, h.lo, h.hi, T, Order::kRandom, T);
-    TreeChecker c{m, h, {}};
-    c.run();
-    if (T == 1) {
-      EXPECT_GE(c.max_depth, 40u);
-    }
-    EXPECT_LE(c.max_depth, 62u);
-    EXPECT_EQ(expect_queries_exact(m, h, queries, PM_TRAVERSAL_STACK), 0u);
-    for (uint limit : {0u, 1u, 2u, 3u, 8u, 20u}) {
-      SCOPED_TRACE(::testing::Message() << "T=" << T << " stack limit " << limit);
-      uint overflowed = expect_queries_exact(m, h, queries, limit);
-      if (limit <= 8) {
-        EXPECT_GT(overflowed, 0u) << "fallback never exercised";
-      }
-    }
-  }
-  // Random data, tiny stacks.
-  Hits r = make_hits(5000, 33, 0, 0.3f);
-  HostPhotonMap m = build(r.pos, r.lo, r.hi, 1, Order::kForward, 0);
-  for (uint limit : {1u, 2u, 4u}) EXPECT_GT(expect_queries_exact(m, r, make_queries(r, 100, 34), limit), 0u);
 }
 
 TEST(PhotonMapAutoLeafSize, RoundsRatioAndGuards)
