@@ -8,8 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "support/host_scene.h"
@@ -113,6 +115,45 @@ TEST(FootprintClip, AFootprintNextToAWallIsCutAtTheWall) {
   const FootprintCut none = footprint_clip(&scene.kg, &g, vec3(2.5f, 0, 0), up, 1e-6f, PM_KERNEL_CONSTANT);
   EXPECT_EQ(none.kept, 1.0f);
   EXPECT_EQ(none.count, 0);
+}
+
+// Walls 0.2, 0.3, 0.4, ... away from the hit in N directions 360 / N degrees apart, each one
+// vertical triangle: the two nearest are the cuts and the third nearest shrinks the disc, whichever
+// wall is nearest. The scan reads a leaf's triangles two at a time (footprint_clip_scan); with the
+// nearest wall turned through every position of 1 to 8 triangles, a triangle it skipped would show
+// (skipping the second of each pair fails 95 of the checks).
+TEST(FootprintClip, EveryTriangleOfALeafIsScanned) {
+  const Vec3 hit = vec3(0, 0, 0), up = vec3(0, 1, 0);
+  for (int walls = 1; walls <= 8; ++walls) {
+    for (int nearest = 0; nearest < walls; ++nearest) {
+      Scene s;
+      s.materials = {MaterialDesc{}};
+      for (int i = 0; i < walls; ++i) {
+        const float angle = 2.0f * float(M_PI) * float(i) / float(walls);
+        const float d = 0.2f + 0.1f * float((i - nearest + walls) % walls);
+        const Float3 foot{d * std::cos(angle), 0.0f, d * std::sin(angle)};
+        const Float3 along{-std::sin(angle), 0.0f, std::cos(angle)};
+        const uint32_t base = uint32_t(s.positions.size());
+        s.positions.push_back({foot.x - 1.5f * along.x, -1.0f, foot.z - 1.5f * along.z});
+        s.positions.push_back({foot.x + 1.5f * along.x, -1.0f, foot.z + 1.5f * along.z});
+        s.positions.push_back({foot.x, 3.0f, foot.z});
+        s.indices.insert(s.indices.end(), {base, base + 1, base + 2});
+        s.triangle_material.push_back(0);
+      }
+      test::HostScene scene(s);
+      Footprint f = circle(1.0f);
+      const FootprintCut cut = footprint_clip(&scene.kg, &f, hit, up, 1e-6f, PM_KERNEL_CONSTANT);
+      const float shrink = walls >= 3 ? 0.4f : 1.0f;
+      const std::string where = std::to_string(walls) + " walls, the nearest " + std::to_string(nearest);
+      EXPECT_EQ(cut.count, std::min(walls, 2)) << where;
+      EXPECT_NEAR(f.axis_u.x, shrink, 1e-5f) << where;
+      const float first = std::min(cut.t[0], cut.t[1]), second = std::max(cut.t[0], cut.t[1]);
+      EXPECT_NEAR(first, 0.2f / shrink, 1e-4f) << where;
+      if (walls >= 2) {
+        EXPECT_NEAR(second, 0.3f / shrink, 1e-4f) << where;
+      }
+    }
+  }
 }
 
 TEST(FootprintClip, UniformPhotonsKeepTheirDensityUpToTheWall) {
