@@ -30,9 +30,9 @@ typedef int int32_t;
 #define pm_fminf fmin
 #define pm_fmaxf fmax
 /* On NVIDIA's OpenCL the hardware's sine and cosine, as CUDA's --use_fast_math gives its kernels:
-   the full-range functions are inlined into every caller (84 of them in the footprint gather) and
-   cost NVIDIA's production gathers 1-2 % (docs/benchmarks.md, "NVIDIA's OpenCL against CUDA").
-   PoCL keeps the full functions. */
+   the full-range functions (with their Payne-Hanek reduction) are inlined at each of the footprint
+   gather's sines and cosines, 84 in CUDA's PTX of it, and cost NVIDIA's production gathers 0.7 to
+   1.8 % (docs/benchmarks.md, "NVIDIA's OpenCL against CUDA"). PoCL keeps the full functions. */
 #if defined(cl_nv_pragma_unroll)
 #define pm_sinf native_sin
 #define pm_cosf native_cos
