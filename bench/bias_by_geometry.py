@@ -8,13 +8,20 @@ a third image that holds the normal layer (`pmrender render ... --layers normal`
   - by the largest angle between the pixel's normal and its four neighbours' (flat surfaces,
     tessellated curves, bends, creases).
 
+  - where the third image also holds the position layer (`--layers normal,position`): the flat
+    surfaces (under 2 degrees to every neighbour) by their distance in the scene to the nearest
+    pixel that is not flat (a bend, crease or silhouette found in the image), in fractions of the
+    scene's extent seen (the diagonal of the positions' box): is a flat surface's bias that of
+    the edges near it, or of the surface itself?
+
 For each class it prints the reference's share of the indirect light, the class's own bias and
 its contribution to the whole image's bias. The indirect layer is `indirect` in all three files;
-the images must have one size.
+the images must have one size. Several TEST images may follow the reference: one report each.
 
-    build/pyenv/bin/python bench/bias_by_geometry.py REF.exr TEST.exr NORMALS.exr
+    build/pyenv/bin/python bench/bias_by_geometry.py REF.exr NORMALS.exr TEST.exr [TEST.exr ...]
 
-Reads the EXR layers with Mitsuba 3's Bitmap (the virtual environment of tests/mitsuba/install.sh).
+Reads the EXR layers with the OpenEXR package where it is installed, else with Mitsuba 3's Bitmap
+(the virtual environment of tests/mitsuba/install.sh).
 """
 import argparse
 import sys
@@ -23,31 +30,49 @@ import numpy as np
 
 
 def layers(path):
-    import mitsuba as mi
-    mi.set_variant("scalar_rgb")
-    return {name: np.array(bitmap, dtype=np.float64) for name, bitmap in mi.Bitmap(path).split()}
+    """The image's layers by name ('' for R, G, B), each an H x W x C array."""
+    try:
+        import OpenEXR
+    except ImportError:
+        import mitsuba as mi
+        mi.set_variant("scalar_rgb")
+        return {name: np.array(bitmap, dtype=np.float64) for name, bitmap in mi.Bitmap(path).split()}
+    groups = {}
+    with OpenEXR.File(path, separate_channels=True) as exr:
+        for name, channel in exr.channels().items():
+            layer, _, component = name.rpartition(".")
+            groups.setdefault(layer, {})[component] = channel.pixels
+    out = {}
+    for layer, components in groups.items():
+        order = [c for c in ("R", "G", "B", "X", "Y", "Z") if c in components] or sorted(components)
+        out[layer] = np.stack([components[c].astype(np.float64) for c in order], axis=2)
+    return out
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("reference")
-    parser.add_argument("test")
-    parser.add_argument("normals", help="an image of the same view with the N layer (--layers normal)")
-    args = parser.parse_args()
-    ref_layers, test_layers, normal_layers = layers(args.reference), layers(args.test), layers(args.normals)
-    for path, found in ((args.reference, ref_layers), (args.test, test_layers)):
-        if "indirect" not in found:
-            sys.exit(f"{path}: no 'indirect' layer")
-    if "N" not in normal_layers:
-        sys.exit(f"{args.normals}: no 'N' layer (render it with --layers normal)")
-    ref = ref_layers["indirect"].mean(axis=2)
-    test = test_layers["indirect"].mean(axis=2)
-    normals = normal_layers["N"]
-    if ref.shape != test.shape or ref.shape != normals.shape[:2]:
-        sys.exit("the three images differ in size")
+def nearest_marked(mask):
+    """Per pixel the (row, column) of a nearby marked pixel: jump flooding, nearly the nearest."""
+    h, w = mask.shape
+    rows, cols = np.indices((h, w))
+    best = np.where(mask, rows, -1), np.where(mask, cols, -1)
+    step = 1 << int(np.ceil(np.log2(max(h, w))))
+    while step >= 1:
+        for dy in (-step, 0, step):
+            for dx in (-step, 0, step):
+                sy = np.clip(rows + dy, 0, h - 1)
+                sx = np.clip(cols + dx, 0, w - 1)
+                cand_r, cand_c = best[0][sy, sx], best[1][sy, sx]
+                have = cand_r >= 0
+                d_cand = np.where(have, (cand_r - rows) ** 2 + (cand_c - cols) ** 2, np.iinfo(np.int64).max)
+                d_best = np.where(best[0] >= 0, (best[0] - rows) ** 2 + (best[1] - cols) ** 2,
+                                  np.iinfo(np.int64).max)
+                better = d_cand < d_best
+                best = np.where(better, cand_r, best[0]), np.where(better, cand_c, best[1])
+        step //= 2
+    return best
+
+
+def report_one(ref, test, normals, positions):
     total = ref.sum()
-    if not total > 0:
-        sys.exit(f"{args.reference}: no indirect light")
 
     def report(name, mask):
         if not mask.any() or not ref[mask].sum() > 0:
@@ -69,6 +94,49 @@ def main():
     angle = np.degrees(np.arccos(np.clip(least_cos, -1.0, 1.0)))
     for low, high in ((0, 2), (2, 10), (10, 30), (30, 60), (60, 181)):
         report(f"neighbours' normals {low}-{min(high, 180)} degrees", (angle >= low) & (angle < high))
+    if positions is None:
+        return
+    seen = np.abs(normals).sum(axis=2) > 0
+    flat = (angle < 2) & seen
+    near_r, near_c = nearest_marked(~flat & seen)
+    if not (near_r >= 0).any():
+        return
+    distance = np.linalg.norm(positions - positions[np.maximum(near_r, 0), np.maximum(near_c, 0)], axis=2)
+    extent = np.linalg.norm(positions[seen].max(axis=0) - positions[seen].min(axis=0))
+    edges = [0, 0.0025, 0.005, 0.01, 0.02, 0.04, np.inf]
+    print(f"flat surfaces by distance to the nearest pixel that is not flat (fractions of {extent:.3g}):")
+    for low, high in zip(edges[:-1], edges[1:]):
+        label = f"  flat, {low:g}-{high:g}" if np.isfinite(high) else f"  flat, over {low:g}"
+        report(label, flat & (distance >= low * extent) & (distance < high * extent))
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("reference")
+    parser.add_argument("normals", help="an image of the same view with the N layer (--layers normal[,position])")
+    parser.add_argument("tests", nargs="+")
+    args = parser.parse_args()
+    ref_layers, normal_layers = layers(args.reference), layers(args.normals)
+    if "indirect" not in ref_layers:
+        sys.exit(f"{args.reference}: no 'indirect' layer")
+    if "N" not in normal_layers:
+        sys.exit(f"{args.normals}: no 'N' layer (render it with --layers normal)")
+    ref = ref_layers["indirect"].mean(axis=2)
+    normals = normal_layers["N"]
+    positions = normal_layers.get("P")
+    if ref.shape != normals.shape[:2]:
+        sys.exit("the reference and the normals differ in size")
+    if not ref.sum() > 0:
+        sys.exit(f"{args.reference}: no indirect light")
+    for path in args.tests:
+        test_layers = layers(path)
+        if "indirect" not in test_layers:
+            sys.exit(f"{path}: no 'indirect' layer")
+        test = test_layers["indirect"].mean(axis=2)
+        if test.shape != ref.shape:
+            sys.exit(f"{path}: another size than the reference")
+        print(f"== {path}")
+        report_one(ref, test, normals, positions)
 
 
 if __name__ == "__main__":
