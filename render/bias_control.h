@@ -22,8 +22,10 @@ class Device;
 // control measures the film's whole error, for any method, from one pass on.
 struct BiasEstimate {
   double mean_abs_error = 0;   // the film's relative mean absolute error (bias and noise): per control
-                               // pixel the |e| whose E|e + control noise| is the observed |d_c|,
-                               // summed over the control mean; plus its standard error
+                               // pixel the |e| whose E|e + control noise| is the observed |d_c|, or
+                               // where the control's noise exceeds the film's error, per region
+                               // from its second moments (bias_control.cpp), summed over the
+                               // control mean; plus its standard error (over the regions)
   double mean_abs_error_upper = 0; // the same with two standard errors (the stopping rule's)
   double mean_abs_error_stderr = 0; // that standard error
   double rms_error = 0;        // sqrt(mean(d_c^2 - v_c) + its standard error) / mean control: the
