@@ -44,7 +44,15 @@ typedef int int32_t;
 #define pm_asinf asin
 #define pm_acosf acos
 #define pm_atan2f atan2
+/* The same for the power of the glossy lobe (brdf.h), whose bases are never negative (cosines
+   and uniform numbers): `native_powr`, the hardware's exp2 of a log2 as CUDA's --use_fast_math
+   makes of powf, where `pow` put a full-precision function of about a hundred instructions into
+   each gather loop (docs/benchmarks.md, "The same count since"). */
+#if defined(cl_nv_pragma_unroll)
+#define pm_powf native_powr
+#else
 #define pm_powf pow
+#endif
 #define pm_cbrtf cbrt
 #define pm_expf exp
 #define pm_logf log
