@@ -57,6 +57,8 @@ ControlGrid control_grid(int width, int height) {
 // mean and the rest of the mean square (photon or path noise about a bias; a two-valued error
 // reads 0.8 of itself). On synthetic controls whose noise was 2.2 times the film's error, readings
 // of 1.28-1.67 times the truth became 0.93-1.12 times it (tests/unit/bias_control_test.cpp).
+namespace {
+
 struct RegionSums {
   double pixels = 0, difference = 0, squared_difference = 0, variance = 0, abs_error = 0;
 };
@@ -70,6 +72,8 @@ double region_abs_error(const RegionSums& r) {
   const double spread2 = std::max(0.0, mse - bias2);
   return r.pixels * expected_abs_difference(std::sqrt(bias2), std::sqrt(spread2));
 }
+
+}  // namespace
 
 BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const std::vector<float4>& control_film,
                                   const ControlGrid& grid, uint64_t paths, uint32_t region_side) {
