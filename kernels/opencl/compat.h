@@ -29,30 +29,29 @@ typedef int int32_t;
 #define pm_fabsf fabs
 #define pm_fminf fmin
 #define pm_fmaxf fmax
-/* On NVIDIA's OpenCL the hardware's sine and cosine, as CUDA's --use_fast_math gives its kernels:
-   the full-range functions (with their Payne-Hanek reduction) are inlined at each of the footprint
-   gather's sines and cosines, 84 in CUDA's PTX of it, and cost NVIDIA's production gathers 0.7 to
-   1.8 % (docs/benchmarks.md, "NVIDIA's OpenCL against CUDA"). PoCL keeps the full functions. */
+/* On NVIDIA's OpenCL the hardware's functions, as CUDA's --use_fast_math gives its kernels; PoCL
+   keeps the full ones. Sine and cosine: the full-range functions (with their Payne-Hanek
+   reduction) are inlined at each of the footprint gather's sines and cosines, 84 in CUDA's PTX of
+   it, and cost NVIDIA's production gathers 0.7 to 1.8 % (docs/benchmarks.md, "NVIDIA's OpenCL
+   against CUDA"). The power, only of the glossy lobe (brdf.h), whose bases are never negative
+   (cosines and uniform numbers): `native_powr`, an exp2 of a log2, where `pow` put a
+   full-precision function of about a hundred instructions into each gather loop
+   (docs/benchmarks.md, "The same count since"). */
 #if defined(cl_nv_pragma_unroll)
 #define pm_sinf native_sin
 #define pm_cosf native_cos
+#define pm_sincosf(a, s, c) (*(s) = native_sin(a), *(c) = native_cos(a))
+#define pm_powf native_powr
 #else
 #define pm_sinf sin
 #define pm_cosf cos
+#define pm_sincosf(a, s, c) (*(s) = sincos((a), (c)))
+#define pm_powf pow
 #endif
 #define pm_tanf tan
 #define pm_asinf asin
 #define pm_acosf acos
 #define pm_atan2f atan2
-/* The same for the power of the glossy lobe (brdf.h), whose bases are never negative (cosines
-   and uniform numbers): `native_powr`, the hardware's exp2 of a log2 as CUDA's --use_fast_math
-   makes of powf, where `pow` put a full-precision function of about a hundred instructions into
-   each gather loop (docs/benchmarks.md, "The same count since"). */
-#if defined(cl_nv_pragma_unroll)
-#define pm_powf native_powr
-#else
-#define pm_powf pow
-#endif
 #define pm_cbrtf cbrt
 #define pm_expf exp
 #define pm_logf log
@@ -69,11 +68,6 @@ static inline float pm_mul_rn(float a, float b)
 #define pm_fmaf fma
 #define pm_copysignf copysign
 #define pm_isfinite(x) isfinite(x)
-#if defined(cl_nv_pragma_unroll)
-#define pm_sincosf(a, s, c) (*(s) = native_sin(a), *(c) = native_cos(a))
-#else
-#define pm_sincosf(a, s, c) (*(s) = sincos((a), (c)))
-#endif
 #define pm_clz(x) ((int)clz((uint)(x)))
 #define pm_min_i(a, b) min((int)(a), (int)(b))
 #define pm_max_i(a, b) max((int)(a), (int)(b))
