@@ -8,7 +8,9 @@ a third image that holds the normal layer (`pmrender render ... --layers normal`
   - by the largest angle between the pixel's normal and its four neighbours' (flat surfaces,
     tessellated curves, bends, creases).
 
-  - where the third image also holds the position layer (`--layers normal,position`): the flat
+  - where the third image also holds the position layer (`--layers normal,position`): bends and
+    creases split into concave (the neighbour across rises in front of the pixel's tangent plane:
+    a crease, a wall's foot) and convex (it falls behind: a rim, a silhouette), and the flat
     surfaces (under 2 degrees to every neighbour) by their distance in the scene to the nearest
     pixel that is not flat (a bend, crease or silhouette found in the image), in fractions of the
     scene's extent seen (the diagonal of the positions' box): is a flat surface's bias that of
@@ -97,6 +99,20 @@ def report_one(ref, test, normals, positions):
     if positions is None:
         return
     seen = np.abs(normals).sum(axis=2) > 0
+    # Edges by their side: at a concave edge (a crease, a wall's foot) the neighbour across it
+    # rises in front of the pixel's tangent plane; at a convex one (a ledge's rim, a column's
+    # silhouette) it falls behind it, or lies far behind (a depth jump).
+    rise = np.full(ref.shape, np.inf)
+    for axis in (0, 1):
+        for step in (1, -1):
+            offset = ((np.roll(positions, step, axis=axis) - positions) * normals).sum(axis=2)
+            rise = np.minimum(rise, offset)
+    scale = np.linalg.norm(positions[seen].max(axis=0) - positions[seen].min(axis=0)) if seen.any() else 1.0
+    concave = rise > -1e-4 * scale
+    for low, high in ((10, 60), (60, 181)):
+        edge = (angle >= low) & (angle < high) & seen
+        report(f"  {low}-{min(high, 180)} degrees, concave", edge & concave)
+        report(f"  {low}-{min(high, 180)} degrees, convex", edge & ~concave)
     flat = (angle < 2) & seen
     near_r, near_c = nearest_marked(~flat & seen)
     if not (near_r >= 0).any():
