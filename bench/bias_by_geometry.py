@@ -21,12 +21,19 @@ its contribution to the whole image's bias. The indirect layer is `indirect` in 
 the images must have one size. Several TEST images may follow the reference: one report each.
 
     build/pyenv/bin/python bench/bias_by_geometry.py REF.exr NORMALS.exr TEST.exr [TEST.exr ...]
+    build/pyenv/bin/python bench/bias_by_geometry.py REF.exr NORMALS.exr --mask classes.png
+
+With --mask, a PNG shows where the edge classes lie: bends of 10-60 degrees concave in red and
+convex in blue, creases of 60 degrees or more concave in yellow and convex in green, over the
+reference's indirect light in grey.
 
 Reads the EXR layers with the OpenEXR package where it is installed, else with Mitsuba 3's Bitmap
 (the virtual environment of tests/mitsuba/install.sh).
 """
 import argparse
+import struct
 import sys
+import zlib
 
 import numpy as np
 
@@ -73,6 +80,27 @@ def nearest_marked(mask):
     return best
 
 
+def neighbour_angle(normals):
+    """Per pixel the largest angle, in degrees, between its normal and its four neighbours'."""
+    least_cos = np.ones(normals.shape[:2])
+    for axis in (0, 1):
+        for step in (1, -1):
+            least_cos = np.minimum(least_cos, (normals * np.roll(normals, step, axis=axis)).sum(axis=2))
+    return np.degrees(np.arccos(np.clip(least_cos, -1.0, 1.0)))
+
+
+def concave_pixels(normals, positions, seen):
+    """Edges by their side: at a concave edge (a crease, a wall's foot) every neighbour lies on or
+    in front of the pixel's tangent plane; at a convex one (a ledge's rim, a column's silhouette)
+    some neighbour falls behind it, or lies far behind (a depth jump)."""
+    rise = np.full(normals.shape[:2], np.inf)
+    for axis in (0, 1):
+        for step in (1, -1):
+            rise = np.minimum(rise, ((np.roll(positions, step, axis=axis) - positions) * normals).sum(axis=2))
+    scale = np.linalg.norm(positions[seen].max(axis=0) - positions[seen].min(axis=0)) if seen.any() else 1.0
+    return rise > -1e-4 * scale
+
+
 def report_one(ref, test, normals, positions):
     total = ref.sum()
 
@@ -89,26 +117,13 @@ def report_one(ref, test, normals, positions):
     report("facing up", up > 0.7)
     report("facing down", up < -0.7)
     report("vertical", np.abs(up) <= 0.7)
-    least_cos = np.ones(ref.shape)
-    for axis in (0, 1):
-        for step in (1, -1):
-            least_cos = np.minimum(least_cos, (normals * np.roll(normals, step, axis=axis)).sum(axis=2))
-    angle = np.degrees(np.arccos(np.clip(least_cos, -1.0, 1.0)))
+    angle = neighbour_angle(normals)
     for low, high in ((0, 2), (2, 10), (10, 30), (30, 60), (60, 181)):
         report(f"neighbours' normals {low}-{min(high, 180)} degrees", (angle >= low) & (angle < high))
     if positions is None:
         return
     seen = np.abs(normals).sum(axis=2) > 0
-    # Edges by their side: at a concave edge (a crease, a wall's foot) the neighbour across it
-    # rises in front of the pixel's tangent plane; at a convex one (a ledge's rim, a column's
-    # silhouette) it falls behind it, or lies far behind (a depth jump).
-    rise = np.full(ref.shape, np.inf)
-    for axis in (0, 1):
-        for step in (1, -1):
-            offset = ((np.roll(positions, step, axis=axis) - positions) * normals).sum(axis=2)
-            rise = np.minimum(rise, offset)
-    scale = np.linalg.norm(positions[seen].max(axis=0) - positions[seen].min(axis=0)) if seen.any() else 1.0
-    concave = rise > -1e-4 * scale
+    concave = concave_pixels(normals, positions, seen)
     for low, high in ((10, 60), (60, 181)):
         edge = (angle >= low) & (angle < high) & seen
         report(f"  {low}-{min(high, 180)} degrees, concave", edge & concave)
@@ -126,11 +141,37 @@ def report_one(ref, test, normals, positions):
         report(label, flat & (distance >= low * extent) & (distance < high * extent))
 
 
+def write_mask(path, ref, normals, positions):
+    """A PNG of where the edge classes lie over the reference's indirect light (grey): bends of
+    10-60 degrees concave red and convex blue, creases of 60 degrees or more concave yellow and
+    convex green. Written with zlib alone (no imaging package)."""
+    seen = np.abs(normals).sum(axis=2) > 0
+    angle = neighbour_angle(normals)
+    concave = concave_pixels(normals, positions, seen)
+    grey = np.clip(ref / max(np.percentile(ref[seen], 99), 1e-12), 0.0, 1.0) ** (1 / 2.2) * 160 if seen.any() else ref
+    rgb = np.repeat(grey[:, :, None], 3, axis=2)
+    bend, crease = (angle >= 10) & (angle < 60) & seen, (angle >= 60) & seen
+    for mask, colour in ((bend & concave, (255, 40, 40)), (bend & ~concave, (40, 120, 255)),
+                         (crease & concave, (240, 220, 40)), (crease & ~concave, (40, 220, 40))):
+        rgb[mask] = colour
+    rgb = rgb.astype(np.uint8)
+    height, width = rgb.shape[:2]
+    raw = b"".join(b"\x00" + rgb[y].tobytes() for y in range(height))
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) +
+                chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("reference")
     parser.add_argument("normals", help="an image of the same view with the N layer (--layers normal[,position])")
-    parser.add_argument("tests", nargs="+")
+    parser.add_argument("tests", nargs="*")
+    parser.add_argument("--mask", metavar="PNG", help="also write where the edge classes lie (needs the position layer)")
     args = parser.parse_args()
     ref_layers, normal_layers = layers(args.reference), layers(args.normals)
     if "indirect" not in ref_layers:
@@ -144,6 +185,10 @@ def main():
         sys.exit("the reference and the normals differ in size")
     if not ref.sum() > 0:
         sys.exit(f"{args.reference}: no indirect light")
+    if args.mask:
+        if positions is None:
+            sys.exit(f"{args.normals}: no 'P' layer for --mask (render it with --layers normal,position)")
+        write_mask(args.mask, ref, normals, positions)
     for path in args.tests:
         test_layers = layers(path)
         if "indirect" not in test_layers:
