@@ -203,6 +203,37 @@ TEST(FootprintProbes, AWorkItemPerProbeGivesTheLitAreaOfFacetWeighting) {
   expect_shares_match(PM_KERNEL_CONSTANT, 1);
 }
 
+// Stashes `photons` and runs the photon map's footprint launches over them (2 to 5 of
+// footprint_probes.h), constant kernel, as the map stores them for the gather.
+void store_footprints(Stash& s, const KernelGlobals& scene, const std::vector<Case>& photons, uint coverage,
+                      uint facet_weighting) {
+  s.kg = scene;
+  stash(s, photons);
+  LaunchParams p{};
+  p.kernel_shape = PM_KERNEL_CONSTANT;
+  p.estimator = PM_ESTIMATOR_PD;
+  p.footprint_coverage = coverage;
+  p.facet_weighting = facet_weighting;
+  p.ray_epsilon = kRayEpsilon;
+  p.hit_count = uint(photons.size());
+  run_probes(&s.kg, p, p.hit_count);
+  for (uint k = 0; k < p.hit_count; ++k) kernel_photon_footprint_store(&s.kg, &p, k);
+}
+
+// The sum of the stored footprints' weights at x (normal n) as gather_within takes them.
+double gathered_weight(const Stash& s, const std::vector<Case>& photons, Vec3 x, Vec3 n, uint facet_weighting) {
+  double sum = 0;
+  for (uint k = 0; k < photons.size(); ++k) {
+    const float4 c = s.center[k];
+    float r2, at_u, at_v;
+    if (!footprint_reaches_at(&s.kg, k, c, x, n, &r2, &at_u, &at_v)) continue;
+    double w = s.power[k].x * kernel_constant(r2) / footprint_kept_about(&s.kg, k, c, at_u, at_v, PM_KERNEL_CONSTANT);
+    if (facet_weighting) w *= gather_tilt_gain(s.row_n[k], photons[k].wi, n);
+    sum += w;
+  }
+  return sum;
+}
+
 // A ledge: the floor y = 0 over x > 0, ending in the air at x = 0.
 Scene ledge() {
   Scene s;
@@ -236,28 +267,11 @@ struct LedgeDensity {
         c.wi = vec3(0, 1, 0);
         photons.push_back(c);
       }
-    s.kg = scene.kg;
-    stash(s, photons);
-    LaunchParams p{};
-    p.kernel_shape = PM_KERNEL_CONSTANT;
-    p.estimator = PM_ESTIMATOR_PD;
-    p.footprint_coverage = coverage;
-    p.ray_epsilon = kRayEpsilon;
-    p.hit_count = uint(photons.size());
-    run_probes(&s.kg, p, p.hit_count);
-    for (uint k = 0; k < p.hit_count; ++k) kernel_photon_footprint_store(&s.kg, &p, k);
+    store_footprints(s, scene.kg, photons, coverage, 0u);
   }
 
   double at(float e) const {
-    const Vec3 x = vec3(e, 0, 0), n = vec3(0, 1, 0);
-    double sum = 0;
-    for (uint k = 0; k < photons.size(); ++k) {
-      const float4 c = s.center[k];
-      float r2, at_u, at_v;
-      if (!footprint_reaches_at(&s.kg, k, c, x, n, &r2, &at_u, &at_v)) continue;
-      sum += s.power[k].x * kernel_constant(r2) / footprint_kept_about(&s.kg, k, c, at_u, at_v, PM_KERNEL_CONSTANT);
-    }
-    return sum * kSpacing * kSpacing;
+    return gathered_weight(s, photons, vec3(e, 0, 0), vec3(0, 1, 0), 0u) * kSpacing * kSpacing;
   }
 
   // The density integrated over the first `length` radii from the rim (midpoint rule).
@@ -340,17 +354,7 @@ struct TubeDensity {
           photons.push_back(c);
         }
     }
-    s.kg = scene.kg;
-    stash(s, photons);
-    LaunchParams p{};
-    p.kernel_shape = PM_KERNEL_CONSTANT;
-    p.estimator = PM_ESTIMATOR_PD;
-    p.footprint_coverage = 1u;
-    p.facet_weighting = facet_weighting;
-    p.ray_epsilon = kRayEpsilon;
-    p.hit_count = uint(photons.size());
-    run_probes(&s.kg, p, p.hit_count);
-    for (uint k = 0; k < p.hit_count; ++k) kernel_photon_footprint_store(&s.kg, &p, k);
+    store_footprints(s, scene.kg, photons, 1u, facet_weighting);
   }
 
   double at(float across) const {
@@ -358,16 +362,7 @@ struct TubeDensity {
     const Vec3 start = vec3(a.x, a.y, 0), edge = vec3_sub(vec3(b.x, b.y, 0), start);
     const Vec3 x = vec3_add(start, vec3_scale(edge, across));
     const Vec3 n = vec3_normalize(vec3_neg(vec3_add(start, vec3_scale(edge, 0.5f))));
-    double sum = 0;
-    for (uint k = 0; k < photons.size(); ++k) {
-      const float4 c = s.center[k];
-      float r2, at_u, at_v;
-      if (!footprint_reaches_at(&s.kg, k, c, x, n, &r2, &at_u, &at_v)) continue;
-      double w = s.power[k].x * kernel_constant(r2) / footprint_kept_about(&s.kg, k, c, at_u, at_v, PM_KERNEL_CONSTANT);
-      if (facet_weighting) w *= gather_tilt_gain(s.row_n[k], photons[k].wi, n);
-      sum += w;
-    }
-    return sum * area_per_photon;
+    return gathered_weight(s, photons, x, n, facet_weighting) * area_per_photon;
   }
 };
 
