@@ -96,15 +96,17 @@ class PhotonOptions final : public MethodOptions {
     return s;
   }
 
-  // Photon mapping as its options say, and beside it the same with final gathering (4 rays a
+  // Photon mapping as its options say, and beside it the same with final gathering (16 rays a
   // pass unless --final-gather names a count) or without it (when --final-gather asked for it).
   std::vector<RaceCandidate> candidates(const std::string& name) const override {
     return with_and_without_final_gather(name, std::static_pointer_cast<const PhotonSettings>(settings(true)),
                                          kRacedFinalGatherRays);
   }
-  // Final gathering's rays per pass in the race: few, so that its first pass, which every
-  // race pays, stays short (16 rays took 0.5 to 0.8 s at 960 x 540 on an H100); passes add rays.
-  static constexpr uint32_t kRacedFinalGatherRays = 4;
+  // Final gathering's rays per pass in the race, as over radiosity: with the map's small overlap
+  // a pass of 16 rays takes about 20 ms at 960 x 540 on an H200, and 10 s of 4-ray passes read
+  // 1.29-1.45 times the error of 16-ray passes on the benchmark scenes, each pass's photons then
+  // the larger part of its cost (docs/method-auto.md, "Final gathering over photons in the race").
+  static constexpr uint32_t kRacedFinalGatherRays = 16;
 };
 
 }  // namespace

@@ -33,12 +33,12 @@ TEST_F(MethodAutoCli, TheChoiceIsPrintedAndInEveryFramesHeader) {
     SCOPED_TRACE(frame);
     std::map<std::string, std::string> h = header(dir_ / frame);
     const std::string choice = h["pmrender/method_choice"];
-    EXPECT_TRUE(choice == "photon" || choice == "photon --final-gather 4" || choice == "path" || choice == "radiosity" ||
+    EXPECT_TRUE(choice == "photon" || choice == "photon --final-gather 16" || choice == "path" || choice == "radiosity" ||
                 choice == "radiosity --final-gather 16")
         << choice;
     // Every candidate appears in the race's line, and the frame's settings are the winner's.
     for (const char* label :
-         {"photon: ", "photon --final-gather 4: ", "path: ", "radiosity: ", "radiosity --final-gather 16: "})
+         {"photon: ", "photon --final-gather 16: ", "path: ", "radiosity: ", "radiosity --final-gather 16: "})
       EXPECT_NE(h["pmrender/method_race"].find(label), std::string::npos) << h["pmrender/method_race"];
     EXPECT_NE(h["pmrender/settings"].find("method=" + choice.substr(0, choice.find(' ')) + " "), std::string::npos)
         << h["pmrender/settings"];
