@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <tuple>
 
@@ -49,10 +50,12 @@ void as_referenced(Scene& scene) {
   scene.triangle_uvs.clear();
 }
 
+// The built-in box, a benchmark scene (bench/scenes) or a golden scene (golden/scenes).
 Scene scene_named(const std::string& name) {
   if (name == "builtin") return builtin_cornell_box();
   const std::string bench = std::string(PM_SOURCE_DIR) + "/bench/scenes/" + name + ".json";
-  Scene scene = load_scene_file(bench);
+  const std::string golden = std::string(PM_SOURCE_DIR) + "/golden/scenes/" + name + ".json";
+  Scene scene = load_scene_file(std::filesystem::exists(bench) ? bench : golden);
   as_referenced(scene);
   return scene;
 }
@@ -153,6 +156,29 @@ TEST_P(SceneAccuracy, ABiasedEstimateIsCaughtByTheBiasCheckAndTheErrorEstimate) 
   EXPECT_GE(a.estimate, 2.0 / 3.0 * std::fabs(a.bias)) << "the error estimate reports it";
 }
 
+// Final gathering over photons (docs/final-gathering.md) at its defaults (16 rays a pass, the map
+// at overlap 3, shrinking passes) but for 65,536 photons a pass, over four passes, on the boxes,
+// the golden scenes and the benchmark scenes. The rays' noise in the image mean is a few tenths
+// of a percent at 96 x 54, so the check is the photon methods' 1.5 % target. Measured on PoCL:
+// -0.60, +0.83, +0.04, -0.30, +1.01, +0.38 and -0.05 % (the two boxes, glossy, three-lights,
+// Sponza, Sibenik, Conference). The golden mirror-box and ring are not here: a point light's
+// light through a perfect mirror is beyond the path tracer (docs/tradeoff.md, "Which light
+// paths"), so their references lack what the photon methods find there (final gathering read
+// +21 % on the mirror box and 24 times the reference's indirect light on the ring, whose
+// indirect light is 0.7 % of its image; pd alone +7 % and +24 % in the indirect layer's mean).
+class FinalGatherAccuracy : public testing::TestWithParam<const char*> {};
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(FinalGatherAccuracy);
+
+TEST_P(FinalGatherAccuracy, FinalGatheringAtItsDefaultsIsWithinOneAndAHalfPercent) {
+  PhotonSettings photons;
+  photons.final_gather = 16;
+  photons.photons = 65536;
+  photons.progressive = kProgressiveShrink;
+  const Accuracy a = render_against_reference(GetParam(), test::photon_render_settings(photons, 4));
+  EXPECT_LE(std::fabs(a.bias), kPhotonTolerance);
+  EXPECT_GE(a.estimate, 2.0 / 3.0 * std::fabs(a.bias)) << "the estimate sees the bias";
+}
+
 // Vertex link radiosity at its defaults, per bounce (the first bounce alone, then both), against
 // the same references and the same 1.5 % target. The closed boxes at the defaults: they take 4 to
 // 6 s each on PoCL; the benchmark scenes 1 to 3 minutes each there (69 million link rays in
@@ -197,10 +223,13 @@ INSTANTIATE_TEST_SUITE_P(Closed, RadiosityAccuracy,
                          testing::Combine(testing::Values("builtin", "cornell-mcguire"), testing::Values(1, 2)));
 
 INSTANTIATE_TEST_SUITE_P(Closed, SceneAccuracy, testing::Values("builtin", "cornell-mcguire"));
+INSTANTIATE_TEST_SUITE_P(Golden, FinalGatherAccuracy,
+                         testing::Values("builtin", "cornell-mcguire", "glossy", "three-lights"));
 #if PM_HAVE_BENCH_SCENES
 INSTANTIATE_TEST_SUITE_P(Benchmark, SceneAccuracy, testing::Values("sponza", "sibenik", "conference"));
 INSTANTIATE_TEST_SUITE_P(Benchmark, ShrinkAccuracy, testing::Values("sponza", "sibenik", "conference"));
 INSTANTIATE_TEST_SUITE_P(Benchmark, RadiosityBenchmarkAccuracy, testing::Values("sponza", "sibenik", "conference"));
+INSTANTIATE_TEST_SUITE_P(Benchmark, FinalGatherAccuracy, testing::Values("sponza", "sibenik", "conference"));
 #endif
 
 }  // namespace
