@@ -254,6 +254,11 @@ int run_render(const RenderCommandOptions& o) {
       std::printf(")\n");
       std::fflush(stdout);
     }
+    if (outcome.result.stopped_by == "levelled")
+      std::fprintf(stderr,
+                   "pmrender: warning: frame %d: the error estimate levelled off at %.2f%%, above the target %.2f%%: "
+                   "more passes of this method do not lower it (docs/progressive.md)\n",
+                   f, 100.0 * outcome.result.error, 100.0 * job_options.budget.target_error);
   };
   // A frame this process claimed and rendered, waiting for its file.
   struct PendingFrame {

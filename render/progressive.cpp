@@ -7,6 +7,23 @@
 
 namespace pm {
 
+bool LevelledErrorWatch::levelled(uint32_t passes, double seconds, double error, double error_upper, double target) {
+  if (!(error >= 0) || !(seconds > 0)) return false;
+  readings_.push_back({seconds, error});
+  if (passes < kLevelledPasses || target <= 0) return false;
+  // The latest readings at half and at a quarter of the time or earlier: the error's fall over
+  // each of the last two doublings, both under kLevelledFall (one alone can be the estimate's
+  // noise, or its control sharpening).
+  const Reading *half = nullptr, *quarter = nullptr;
+  for (const Reading& r : readings_) {
+    if (r.seconds <= 0.5 * seconds) half = &r;
+    if (r.seconds <= 0.25 * seconds) quarter = &r;
+  }
+  if (!half || !quarter || !(half->error > 0)) return false;
+  const double lower = 2.0 * error - error_upper;  // the estimate less two standard errors
+  return half->error < kLevelledFall * error && quarter->error < kLevelledFall * half->error && lower > target;
+}
+
 ProgressiveResult render_progressive(Renderer& renderer, int frame, const PassBudget& budget,
                                      const FilmSums* resume, double resumed_seconds,
                                      const ProgressiveCallbacks& callbacks) {
@@ -23,6 +40,7 @@ ProgressiveResult render_progressive(Renderer& renderer, int frame, const PassBu
     cap = renderer.method()->max_passes();
   if (!renderer.method()) cap = 0;
 
+  LevelledErrorWatch watch;
   while (renderer.passes_done() < cap) {
     throw_if_interrupted();  // between passes: a long frame stops at once (its checkpoint stays)
     renderer.run_pass();
@@ -36,6 +54,11 @@ ProgressiveResult render_progressive(Renderer& renderer, int frame, const PassBu
     if (budget.target_error > 0 && report.passes >= kMinPassesForError && report.error >= 0 &&
         renderer.last_error_upper() <= budget.target_error) {
       result.stopped_by = "error";
+      break;
+    }
+    if (budget.target_error > 0 && watch.levelled(report.passes, report.seconds, report.error,
+                                                  renderer.last_error_upper(), budget.target_error)) {
+      result.stopped_by = "levelled";
       break;
     }
     if (budget.seconds > 0 && report.seconds >= budget.seconds) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "render/renderer.h"
 
@@ -32,7 +33,31 @@ struct PassReport {
 };
 
 struct ProgressiveResult : PassReport {
-  std::string stopped_by;  // "passes", "time" or "error"
+  std::string stopped_by;  // "passes", "time", "error" or "levelled" (LevelledErrorWatch)
+};
+
+// A target error below what the method can reach: passes of a method whose bias they do not
+// remove (final gathering over a radiosity solution, averaged photon passes) bring its error
+// estimate down to its bias and no further, and the frame would run to the pass cap (a million
+// passes). The watch keeps the frame's readings and says when the estimate has fallen by less than
+// kLevelledFall over each of the last two doublings of render time, at least kLevelledPasses
+// passes in, while it stands above the target by more than two standard errors: then the frame
+// stops, "levelled".
+// An unbiased or shrinking method falls by 16 to 29 % a doubling (its error as t^-1/4 to t^-1/2;
+// docs/method-auto.md), so a fall under 5 % is the bias showing, not noise.
+constexpr double kLevelledFall = 1.05;
+constexpr uint32_t kLevelledPasses = 16;
+class LevelledErrorWatch {
+ public:
+  // Records a reading after `passes` passes and `seconds` of render time; error_upper is the
+  // estimate plus two standard errors (Renderer::last_error_upper).
+  bool levelled(uint32_t passes, double seconds, double error, double error_upper, double target);
+
+ private:
+  struct Reading {
+    double seconds, error;
+  };
+  std::vector<Reading> readings_;
 };
 
 struct ProgressiveCallbacks {

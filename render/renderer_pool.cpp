@@ -52,6 +52,7 @@ ProgressiveResult RendererPool::render_progressive(int frame, const PassBudget& 
   std::mutex stop_mutex;
   ProgressiveResult result;
   result.stopped_by = "passes";
+  LevelledErrorWatch watch;  // the first device's readings
   std::exception_ptr failure;
   passes_per_device_.assign(renderers_.size(), 0);
 
@@ -80,6 +81,11 @@ ProgressiveResult RendererPool::render_progressive(int frame, const PassBudget& 
         if (budget.target_error > 0 && d == 0 && report.error >= 0 && done >= kMinPassesForError &&
             r.last_error_upper() <= budget.target_error) {
           result.stopped_by = "error";
+          stop = true;
+        }
+        if (budget.target_error > 0 && d == 0 && !stop &&
+            watch.levelled(done, report.seconds, report.error, r.last_error_upper(), budget.target_error)) {
+          result.stopped_by = "levelled";
           stop = true;
         }
         if (budget.seconds > 0 && report.seconds >= budget.seconds && !stop) {

@@ -15,6 +15,7 @@
 
 #include "render/path/path_settings.h"
 #include "render/photon/photon_settings.h"
+#include "render/progressive.h"
 #include "render/radiosity/radiosity_settings.h"
 #include "render/renderer.h"
 #include "support/device_checks.h"
@@ -76,6 +77,18 @@ class FinalGather : public ::testing::Test {
     return radiosity;
   }
 
+  // A frame under a target error (the error control on): what stopped it, its passes and estimate.
+  ProgressiveResult render_to(std::shared_ptr<const MethodSettings> method, double target, uint32_t cap) {
+    RenderSettings settings;
+    settings.width = settings.height = 32;
+    settings.method = std::move(method);
+    Renderer renderer(*device_, scene_, settings);
+    PassBudget budget;
+    budget.max_passes = cap;
+    budget.target_error = target;
+    return render_progressive(renderer, 0, budget, nullptr, 0);
+  }
+
   std::unique_ptr<Device> device_;
   Scene scene_ = test::spot_box();
 };
@@ -123,6 +136,26 @@ TEST_F(FinalGather, OverRadiosityWithOneBounceIsTheDirectLightAtItsRaysHits) {
   const double gathered = indirect_mean(coarse_solution(1, 64), 4) / reference - 1;
   std::printf("spot-lit box, first bounce: final gather over radiosity %+.4f against the path tracer\n", gathered);
   EXPECT_LT(std::fabs(gathered), 0.01);
+}
+
+TEST_F(FinalGather, OverACoarseSolutionATargetBelowItsBiasStopsLevelled) {
+  // The coarse solution's bias (-6 % through the rays, above) is what its passes cannot remove: asked
+  // for 1 %, the frame would run to its cap; it stops once its estimate stops falling
+  // (LevelledErrorWatch, render/progressive.h). The path tracer, unbiased, asked for less than it
+  // reaches in 64 passes, runs them all.
+  const ProgressiveResult solution = render_to(coarse_solution(2, 16), 0.01, 4096);
+  std::printf("coarse solution gathered, target 1 %%: stopped by %s after %u passes at %.2f %%\n",
+              solution.stopped_by.c_str(), solution.passes, 100.0 * solution.error);
+  EXPECT_EQ(solution.stopped_by, "levelled");
+  EXPECT_LT(solution.passes, 4096u);
+  EXPECT_GT(solution.error, 0.02) << "it stopped above the target, as its bias is";
+  auto path = std::make_shared<PathSettings>();
+  path->samples = 4;
+  path->bounces = 2;
+  const ProgressiveResult traced = render_to(path, 0.001, 64);
+  std::printf("path tracer, target 0.1 %%: stopped by %s after %u passes at %.2f %%\n", traced.stopped_by.c_str(),
+              traced.passes, 100.0 * traced.error);
+  EXPECT_EQ(traced.stopped_by, "passes");
 }
 
 }  // namespace
