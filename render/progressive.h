@@ -43,8 +43,9 @@ struct ProgressiveResult : PassReport {
 // kLevelledFall over each of the last two doublings of render time, at least kLevelledPasses
 // passes in, while it stands above the target by more than two standard errors: then the frame
 // stops, "levelled".
-// An unbiased or shrinking method falls by 16 to 29 % a doubling (its error as t^-1/4 to t^-1/2;
-// docs/method-auto.md), so a fall under 5 % is the bias showing, not noise.
+// An unbiased method's error falls by 29 % a doubling (t^-1/2), shrinking photon passes' by 10 to
+// 17 % (t^-0.15 to t^-0.27 on the benchmark scenes, method_race.h), so falls under 5 % twice over
+// are the bias showing, not noise.
 constexpr double kLevelledFall = 1.05;
 constexpr uint32_t kLevelledPasses = 16;
 class LevelledErrorWatch {
