@@ -1,6 +1,7 @@
 // The budgeted pass loop.
 #include "render/progressive.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "render/interruption.h"
@@ -14,11 +15,14 @@ bool LevelledErrorWatch::levelled(uint32_t passes, double seconds, double error,
   // The latest readings at half and at a quarter of the time or earlier: the error's fall over
   // each of the last two doublings, both under kLevelledFall (one alone can be the estimate's
   // noise, or its control sharpening).
-  const Reading *half = nullptr, *quarter = nullptr;
-  for (const Reading& r : readings_) {
-    if (r.seconds <= 0.5 * seconds) half = &r;
-    if (r.seconds <= 0.25 * seconds) quarter = &r;
-  }
+  // The readings are in time order: each is found by bisection, so a frame of many passes pays
+  // a logarithm a pass.
+  auto latest_by = [&](double t) -> const Reading* {
+    auto after = std::upper_bound(readings_.begin(), readings_.end(), t,
+                                  [](double time, const Reading& r) { return time < r.seconds; });
+    return after == readings_.begin() ? nullptr : &*(after - 1);
+  };
+  const Reading *half = latest_by(0.5 * seconds), *quarter = latest_by(0.25 * seconds);
   if (!half || !quarter || !(half->error > 0)) return false;
   const double lower = 2.0 * error - error_upper;  // the estimate less two standard errors
   return half->error < kLevelledFall * error && quarter->error < kLevelledFall * half->error && lower > target;
