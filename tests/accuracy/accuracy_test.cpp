@@ -158,14 +158,14 @@ TEST_P(SceneAccuracy, ABiasedEstimateIsCaughtByTheBiasCheckAndTheErrorEstimate) 
 
 // Final gathering over photons (docs/final-gathering.md) at its defaults (16 rays a pass, the map
 // at overlap 3, shrinking passes) but for 65,536 photons a pass, over four passes, on the boxes,
-// the golden scenes and the benchmark scenes. The rays' noise in the image mean is a few tenths
-// of a percent at 96 x 54, so the check is the photon methods' 1.5 % target. Measured on PoCL:
+// the golden scenes and the benchmark scenes, against the photon methods' 1.5 % target. Measured
+// on PoCL:
 // -0.60, +0.83, +0.04, -0.30, +1.01, +0.38 and -0.05 % (the two boxes, glossy, three-lights,
 // Sponza, Sibenik, Conference). The golden mirror-box and ring are not here: a point light's
 // light through a perfect mirror is beyond the path tracer (docs/tradeoff.md, "Which light
-// paths"), so their references lack what the photon methods find there (final gathering read
-// +21 % on the mirror box and 24 times the reference's indirect light on the ring, whose
-// indirect light is 0.7 % of its image; pd alone +7 % and +24 % in the indirect layer's mean).
+// paths"), so their references lack what the photon methods find there: final gathering's
+// indirect light read +21 % on the mirror box (this check's bias) and +27 % on the ring (the
+// indirect layer's mean), pd alone +7 % and +24 % (the mean).
 class FinalGatherAccuracy : public testing::TestWithParam<const char*> {};
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(FinalGatherAccuracy);
 
