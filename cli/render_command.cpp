@@ -201,6 +201,8 @@ int run_render(const RenderCommandOptions& o) {
         job->add_attributes({{"pmrender/method_choice", candidates[race.winner].label},
                              {"pmrender/method_race", race.summary()}});
       if (!o.quiet) {
+        if (o.verbose)
+          for (const std::string& line : race.rounds) std::printf("method auto: %s\n", line.c_str());
         std::printf("method auto: %s, raced on frame %d in %s (%s)\n", candidates[race.winner].label.c_str(),
                     todo.front(), seconds_text(race.race_seconds).c_str(), race.summary().c_str());
         std::fflush(stdout);

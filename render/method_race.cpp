@@ -47,6 +47,7 @@ struct Runner {
   std::vector<std::vector<float4>> films;  // per reading
   double last_upper = -1;  // the last reading's error plus two standard errors
   bool out = false;
+  int duel_rounds = 0;  // rounds run in the duel (race_referee.h)
   uint32_t cap = 0;  // its passes at most: the method's (radiosity: one) or --passes, the lower
 
   // Passes done: where it stands is where it stays (radiosity after its pass, or --passes reached).
@@ -55,11 +56,14 @@ struct Runner {
     if (!renderer->method()->may_be_biased()) return ErrorDecay::monte_carlo;
     return renderer->method()->passes_are_samples() ? ErrorDecay::sampled : ErrorDecay::measured;
   }
-  // Whether its forecast rests on a measured rate (or on a final error).
+  // Whether its forecast rests on a measured rate (or on a final error): a reading far enough
+  // before its last one, as forecast_error looks for (in the duel the runner-up's readings come
+  // closer together than kRateSpan).
   bool measured() const {
     if (decay() == ErrorDecay::fixed) return !entry.readings.empty();
-    return entry.readings.size() >= 2 && entry.readings.back().seconds - start_seconds >=
-                                             kRateSpan * (entry.readings[entry.readings.size() - 2].seconds - start_seconds);
+    if (entry.readings.size() < 2) return false;
+    const double first = entry.readings.front().seconds - start_seconds;
+    return first > 0 && entry.readings.back().seconds - start_seconds >= kRateSpan * first;
   }
 };
 
@@ -73,6 +77,35 @@ void run_round(Runner& r, double slice) {
     r.renderer->wait();
   }
   r.own_seconds += seconds_since(begun);
+}
+
+// One line of --verbose's account of the race: each candidate still in, its own time, its
+// error against the latest control, its rate and what it is forecast to need.
+std::string round_text(int round, RacePhase phase, double elapsed, const std::vector<Runner>& runners,
+                       const std::vector<RaceStanding>& standings, bool by_error) {
+  std::string text = (phase == RacePhase::duel ? "duel round " : "race round ") + std::to_string(round + 1) + " at " +
+                     seconds_text(elapsed) + ":";
+  for (size_t i = 0; i < runners.size(); ++i) {
+    const Runner& r = runners[i];
+    if (r.out) continue;
+    char part[192];
+    std::snprintf(part, sizeof(part), " %s %s, error %s, rate %.2f%s, %s %s;", r.entry.label.c_str(),
+                  seconds_text(r.own_seconds).c_str(), percent(r.entry.readings.back().error).c_str(),
+                  r.entry.forecast.rate, standings[i].measured ? "" : " (assumed)", by_error ? "needs" : "forecast",
+                  by_error ? seconds_text(standings[i].value).c_str() : percent(standings[i].value).c_str());
+    text += part;
+  }
+  text.pop_back();
+  return text;
+}
+
+// The leader's round in the duel: its time in passes doubles, as in the race, but no further than
+// it is forecast to need to reach the target (where the duel's round would otherwise run on past
+// the target by up to the round's length), and not less than a quarter of it, so that its next
+// reading is far enough from this one to be told from it.
+double duel_lead_slice(const Runner& leader, double remaining) {
+  const double passes = std::max(kFirstRoundSeconds, leader.own_seconds - leader.start_seconds);
+  return std::clamp(remaining, kDuelShare * passes, passes);
 }
 
 // Every reading of r measured again against control.
@@ -199,13 +232,20 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
   const uint64_t control_cap = uint64_t(settings.control_paths) * kControlPathsGrowth;
   int reached = -1;  // a candidate that met the target error during the race
   int best = 0;
-  for (int round = 0; round < kMaxRaceRounds; ++round, slice *= 2) {
-    for (Runner& r : runners)
-      if (!r.out && r.decay() != ErrorDecay::fixed) {
-        run_round(r, slice);
-        r.entry.readings.push_back({r.own_seconds, -1, r.renderer->passes_done()});
-        r.films.push_back(r.renderer->film_at_control());
-      }
+  RacePhase phase = RacePhase::race;
+  double best_remaining = 0;  // the leader's own seconds still needed to the target, as last forecast
+  for (int round = 0; phase != RacePhase::over; ++round, slice *= 2) {
+    const bool duelling = phase == RacePhase::duel;
+    const double lead_slice = duelling ? duel_lead_slice(runners[best], best_remaining) : slice;
+    for (size_t i = 0; i < runners.size(); ++i) {
+      Runner& r = runners[i];
+      if (r.out || r.decay() == ErrorDecay::fixed) continue;
+      // In the duel the runner-up renders a share of the leader's time (race_referee.h).
+      run_round(r, duelling && int(i) != best ? kDuelShare * lead_slice : lead_slice);
+      r.duel_rounds += duelling ? 1 : 0;
+      r.entry.readings.push_back({r.own_seconds, -1, r.renderer->passes_done()});
+      r.films.push_back(r.renderer->film_at_control());
+    }
     // The control grows on any renderer still racing, while it has taken less time than the
     // candidates (its first paths always: without them nothing is measured).
     double racing_seconds = 0;
@@ -229,50 +269,45 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
     }
     if (reached >= 0) break;
 
-    // Forecasts: seconds to the target error, or the error when the time is up.
+    // Forecasts: the own seconds still needed to the target error, or the error when the time is up.
     const double elapsed = seconds_since(race_begun);
     const double remaining = std::max(0.0, budget.seconds - elapsed);
-    best = -1;
+    std::vector<RaceStanding> standings(runners.size());
     for (size_t i = 0; i < runners.size(); ++i) {
       Runner& r = runners[i];
+      RaceStanding& st = standings[i];
+      st.out = r.out;
       if (r.out) continue;
       r.entry.forecast = forecast_error(r.entry.readings, r.decay(), r.start_seconds);
       const bool known = !r.entry.readings.empty() && r.entry.readings.back().error >= 0;
       if (!known) r.entry.forecast_value = std::numeric_limits<double>::infinity();
       else if (by_error) r.entry.forecast_value = r.entry.forecast.seconds_to(target);
       else r.entry.forecast_value = r.entry.forecast.error_at(r.own_seconds + remaining);
-      if (best < 0 || r.entry.forecast_value < runners[best].entry.forecast_value) best = int(i);
+      st.forecast_total = r.entry.forecast_value;
+      st.value = by_error ? std::max(0.0, r.entry.forecast_value - r.own_seconds) : r.entry.forecast_value;
+      if (by_error && known) st.error_at_ten_times = r.entry.forecast.error_at(10 * r.own_seconds);
+      st.measured = r.measured();
+      st.duel_rounds = r.duel_rounds;
     }
-    if (best < 0) throw DeviceError("--method auto: no candidate's error could be measured");
-    // None is forecast to reach the target: rank by the error each forecasts at ten times its time.
-    if (by_error && !std::isfinite(runners[best].entry.forecast_value))
-      for (size_t i = 0; i < runners.size(); ++i)
-        if (!runners[i].out && !runners[i].entry.readings.empty() &&
-            runners[i].entry.forecast.error_at(10 * runners[i].own_seconds) <
-                runners[best].entry.forecast.error_at(10 * runners[best].own_seconds))
-          best = int(i);
-    // Drop those clearly behind the best, once their own forecast rests on measurement.
-    const double best_value = runners[best].entry.forecast_value;
-    const double ratio = by_error ? kDropTimeRatio : kDropErrorRatio;
-    size_t left = 0;
-    for (size_t i = 0; i < runners.size(); ++i) {
+    const RoundCall call = call_round(standings, phase, {by_error, budget.seconds, elapsed, round});
+    if (call.best < 0) throw DeviceError("--method auto: no candidate's error could be measured");
+    best = call.best;
+    best_remaining = standings[best].value;
+    choice.rounds.push_back(round_text(round, phase, elapsed, runners, standings, by_error));
+    for (size_t i : call.dropped) {
       Runner& r = runners[i];
-      if (r.out || int(i) == best) continue;
-      if (std::isfinite(best_value) && r.measured() && r.entry.forecast_value > ratio * best_value) {
-        r.out = true;
-        r.entry.fate = "dropped after round " + std::to_string(round + 1) + " (forecast " +
-                       (by_error ? seconds_text(r.entry.forecast_value) + " to " + percent(target)
-                                 : percent(r.entry.forecast_value) + " at the time") + ")";
-        r.renderer.reset();  // its memory back before the winner goes on
-      } else {
-        ++left;
-      }
+      r.out = true;
+      const std::string forecast = by_error ? seconds_text(r.entry.forecast_value) + " to " + percent(target)
+                                            : percent(r.entry.forecast_value) + " at the time";
+      if (phase == RacePhase::duel)
+        r.entry.fate = "behind in the duel after " + std::to_string(r.duel_rounds) + " rounds (forecast " + forecast + ")";
+      else if (call.phase == RacePhase::duel && standings[i].value <= kDropTimeRatio * standings[best].value)
+        r.entry.fate = "out when the duel began after round " + std::to_string(round + 1) + " (forecast " + forecast + ")";
+      else
+        r.entry.fate = "dropped after round " + std::to_string(round + 1) + " (forecast " + forecast + ")";
+      r.renderer.reset();  // its memory back before the winner goes on
     }
-    if (left == 0) break;
-    // Racing on costs more than it could save: the race has taken its share of the time, or a
-    // fifth of the time the best is forecast to need.
-    if (budget.seconds > 0 && elapsed >= kRaceShareOfTime * budget.seconds) break;
-    if (by_error && std::isfinite(best_value) && runners[best].measured() && elapsed >= 0.2 * best_value) break;
+    phase = call.phase;
   }
   choice.winner = size_t(reached >= 0 ? reached : best);
   choice.race_seconds = seconds_since(race_begun);
@@ -284,6 +319,7 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
       if (reached < 0)
         r.entry.fate += by_error ? " (forecast " + seconds_text(r.entry.forecast_value) + " to " + percent(target) + ")"
                                  : " (forecast " + percent(r.entry.forecast_value) + " at the time)";
+      if (r.duel_rounds > 0) r.entry.fate += ", after a duel of " + std::to_string(r.duel_rounds) + " rounds";
     } else if (!r.out && reached >= 0) {
       r.entry.fate = "still racing when " + runners[choice.winner].entry.label + " reached the target";
     } else if (!r.out) {

@@ -3,8 +3,9 @@
 // (docs/method-auto.md). Every candidate renders the frame's first passes on a renderer of its own,
 // in rounds of doubling time, and after each round its own error estimate (render/bias_control.h:
 // noise and bias together) is read and forecast forwards; a candidate clearly behind the best is
-// dropped, its time spent. The winner's renderer keeps its film, so the frame continues from the
-// passes it already has: the race costs the losers' time only.
+// dropped, its time spent; under a target error the race ends in a duel of the two best
+// (race_referee.h). The winner's renderer keeps its film, so the frame continues from the passes
+// it already has: the race costs the losers' time only.
 #pragma once
 
 #include <cstdint>
@@ -15,6 +16,7 @@
 #include <vector>
 
 #include "render/progressive.h"
+#include "render/race_referee.h"
 #include "render/renderer.h"
 
 namespace pm {
@@ -75,20 +77,13 @@ struct MethodChoice {
   double setup_seconds = 0;          // the candidates' renderers built (scene upload, buffers): start-up
   std::unique_ptr<Renderer> renderer;  // the winner's, its film holding `sums`
   FilmSums sums;                     // the winner's passes so far
+  std::vector<std::string> rounds;   // a line per round: the candidates' readings and forecasts (--verbose)
   // One line for logs and the EXR header: each candidate's passes, time, error and forecast.
   std::string summary() const;
 };
 
-// Share of a --time budget the race may take before the best candidate goes on alone.
-constexpr double kRaceShareOfTime = 0.25;
 // The first round's time per candidate without a time budget (then it doubles each round).
 constexpr double kFirstRoundSeconds = 0.05;
-// A candidate is dropped when its forecast time is this many times the best's (or, under a time
-// budget, its forecast error kDropErrorRatio times the best's).
-constexpr double kDropTimeRatio = 2.0;
-constexpr double kDropErrorRatio = 1.25;
-// Most rounds of the race: the first round's time grows 2^(kMaxRaceRounds - 1) times by the last.
-constexpr int kMaxRaceRounds = 10;
 
 // Races candidates on `frame` under budget (seconds or target_error must be set) and returns the
 // winner's renderer, mid-frame. settings: the frame's settings but for the method (the

@@ -1,0 +1,108 @@
+// The race's calls after each round (race_referee.h).
+#include "render/race_referee.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pm {
+
+namespace {
+
+// The candidate with the lowest value among those still in, but `skip`; -1 if none.
+int lowest(const std::vector<RaceStanding>& s, int skip = -1) {
+  int best = -1;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i].out || int(i) == skip) continue;
+    if (best < 0 || s[i].value < s[best].value) best = int(i);
+  }
+  return best;
+}
+
+// The leader: the lowest value; under a target error none of them may be forecast to reach it,
+// and then the lowest error at ten times their time.
+int leader(const std::vector<RaceStanding>& s, bool by_error) {
+  int best = lowest(s);
+  if (best < 0 || !by_error || std::isfinite(s[best].value)) return best;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (!s[i].out && s[i].error_at_ten_times < s[best].error_at_ten_times) best = int(i);
+  return best;
+}
+
+RoundCall call_duel(const std::vector<RaceStanding>& s) {
+  RoundCall call;
+  call.best = leader(s, true);
+  const int challenger = lowest(s, call.best);
+  call.phase = RacePhase::duel;
+  if (challenger < 0) {
+    call.phase = RacePhase::over;
+    return call;
+  }
+  const RaceStanding &leader = s[call.best], &other = s[challenger];
+  if (std::isfinite(leader.value) && other.measured && other.duel_rounds >= kDuelRoundsToJudge &&
+      other.value > kDuelDropRatio * leader.value) {
+    call.dropped.push_back(size_t(challenger));
+    call.phase = RacePhase::over;
+  } else if (leader.duel_rounds >= kMaxDuelRounds) {
+    call.phase = RacePhase::over;
+  }
+  return call;
+}
+
+}  // namespace
+
+RoundCall call_round(const std::vector<RaceStanding>& s, RacePhase phase, const RaceRules& rules) {
+  if (phase == RacePhase::duel) return call_duel(s);
+  RoundCall call;
+  call.best = leader(s, rules.by_error);
+  if (call.best < 0) {
+    call.phase = RacePhase::over;
+    return call;
+  }
+  const RaceStanding& best = s[call.best];
+  const bool known = std::isfinite(best.value);
+  // Under a target error the runner-up is kept for the duel while it is within kDuelTimeRatio of
+  // the best: the race's readings are too short to tell such candidates apart.
+  const int runner_up = rules.by_error ? lowest(s, call.best) : -1;
+  const bool duel_worthy = runner_up >= 0 && known && s[runner_up].value <= kDuelTimeRatio * best.value;
+  const double ratio = rules.by_error ? kDropTimeRatio : kDropErrorRatio;
+  size_t left = 0;
+  bool only_the_kept_one_left = true;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i].out || int(i) == call.best) continue;
+    const bool behind = known && s[i].measured && s[i].value > ratio * best.value;
+    if (behind && !(duel_worthy && int(i) == runner_up)) {
+      call.dropped.push_back(i);
+      continue;
+    }
+    ++left;
+    if (!behind) only_the_kept_one_left = false;
+  }
+  if (left == 0) {
+    call.phase = RacePhase::over;
+    return call;
+  }
+  // Racing on costs more than it could save: the race has taken its share of the time, or of the
+  // time the best is forecast to need; or it has run its rounds.
+  const bool last_round = rules.round + 1 >= kMaxRaceRounds;
+  if (!rules.by_error) {
+    if ((rules.budget_seconds > 0 && rules.elapsed >= kRaceShareOfTime * rules.budget_seconds) || last_round)
+      call.phase = RacePhase::over;
+    return call;
+  }
+  const bool settled = (known && best.measured && rules.elapsed >= kRaceShareOfForecast * best.forecast_total) ||
+                       last_round || only_the_kept_one_left;
+  if (!settled) return call;
+  if (!duel_worthy) {
+    call.phase = RacePhase::over;
+    return call;
+  }
+  // The duel: the best and the runner-up; the others are done.
+  for (size_t i = 0; i < s.size(); ++i)
+    if (!s[i].out && int(i) != call.best && int(i) != runner_up &&
+        std::find(call.dropped.begin(), call.dropped.end(), i) == call.dropped.end())
+      call.dropped.push_back(i);
+  call.phase = RacePhase::duel;
+  return call;
+}
+
+}  // namespace pm

@@ -1,0 +1,77 @@
+// --method auto's decisions after each round of the race (method_race.h), from the candidates'
+// forecasts alone: which candidate leads, which are dropped, and when the race narrows to a duel
+// or ends. Kept apart from the rendering so that the rules are tested on their own
+// (tests/unit/race_referee_test.cpp).
+//
+// Under a target error the race's forecasts rest on well under a second of readings, and two
+// kinds of candidate fool them (docs/method-auto.md, "The duel"): final gathering over a radiosity
+// solution falls as 1/sqrt(t) at first and then slows towards the solution's own error one bounce
+// away, which its first readings cannot show; final gathering over photons falls faster than
+// 1/sqrt(t) while its map's bias shrinks, so its early forecast is too slow. So the race does not
+// end on its forecasts: once they have settled who leads, the leader renders on and the runner-up
+// goes on beside it at a quarter of its time, both read against the same control after every
+// round, until one reaches the target, or the runner-up, forecast on readings of its own far
+// enough apart, is clearly behind. The lead changes whenever the forecasts say so; the duel costs
+// at most a fifth of the frame.
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+namespace pm {
+
+// A candidate as the referee sees it after a round.
+struct RaceStanding {
+  // Under a target error: the candidate's own seconds still needed to reach it (its forecast less
+  // the time it has spent: what is spent is spent). Under a time budget: the error it is forecast
+  // to reach when the time is up.
+  double value = std::numeric_limits<double>::infinity();
+  double forecast_total = std::numeric_limits<double>::infinity();  // by error: its whole own time to the target
+  // by error: the error forecast at ten times its own time, which ranks the candidates when none
+  // is forecast to reach the target
+  double error_at_ten_times = std::numeric_limits<double>::infinity();
+  bool measured = false;  // its forecast rests on a measured rate (or on its final error)
+  bool out = false;       // dropped earlier
+  int duel_rounds = 0;    // rounds it has run in the duel
+};
+
+enum class RacePhase { race, duel, over };
+
+struct RaceRules {
+  bool by_error = false;         // a target error (else a time budget)
+  double budget_seconds = 0;     // > 0: the time budget
+  double elapsed = 0;            // the race's wall time so far
+  int round = 0;                 // of the race phase, from 0
+};
+
+struct RoundCall {
+  int best = -1;                     // the leader; -1: no candidate's error is known
+  std::vector<size_t> dropped;       // dropped this round
+  RacePhase phase = RacePhase::race; // what the next round is
+};
+
+// A candidate is dropped in the race when its forecast is this many times the best's: its
+// remaining time under a target error, its error under a time budget.
+constexpr double kDropTimeRatio = 2.0;
+constexpr double kDropErrorRatio = 1.25;
+// Share of a --time budget the race may take before the best candidate goes on alone.
+constexpr double kRaceShareOfTime = 0.25;
+// Under a target error the race phase ends once it has taken this share of the best's forecast time.
+constexpr double kRaceShareOfForecast = 0.2;
+// Most rounds of the race phase, and of the duel after it.
+constexpr int kMaxRaceRounds = 10;
+constexpr int kMaxDuelRounds = 12;
+// The duel: a runner-up within kDuelTimeRatio of the best's remaining time is kept for it; in the
+// duel it renders kDuelShare of the leader's time a round, and it is dropped once, after
+// kDuelRoundsToJudge rounds of its own there, its remaining time is kDuelDropRatio times the
+// leader's.
+constexpr double kDuelTimeRatio = 4.0;
+constexpr double kDuelShare = 0.25;
+constexpr int kDuelRoundsToJudge = 2;
+constexpr double kDuelDropRatio = 1.5;
+
+// The call after a round in `phase` (race or duel).
+RoundCall call_round(const std::vector<RaceStanding>& standings, RacePhase phase, const RaceRules& rules);
+
+}  // namespace pm

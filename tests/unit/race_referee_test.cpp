@@ -1,0 +1,113 @@
+// --method auto's calls after each round (render/race_referee.h): who leads, who is dropped, when
+// the race narrows to a duel of the two best under a target error, how the duel changes its lead
+// and judges its runner-up, and that a time budget keeps the race as it was.
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <vector>
+
+#include "render/race_referee.h"
+
+namespace pm {
+namespace {
+
+constexpr double kNever = std::numeric_limits<double>::infinity();
+
+// value: own seconds still needed (by error) or forecast error (by time); total: whole own time.
+RaceStanding standing(double value, bool measured = true, double total = -1, int duel_rounds = 0) {
+  RaceStanding s;
+  s.value = value;
+  s.forecast_total = total < 0 ? value : total;
+  s.measured = measured;
+  s.duel_rounds = duel_rounds;
+  return s;
+}
+
+RaceRules by_error(double elapsed, int round = 2) { return {true, 0, elapsed, round}; }
+
+TEST(RaceReferee, ARunnerUpWithinFourTimesTheBestIsKeptForADuel) {
+  // The leader needs 10 s more; the runner-up's 28 s would have dropped it (2x), the third's 50 s does.
+  const RoundCall call = call_round({standing(10), standing(28), standing(50)}, RacePhase::race, by_error(0.5));
+  EXPECT_EQ(call.best, 0);
+  EXPECT_EQ(call.dropped, std::vector<size_t>{2});
+  EXPECT_EQ(call.phase, RacePhase::duel) << "only the kept runner-up is left: the duel begins";
+}
+
+TEST(RaceReferee, TheRaceGoesOnWhileItsForecastsAreUnsettled) {
+  // 0.5 s into a race whose best is forecast 10 s, a candidate not yet measured: another round.
+  const RoundCall call = call_round({standing(10), standing(12, false), standing(15)}, RacePhase::race, by_error(0.5));
+  EXPECT_EQ(call.best, 0);
+  EXPECT_TRUE(call.dropped.empty());
+  EXPECT_EQ(call.phase, RacePhase::race);
+  // Once the race has taken a fifth of the best's forecast time, the two best duel; the others go.
+  const RoundCall settled =
+      call_round({standing(10, true, 11), standing(12, false), standing(15)}, RacePhase::race, by_error(2.3));
+  EXPECT_EQ(settled.phase, RacePhase::duel);
+  EXPECT_EQ(settled.dropped, std::vector<size_t>{2});
+}
+
+TEST(RaceReferee, ARunnerUpFarBehindEndsTheRaceWithoutADuel) {
+  const RoundCall call = call_round({standing(10), standing(45)}, RacePhase::race, by_error(0.5));
+  EXPECT_EQ(call.dropped, std::vector<size_t>{1});
+  EXPECT_EQ(call.phase, RacePhase::over);
+  // Not measured yet, it is not dropped; once the race is settled, it is too far behind to duel.
+  const RoundCall settled = call_round({standing(10, true, 11), standing(45, false)}, RacePhase::race, by_error(2.3));
+  EXPECT_EQ(settled.phase, RacePhase::over);
+}
+
+TEST(RaceReferee, TheDuelsLeadFollowsTheForecasts) {
+  // The runner-up of the race now forecasts less time left than the leader: it leads.
+  const RoundCall call =
+      call_round({standing(14, true, 24, 1), standing(11, true, 13, 1)}, RacePhase::duel, by_error(10));
+  EXPECT_EQ(call.best, 1);
+  EXPECT_TRUE(call.dropped.empty());
+  EXPECT_EQ(call.phase, RacePhase::duel);
+}
+
+TEST(RaceReferee, TheRunnerUpIsJudgedOnReadingsOfItsOwnInTheDuel) {
+  // Three times behind after one round of its own in the duel: kept.
+  RoundCall call = call_round({standing(10, true, 20, 1), standing(30, true, 31, 1)}, RacePhase::duel, by_error(10));
+  EXPECT_TRUE(call.dropped.empty());
+  EXPECT_EQ(call.phase, RacePhase::duel);
+  // After kDuelRoundsToJudge rounds, more than kDuelDropRatio behind: dropped, and the leader goes on alone.
+  call = call_round({standing(10, true, 20, kDuelRoundsToJudge), standing(16, true, 20, kDuelRoundsToJudge)},
+                    RacePhase::duel, by_error(12));
+  EXPECT_EQ(call.dropped, std::vector<size_t>{1});
+  EXPECT_EQ(call.phase, RacePhase::over);
+  // Within kDuelDropRatio, the duel goes on...
+  call = call_round({standing(10, true, 20, 4), standing(14, true, 20, 4)}, RacePhase::duel, by_error(20));
+  EXPECT_EQ(call.phase, RacePhase::duel);
+  // ... until its last round.
+  call = call_round({standing(10, true, 20, kMaxDuelRounds), standing(14, true, 20, kMaxDuelRounds)}, RacePhase::duel,
+                    by_error(20));
+  EXPECT_EQ(call.best, 0);
+  EXPECT_EQ(call.phase, RacePhase::over);
+}
+
+TEST(RaceReferee, NoneForecastToReachTheTargetRanksByTheErrorItWouldReach) {
+  RaceStanding a = standing(kNever), b = standing(kNever);
+  a.error_at_ten_times = 0.04;
+  b.error_at_ten_times = 0.02;
+  const RoundCall call = call_round({a, b}, RacePhase::race, by_error(0.5));
+  EXPECT_EQ(call.best, 1);
+  EXPECT_TRUE(call.dropped.empty()) << "nothing is measured against a best that never arrives";
+  EXPECT_EQ(call.phase, RacePhase::race);
+}
+
+TEST(RaceReferee, UnderATimeBudgetTheRaceIsAsBeforeWithoutADuel) {
+  // Forecast errors at the time: 2 %, 2.4 % (kept: within 1.25x) and 3 % (dropped).
+  const RaceRules by_time{false, 10.0, 1.0, 2};
+  RoundCall call = call_round({standing(0.02), standing(0.024), standing(0.03)}, RacePhase::race, by_time);
+  EXPECT_EQ(call.best, 0);
+  EXPECT_EQ(call.dropped, std::vector<size_t>{2});
+  EXPECT_EQ(call.phase, RacePhase::race);
+  // At its share of the budget the race ends with the best; no duel.
+  call = call_round({standing(0.02), standing(0.024)}, RacePhase::race, {false, 10.0, 2.5, 3});
+  EXPECT_EQ(call.phase, RacePhase::over);
+  // Its rounds run out.
+  call = call_round({standing(0.02), standing(0.024)}, RacePhase::race, {false, 100.0, 2.5, kMaxRaceRounds - 1});
+  EXPECT_EQ(call.phase, RacePhase::over);
+}
+
+}  // namespace
+}  // namespace pm
