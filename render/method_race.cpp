@@ -18,10 +18,6 @@ using Clock = std::chrono::steady_clock;
 
 double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
-// Readings this far apart in time (a factor) measure a rate; closer ones are mostly the
-// estimate's own noise.
-constexpr double kRateSpan = 1.5;
-
 std::string percent(double e) {
   char text[32];
   std::snprintf(text, sizeof(text), "%.2f %%", 100.0 * e);
@@ -88,10 +84,13 @@ std::string round_text(int round, RacePhase phase, double elapsed, const std::ve
   for (size_t i = 0; i < runners.size(); ++i) {
     const Runner& r = runners[i];
     if (r.out) continue;
-    char part[192];
-    std::snprintf(part, sizeof(part), " %s %s, error %s, rate %.2f%s, %s %s;", r.entry.label.c_str(),
+    const ErrorForecast& f = r.entry.forecast;
+    char part[224];
+    std::snprintf(part, sizeof(part), " %s %s, error %s (+-%.2f), rate %.2f%s%s%s, %s %s;", r.entry.label.c_str(),
                   seconds_text(r.own_seconds).c_str(), percent(r.entry.readings.back().error).c_str(),
-                  r.entry.forecast.rate, standings[i].measured ? "" : " (assumed)", by_error ? "needs" : "forecast",
+                  100.0 * r.entry.readings.back().error_stderr, f.rate,
+                  standings[i].measured ? "" : " (assumed)", f.floor > 0 ? " over a floor of " : "",
+                  f.floor > 0 ? percent(f.floor).c_str() : "", by_error ? "needs" : "forecast",
                   by_error ? seconds_text(standings[i].value).c_str() : percent(standings[i].value).c_str());
     text += part;
   }
@@ -118,44 +117,12 @@ void measure(Runner& r, const SharedControl& control) {
     const BiasEstimate e = comparable ? compare_with_control(control.sums, r.films[i], grid, control.paths, kControlRegionSide)
                                       : BiasEstimate{};
     r.entry.readings[i].error = e.known ? e.mean_abs_error : -1;
+    r.entry.readings[i].error_stderr = e.known ? e.mean_abs_error_stderr : 0;
     if (i + 1 == r.films.size()) r.last_upper = e.known ? e.mean_abs_error_upper : -1;
   }
 }
 
 }  // namespace
-
-double ErrorForecast::seconds_to(double target) const {
-  if (last.error <= target) return last.seconds;
-  const double passes = last.seconds - start;
-  if (rate <= 0 || passes <= 0) return std::numeric_limits<double>::infinity();
-  return start + passes * std::pow(last.error / target, 1.0 / rate);
-}
-
-double ErrorForecast::error_at(double seconds) const {
-  const double passes = last.seconds - start;
-  if (seconds <= last.seconds || passes <= 0) return last.error;
-  return last.error * std::pow(passes / (seconds - start), rate);
-}
-
-ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDecay decay, double start_seconds) {
-  ErrorForecast f;
-  f.start = start_seconds;
-  if (readings.empty()) return f;
-  f.last = readings.back();
-  if (decay == ErrorDecay::fixed) return f;
-  f.rate = decay == ErrorDecay::measured ? kAssumedShrinkRate : 0.5;
-  // The latest reading against the latest one far enough before it, in the passes' time.
-  const double last_passes = f.last.seconds - start_seconds;
-  for (size_t i = readings.size() - 1; i-- > 0;) {
-    const ErrorReading& a = readings[i];
-    const double passes = a.seconds - start_seconds;
-    if (passes <= 0 || a.error <= 0 || f.last.error <= 0 || last_passes < kRateSpan * passes) continue;
-    const double measured = std::log(a.error / f.last.error) / std::log(last_passes / passes);
-    f.rate = std::clamp(measured, decay == ErrorDecay::monte_carlo ? kLeastMonteCarloRate : 0.0, 0.5);
-    break;
-  }
-  return f;
-}
 
 std::string MethodChoice::summary() const {
   std::string text;
@@ -287,9 +254,11 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
       st.value = by_error ? std::max(0.0, r.entry.forecast_value - r.own_seconds) : r.entry.forecast_value;
       if (by_error && known) st.error_at_ten_times = r.entry.forecast.error_at(10 * r.own_seconds);
       st.measured = r.measured();
+      st.biased = r.renderer->method() && r.renderer->method()->may_be_biased();
+      st.error = known ? r.entry.readings.back().error : -1;
       st.duel_rounds = r.duel_rounds;
     }
-    const RoundCall call = call_round(standings, phase, {by_error, budget.seconds, elapsed, round});
+    const RoundCall call = call_round(standings, phase, {by_error, target, budget.seconds, elapsed, round});
     if (call.best < 0) throw DeviceError("--method auto: no candidate's error could be measured");
     best = call.best;
     best_remaining = standings[best].value;

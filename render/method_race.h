@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "render/error_forecast.h"
 #include "render/progressive.h"
 #include "render/race_referee.h"
 #include "render/renderer.h"
@@ -25,41 +26,6 @@ struct RaceCandidate {
   std::string label;  // how the log and the EXR header name it, e.g. "photon", "path"
   std::shared_ptr<const MethodSettings> method;
 };
-
-// One reading of a candidate's error estimate after `seconds` of its own render time.
-struct ErrorReading {
-  double seconds = 0;
-  double error = -1;  // Renderer::estimate_error: the relative mean absolute error of the indirect light
-  uint32_t passes = 0;
-};
-
-// How a candidate's error falls with its render time: error(t) = last.error * ((last.seconds -
-// start) / (t - start))^rate, t its own time and start what it spent beginning the frame before
-// its first pass (radiosity solves its links there): passes lower the error, the start does
-// not. The rate is measured from its last two readings far enough apart in pass time (1.5x),
-// clamped to at most 1/2 (no method beats Monte Carlo's 1/sqrt(t)). An unbiased method's
-// (monte_carlo) is assumed 1/2 until measured and kept at least 1/4: its relative mean absolute
-// error falls slower than 1/sqrt(t) only while most pixels have seen few paths. A biased one
-// whose passes are independent samples of one estimate (sampled: final gathering over a
-// radiosity solution) is assumed 1/2 until measured and may measure 0 (its bias). One whose
-// passes also shrink a bias (photon passes: shrinking) is assumed kAssumedShrinkRate until
-// measured and may measure 0. A method whose passes are done (fixed) stays where it is.
-struct ErrorForecast {
-  ErrorReading last;
-  double rate = 0;
-  double start = 0;  // own seconds before the first pass
-  // Render time at which the error reaches `target` (its own time, the time spent included);
-  // infinity if never.
-  double seconds_to(double target) const;
-  double error_at(double seconds) const;
-};
-
-enum class ErrorDecay { monte_carlo, sampled, measured, fixed };
-// Photon passes that shrink measured 0.15 to 0.27 on Sponza, Sibenik and Conference at 960 x 540
-// (docs/method-auto.md); progressive photon mapping's error falls at best as t^-1/3.
-constexpr double kAssumedShrinkRate = 0.2;
-constexpr double kLeastMonteCarloRate = 0.25;
-ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDecay decay, double start_seconds = 0);
 
 // What a candidate did in the race.
 struct RaceEntry {

@@ -28,7 +28,7 @@ int leader(const std::vector<RaceStanding>& s, bool by_error) {
   return best;
 }
 
-RoundCall call_duel(const std::vector<RaceStanding>& s) {
+RoundCall call_duel(const std::vector<RaceStanding>& s, double target) {
   RoundCall call;
   call.best = leader(s, true);
   const int challenger = lowest(s, call.best);
@@ -38,8 +38,10 @@ RoundCall call_duel(const std::vector<RaceStanding>& s) {
     return call;
   }
   const RaceStanding &leader = s[call.best], &other = s[challenger];
-  if (std::isfinite(leader.value) && other.measured && other.duel_rounds >= kDuelRoundsToJudge &&
-      other.value > kDuelDropRatio * leader.value) {
+  const bool trusted = !leader.biased || (leader.error >= 0 && leader.error <= kDuelProofRatio * target);
+  const bool judged = other.measured && other.duel_rounds >= kDuelRoundsToJudge;
+  if (std::isfinite(leader.value) && judged &&
+      other.value > (trusted ? kDuelDropRatio : kDuelTimeRatio) * leader.value) {
     call.dropped.push_back(size_t(challenger));
     call.phase = RacePhase::over;
   } else if (leader.duel_rounds >= kMaxDuelRounds) {
@@ -51,7 +53,7 @@ RoundCall call_duel(const std::vector<RaceStanding>& s) {
 }  // namespace
 
 RoundCall call_round(const std::vector<RaceStanding>& s, RacePhase phase, const RaceRules& rules) {
-  if (phase == RacePhase::duel) return call_duel(s);
+  if (phase == RacePhase::duel) return call_duel(s, rules.target);
   RoundCall call;
   call.best = leader(s, rules.by_error);
   if (call.best < 0) {

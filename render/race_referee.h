@@ -11,8 +11,9 @@
 // end on its forecasts: once they have settled who leads, the leader renders on and the runner-up
 // goes on beside it at a quarter of its time, both read against the same control after every
 // round, until one reaches the target, or the runner-up, forecast on readings of its own far
-// enough apart, is clearly behind. The lead changes whenever the forecasts say so; the duel costs
-// at most a fifth of the frame.
+// enough apart, is clearly behind while the leader's forecast has proved itself. The lead
+// changes whenever the forecasts say so; the runner-up's part costs at most a fifth of the duel's
+// time.
 #pragma once
 
 #include <cstddef>
@@ -32,6 +33,8 @@ struct RaceStanding {
   // is forecast to reach the target
   double error_at_ten_times = std::numeric_limits<double>::infinity();
   bool measured = false;  // its forecast rests on a measured rate (or on its final error)
+  bool biased = false;    // its passes may converge to a bias (Renderer::method()->may_be_biased())
+  double error = -1;      // its last reading
   bool out = false;       // dropped earlier
   int duel_rounds = 0;    // rounds it has run in the duel
 };
@@ -40,6 +43,7 @@ enum class RacePhase { race, duel, over };
 
 struct RaceRules {
   bool by_error = false;         // a target error (else a time budget)
+  double target = 0;             // that target error
   double budget_seconds = 0;     // > 0: the time budget
   double elapsed = 0;            // the race's wall time so far
   int round = 0;                 // of the race phase, from 0
@@ -63,13 +67,18 @@ constexpr double kRaceShareOfForecast = 0.2;
 constexpr int kMaxRaceRounds = 10;
 constexpr int kMaxDuelRounds = 12;
 // The duel: a runner-up within kDuelTimeRatio of the best's remaining time is kept for it; in the
-// duel it renders kDuelShare of the leader's time a round, and it is dropped once, after
+// duel it renders kDuelShare of the leader's time a round. It is dropped once, after
 // kDuelRoundsToJudge rounds of its own there, its remaining time is kDuelDropRatio times the
-// leader's.
+// leader's, and the leader's forecast can be trusted: an unbiased leader's at once, a biased
+// one's once its error is within kDuelProofRatio of the target. A bias b under a target E slows a
+// method long before it stops it (at b = 0.7 E it needs twice the time), and its rate shows it
+// only where b is a fair part of the error (the error within about twice b): until then the
+// leader's forecast is its noise's alone, as fast as an unbiased method's.
 constexpr double kDuelTimeRatio = 4.0;
 constexpr double kDuelShare = 0.25;
 constexpr int kDuelRoundsToJudge = 2;
 constexpr double kDuelDropRatio = 1.5;
+constexpr double kDuelProofRatio = 1.5;
 
 // The call after a round in `phase` (race or duel).
 RoundCall call_round(const std::vector<RaceStanding>& standings, RacePhase phase, const RaceRules& rules);

@@ -1,4 +1,4 @@
-// --method auto's forecasts (render/method_race.h): how a candidate's error is carried forward
+// --method auto's forecasts (render/error_forecast.h): how a candidate's error is carried forward
 // from its readings, per kind of method, and where the forecast says "never".
 #include <gtest/gtest.h>
 
@@ -56,8 +56,27 @@ TEST(MethodRaceForecast, TheFramesStartIsNotPartOfTheDecay) {
   EXPECT_DOUBLE_EQ(first.rate, 0.5);
   EXPECT_NEAR(first.seconds_to(0.095), 1.0 + 0.3 * 4.0, 1e-9);
   EXPECT_DOUBLE_EQ(forecast_error({{1.25, 0.2, 1}}, ErrorDecay::measured, 1.0).rate, kAssumedShrinkRate);
-  // And a sampled estimate whose bias shows stalls, as any biased one may.
-  EXPECT_DOUBLE_EQ(forecast_error({{1.5, 0.1, 2}, {4.0, 0.1, 8}}, ErrorDecay::sampled, 1.0).rate, 0.0);
+  // And a sampled estimate whose error does not fall is all bias: it stays where it is.
+  const ErrorForecast stalled = forecast_error({{1.5, 0.1, 2}, {4.0, 0.1, 8}}, ErrorDecay::sampled, 1.0);
+  EXPECT_DOUBLE_EQ(stalled.floor, 0.1);
+  EXPECT_TRUE(std::isinf(stalled.seconds_to(0.09)));
+}
+
+TEST(MethodRaceForecast, ASampledEstimatesBiasIsAFloorUnderItsNoise) {
+  // error^2 = 0.0004 / p + 0.01^2: 2.236 % after 1 s of passes, 1.414 % after 4 s.
+  const ErrorForecast f =
+      forecast_error({{1.0, std::sqrt(0.0005), 4}, {4.0, std::sqrt(0.0002), 16}}, ErrorDecay::sampled);
+  EXPECT_NEAR(f.floor, 0.01, 1e-12);
+  EXPECT_NEAR(f.seconds_to(0.012), 0.0004 / (0.012 * 0.012 - 0.0001), 1e-9)
+      << "9.1 s, where the power law through the same readings (rate 0.33) says 6.5 s";
+  EXPECT_NEAR(f.error_at(400.0), std::sqrt(0.0004 / 400 + 0.0001), 1e-12);
+  EXPECT_TRUE(std::isinf(f.seconds_to(0.0099))) << "never under its bias";
+  // Noise alone, falling as 1/sqrt(t): no floor, the forecast of an unbiased method.
+  const ErrorForecast noise = forecast_error({{1.0, 0.02, 4}, {4.0, 0.01, 16}}, ErrorDecay::sampled);
+  EXPECT_DOUBLE_EQ(noise.floor, 0.0);
+  EXPECT_NEAR(noise.seconds_to(0.005), 16.0, 1e-9);
+  // Falling faster than that is the readings' noise: no floor either.
+  EXPECT_DOUBLE_EQ(forecast_error({{1.0, 0.04, 4}, {4.0, 0.01, 16}}, ErrorDecay::sampled).floor, 0.0);
 }
 
 TEST(MethodRaceForecast, AFinishedMethodStaysWhereItIs) {
