@@ -32,9 +32,9 @@ struct ErrorReading {
 //   floor: a floor is a difference of squares, and the readings' noise alone would make one (at
 //   7 % noise in their ratio, about 0.4 times the last error), which would count a converging
 //   candidate out. Over those readings a floor shows where it is a large part of the error: in
-//   the spot-lit box's coarse solution (levelling at 3.2-3.7 %, read at 4.7-4.9 %) it read 2.5-2.9 %; on Sponza, about
-//   0.8 % under 1.2-1.5 %, it read 0.26-0.36 % (docs/method-auto.md, "The duel"). A power law
-//   instead takes the bias's slowing for a slower rate that never stops.
+//   the spot-lit box's coarse solution (levelling at 3.2-3.7 %, read at 4.7-4.9 %) it read
+//   2.5-2.9 %; on Sponza, about 0.8 % under 1.2-1.5 %, it read 0.26-0.36 % (docs/method-auto.md,
+//   "The duel"). A power law instead takes the bias's slowing for a slower rate that never stops.
 // - measured (passes also shrink a bias: photon passes shrinking): assumed kAssumedShrinkRate until
 //   measured, may measure 0; no floor (the bias shrinks with the passes).
 // - fixed (its passes are done): stays where it is.

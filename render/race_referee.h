@@ -73,8 +73,9 @@ constexpr int kMaxDuelRounds = 12;
 // one's once its error is within kDuelProofRatio of the target. A bias b under a target E slows a
 // method long before it stops it (at b = 0.7 E it needs twice the time, at 0.87 E four times),
 // and its readings show it only near the target: final gathering over radiosity on Sponza, its
-// floor about 0.8-0.9 % (fitted to its readings) under a target of 1 %, fell from 2.06 to 1.49 % as its time doubled, as noise
-// alone would, and from 1.37 to 1.16 % over the next doubling (docs/method-auto.md, "The duel").
+// floor about 0.8 % under a target of 1 %, fell from 2.07 to 1.50 % as its time doubled, as
+// noise alone would, and from 1.21 to 1.15 % over the next half again (docs/method-auto.md,
+// "The duel").
 constexpr double kDuelTimeRatio = 4.0;
 constexpr double kDuelShare = 0.25;
 constexpr int kDuelRoundsToJudge = 2;
