@@ -76,7 +76,8 @@ double region_abs_error(const RegionSums& r) {
 }  // namespace
 
 BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const std::vector<float4>& control_film,
-                                  const ControlGrid& grid, uint64_t paths, uint32_t region_side) {
+                                  const ControlGrid& grid, uint64_t paths, uint32_t region_side,
+                                  ControlFilmPasses film_passes) {
   BiasEstimate e;
   e.paths = paths;
   if (paths < 2 || control_sums.size() < grid.pixels() || control_film.size() < grid.pixels()) return e;
@@ -86,6 +87,8 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
   std::vector<RegionSums> regions(size_t(regions_x) * regions_y);
   double control_total = 0, difference_total = 0, variance_total = 0;
   double squared_error_sum = 0, squared_error_squares = 0, counted = 0, noise_sum = 0;
+  double squared_bias_sum = 0, squared_bias_squares = 0;
+  const double all_passes = film_passes.passes, odd_passes = film_passes.odd, even_passes = all_passes - odd_passes;
   for (uint32_t by = 0; by < grid.blocks_y; ++by)
     for (uint32_t bx = 0; bx < grid.blocks_x; ++bx) {
       const size_t c = size_t(by) * grid.blocks_x + bx;
@@ -110,6 +113,15 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
       const double squared_error = d * d - variance;  // unbiased for the MSE
       squared_error_sum += squared_error;
       squared_error_squares += squared_error * squared_error;
+      if (film_passes.split()) {
+        // The even and the odd passes' means are two independent estimates; their difference
+        // squared, times P_even P_odd / P^2, is unbiased for the variance of the mean of all P.
+        const double odd = f.w, even = (film * all_passes - odd * odd_passes) / even_passes;
+        const double film_variance = (even - odd) * (even - odd) * even_passes * odd_passes / (all_passes * all_passes);
+        const double squared_bias = squared_error - film_variance;
+        squared_bias_sum += squared_bias;
+        squared_bias_squares += squared_bias * squared_bias;
+      }
       noise_sum += std::sqrt(variance);
       counted += 1;
     }
@@ -149,6 +161,12 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
   e.bias_error = std::sqrt(variance_total) / control_total;
   e.regional_bias = regional / control_total;
   e.control_noise = noise_sum / control_total;
+  if (film_passes.split() && mse > 0 && counted > 1) {
+    const double squared_bias = squared_bias_sum / counted;
+    const double spread =
+        std::sqrt(std::max(0.0, (squared_bias_squares / counted - squared_bias * squared_bias) / (counted - 1)));
+    e.bias_floor = mae / level * std::sqrt(std::clamp((squared_bias - spread) / mse, 0.0, 1.0));
+  }
   e.known = true;
   return e;
 }

@@ -35,7 +35,21 @@ struct BiasEstimate {
   double regional_bias = 0;   // sum over regions of |film - control|, less the control's noise there
   double control_noise = 0;   // the control's own standard error per pixel, mean over pixels / mean control
   uint64_t paths = 0;         // paths per control pixel so far
+  // The part of mean_abs_error that the film's own noise does not explain, at least: with the
+  // film's even and odd passes at each control pixel (ControlFilmPasses), E[d_c^2 - v_c - n_c]
+  // is its squared bias there (n_c: the film's own variance from its even/odd split); its mean,
+  // less one standard error, over the mean of d_c^2 - v_c, as a share of the relative mean
+  // absolute error. What more passes of a method whose passes are independent samples of one
+  // estimate cannot remove (docs/method-auto.md, "The duel"). -1: not known.
+  double bias_floor = -1;
   bool known = false;         // false: no control ran, or the control saw no light
+};
+
+// The passes behind a control film, for bias_floor: its w holds the odd passes' mean there.
+struct ControlFilmPasses {
+  uint32_t passes = 0;
+  uint32_t odd = 0;  // of passes, those with an odd pass number
+  bool split() const { return odd > 0 && odd < passes; }
 };
 
 // The control pixel grid of a film: one pixel per stride x stride block, stride chosen so that
@@ -66,7 +80,8 @@ ControlGrid control_grid(int width, int height);
 // control pixels: within one, the film's bias is summed before its absolute value is taken,
 // and the control's variance there is subtracted from the square (an unbiased |bias|^2).
 BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const std::vector<float4>& control_film,
-                                  const ControlGrid& grid, uint64_t paths, uint32_t region_side);
+                                  const ControlGrid& grid, uint64_t paths, uint32_t region_side,
+                                  ControlFilmPasses film_passes = {});
 
 // A control shared by several renderers of one frame (--method auto's race,
 // render/method_race.h): its paths depend only on the frame, the seed and the bounces, so one set

@@ -49,6 +49,11 @@ ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDec
     f.rate = std::clamp(measured, decay == ErrorDecay::monte_carlo ? kLeastMonteCarloRate : 0.0, 0.5);
     break;
   }
+  // The bias the last reading itself shows beside the film's own noise, where it says more.
+  if (decay == ErrorDecay::sampled && f.last.floor > f.floor) {
+    f.floor = std::min(f.last.floor, f.last.error);
+    if (f.floor >= f.last.error) f.rate = 0;
+  }
   return f;
 }
 

@@ -14,6 +14,7 @@ struct ErrorReading {
   double error = -1;  // Renderer::estimate_error: the relative mean absolute error of the indirect light
   uint32_t passes = 0;
   double error_stderr = 0;  // the standard error of that estimate
+  double floor = -1;        // the part of it that is bias, at least (BiasEstimate::bias_floor); -1: not known
 };
 
 // How a candidate's error falls with its render time t (its own; start is what it spent
@@ -35,6 +36,9 @@ struct ErrorReading {
 //   the spot-lit box's coarse solution (levelling at 3.2-3.7 %, read at 4.7-4.9 %) it read
 //   2.5-2.9 %; on Sponza, about 0.8 % under 1.2-1.5 %, it read 0.26-0.36 % (docs/method-auto.md,
 //   "The duel"). A power law instead takes the bias's slowing for a slower rate that never stops.
+//   Where the last reading knows the part of its error that the film's own noise does not explain
+//   (ErrorReading::floor, from the film's even and odd passes at the control pixels), that is the
+//   floor if it is the higher: it needs no second reading and no fit across time.
 // - measured (passes also shrink a bias: photon passes shrinking): assumed kAssumedShrinkRate until
 //   measured, may measure 0; no floor (the bias shrinks with the passes).
 // - fixed (its passes are done): stays where it is.

@@ -41,6 +41,7 @@ struct Runner {
   double start_seconds = 0;  // of own_seconds, beginning the frame (before any pass)
   RaceEntry entry;
   std::vector<std::vector<float4>> films;  // per reading
+  std::vector<ControlFilmPasses> film_passes;  // per reading: the passes behind it
   double last_upper = -1;  // the last reading's error plus two standard errors
   bool out = false;
   int duel_rounds = 0;  // rounds run in the duel (race_referee.h)
@@ -114,10 +115,12 @@ void measure(Runner& r, const SharedControl& control) {
   // (every method takes --bounces, so this holds for the command line's candidates).
   const bool comparable = r.renderer->control_bounces() == control.bounces;
   for (size_t i = 0; i < r.films.size(); ++i) {
-    const BiasEstimate e = comparable ? compare_with_control(control.sums, r.films[i], grid, control.paths, kControlRegionSide)
+    const BiasEstimate e = comparable ? compare_with_control(control.sums, r.films[i], grid, control.paths,
+                                                             kControlRegionSide, r.film_passes[i])
                                       : BiasEstimate{};
     r.entry.readings[i].error = e.known ? e.mean_abs_error : -1;
     r.entry.readings[i].error_stderr = e.known ? e.mean_abs_error_stderr : 0;
+    r.entry.readings[i].floor = e.known ? e.bias_floor : -1;
     if (i + 1 == r.films.size()) r.last_upper = e.known ? e.mean_abs_error_upper : -1;
   }
 }
@@ -212,6 +215,7 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
       r.duel_rounds += duelling ? 1 : 0;
       r.entry.readings.push_back({r.own_seconds, -1, r.renderer->passes_done()});
       r.films.push_back(r.renderer->film_at_control());
+      r.film_passes.push_back(r.renderer->film_passes_at_control());
     }
     // The control grows on any renderer still racing, while it has taken less time than the
     // candidates (its first paths always: without them nothing is measured).

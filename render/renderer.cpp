@@ -346,6 +346,7 @@ std::vector<float4> Renderer::film_at_control() {
   LaunchParams p = frame_.params;
   p.max_bounces = control_bounces();
   p.film_passes = passes_done_ > 0 ? passes_done_ : 1u;
+  p.film_odd_passes = odd_passes_;  // the odd passes' mean in w: the film's own noise there
   return control_->film_at_control(p);
 }
 

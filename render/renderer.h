@@ -124,6 +124,8 @@ class Renderer {
   // included. Wait for the device.
   void grow_shared_control(SharedControl& shared, uint32_t samples);
   std::vector<float4> film_at_control();
+  // The passes that film holds, for compare_with_control's bias_floor.
+  ControlFilmPasses film_passes_at_control() const { return {passes_done_, odd_passes_}; }
   const ControlGrid& error_control_grid() const { return control_->grid(); }
   // The light bounces the control follows for this renderer's method.
   uint32_t control_bounces() const;

@@ -10,7 +10,8 @@
    Per control pixel, control_sums holds (sum of the paths' indirect radiance rgb, sum of the
    squares of their channel means) over every launch of the frame (the host counts the paths),
    and control_film the film's resolved indirect + caustic light there at the latest launch, with
-   the pixel's index in w. A launch shares each control pixel's paths out over control_lanes work
+   the mean of its odd passes' (channel mean) in w when film_odd_passes is set, from which the host
+   tells the film's own noise there from its bias. A launch shares each control pixel's paths out over control_lanes work
    items (a thousand control pixels alone would leave a GPU nearly idle, one thread running
    every path of its pixel in turn), each writing its sums to control_partials; a second kernel
    adds the lanes in order, so the sums do not depend on the device's scheduling. Random numbers: the path
@@ -86,7 +87,12 @@ PM_DEVICE void kernel_bias_control_sum(const KernelGlobals* kg, const LaunchPara
   }
   float inv_passes = 1.0f / (float)(p->film_passes > 0u ? p->film_passes : 1u);
   Vec3 film = vec3_scale(vec3_add(vec3_from_float4(kg->film_indirect_sum[pixel]), film_caustic(kg, p, pixel)), inv_passes);
-  kg->control_film[c] = vec3_to_float4(film, PM_UINT_AS_FLOAT(pixel));
+  float odd_mean = 0.0f;
+  if (p->film_odd_passes > 0u) {
+    Vec3 odd = film_odd_sum(kg, pixel);
+    odd_mean = (odd.x + odd.y + odd.z) * (1.0f / 3.0f) / (float)p->film_odd_passes;
+  }
+  kg->control_film[c] = vec3_to_float4(film, odd_mean);
 }
 
 #endif

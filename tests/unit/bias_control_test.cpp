@@ -110,5 +110,48 @@ TEST(BiasControl, ANoisyControlSaysSoInsteadOfReadingNoiseAsAccuracy) {
   EXPECT_GT(e.control_noise, e.mean_abs_error - e.mean_abs_error_stderr);
 }
 
+// A film of `passes` passes, half of them odd, of bias +-bias in runs of 16 control pixels and a
+// noise of deviation `noise` in the mean of all passes, against a control of 1024 paths: its w
+// the odd passes' mean, as the control kernel writes it.
+SyntheticControl split_film(double bias, double noise, uint32_t seed) {
+  SyntheticControl c = synthetic(1024, 1024, 4.0, 0.0, 0.0, seed);
+  std::mt19937 rng(seed + 100);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  double abs_sum = 0;
+  for (size_t i = 0; i < c.film.size(); ++i) {
+    const double b = (i / 16) % 2 ? bias : -bias;
+    // Each half's mean has twice the variance of the mean of all passes.
+    const double even = 1 + b + noise * std::sqrt(2.0) * normal(rng), odd = 1 + b + noise * std::sqrt(2.0) * normal(rng);
+    const float all = float(0.5 * (even + odd));
+    c.film[i] = {all, all, all, float(odd)};
+    abs_sum += std::fabs(all - 1.0);
+  }
+  c.true_mae = abs_sum / double(c.film.size());
+  return c;
+}
+
+TEST(BiasControl, TheFilmsOwnNoiseIsToldFromItsBias) {
+  // A bias of 5 % under a noise of 5 %: the part of the error that is bias, read through the
+  // film's even and odd passes, at most the bias's own mean |error| and at least 60 % of it
+  // (the share of the mean absolute error that sqrt(bias^2 / error^2) gives, less a standard
+  // error of the squared bias).
+  for (uint32_t seed : {7u, 8u, 9u}) {
+    const SyntheticControl c = split_film(0.05, 0.05, seed);
+    const BiasEstimate e = compare_with_control(c.sums, c.film, grid_of(32), 1024, kControlRegionSide, {64, 32});
+    ASSERT_TRUE(e.known);
+    EXPECT_GE(e.bias_floor, 0.6 * 0.05) << "seed " << seed;
+    EXPECT_LE(e.bias_floor, 0.05) << "seed " << seed;
+    EXPECT_LT(e.bias_floor, e.mean_abs_error);
+    // Noise alone: next to nothing of it is bias.
+    const SyntheticControl noise = split_film(0.0, 0.05, seed);
+    const BiasEstimate n = compare_with_control(noise.sums, noise.film, grid_of(32), 1024, kControlRegionSide, {64, 32});
+    EXPECT_LT(n.bias_floor, 0.2 * n.mean_abs_error) << "seed " << seed;
+  }
+  // Without the passes behind the film (or with no odd ones), it is not known.
+  const SyntheticControl c = split_film(0.05, 0.05, 7);
+  EXPECT_EQ(compare_with_control(c.sums, c.film, grid_of(32), 1024, kControlRegionSide).bias_floor, -1.0);
+  EXPECT_EQ(compare_with_control(c.sums, c.film, grid_of(32), 1024, kControlRegionSide, {64, 0}).bias_floor, -1.0);
+}
+
 }  // namespace
 }  // namespace pm
