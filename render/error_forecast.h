@@ -30,9 +30,9 @@ struct ErrorReading {
 // - sampled (passes are independent samples of one biased estimate: final gathering over a
 //   radiosity solution): noise falling as 1/sqrt(t) over a constant bias, the floor, fitted from
 //   the same two readings (error^2 = a / p + floor^2), each a standard error towards the lower
-//   floor: a floor is a difference of squares, and the readings' noise alone would make one (at
-//   7 % noise in their ratio, about 0.4 times the last error), which would count a converging
-//   candidate out. Over those readings a floor shows where it is a large part of the error: in
+//   floor: a floor is a difference of squares, and the readings' noise alone would make one (for
+//   readings twice apart in time whose ratio is 7 % low, about half the last error), which would
+//   count a converging candidate out. Over those readings a floor shows where it is a large part of the error: in
 //   the spot-lit box's coarse solution (levelling at 3.2-3.7 %, read at 4.7-4.9 %) it read
 //   2.5-2.9 %; on Sponza, about 0.8 % under 1.2-1.5 %, it read 0.26-0.36 % (docs/method-auto.md,
 //   "The duel"). A power law instead takes the bias's slowing for a slower rate that never stops.

@@ -10,10 +10,10 @@
    Per control pixel, control_sums holds (sum of the paths' indirect radiance rgb, sum of the
    squares of their channel means) over every launch of the frame (the host counts the paths),
    and control_film the film's resolved indirect + caustic light there at the latest launch, with
-   the mean of its odd passes' (channel mean) in w when film_odd_passes is set, from which the host
-   tells the film's own noise there from its bias. A launch shares each control pixel's paths out over control_lanes work
-   items (a thousand control pixels alone would leave a GPU nearly idle, one thread running
-   every path of its pixel in turn), each writing its sums to control_partials; a second kernel
+   its odd passes' mean (channel mean) in w when film_odd_passes is set, from which the host
+   tells the film's own noise there from its bias. A launch shares each control pixel's paths
+   out over control_lanes work items (a thousand control pixels alone would leave a GPU nearly
+   idle, one thread running every path of its pixel in turn), each writing its sums to control_partials; a second kernel
    adds the lanes in order, so the sums do not depend on the device's scheduling. Random numbers: the path
    tracer's stream, keyed by (seed ^ PM_STREAM_CONTROL, frame), so the control never shares a path
    with a --method path render of the same seed. */

@@ -69,7 +69,7 @@
   X(frame, float4, film_position, layer_pixels, 1) /* xyz first hit, w = its object (int bits) */           \
   /* the error estimate's bias control (bias_control.h), one entry per control pixel */                    \
   X(frame, float4, control_sums, control_pixels, 1) /* paths' rgb sum, w = sum of squared channel means */ \
-  X(frame, float4, control_film, control_pixels, 1) /* the film's indirect + caustic there; w = odd passes' mean */   \
+  X(frame, float4, control_film, control_pixels, 1) /* film's indirect + caustic; w = odd passes' mean */ \
   X(frame, float4, control_partials, control_pixels, PM_CONTROL_LANES) /* per lane of a launch, as control_sums */ \
   /* photon mapping, S1 emitters: per light (first photon of the pass, photon count, 0, 0) */              \
   X(photon, uint4, photon_emitters, uploaded, 1)                                                            \
