@@ -72,6 +72,8 @@ std::vector<std::pair<std::string, std::string>> FrameJob::attributes(int frame,
     a.push_back({"pmrender/error_bias_signed", number_text(bias.signed_bias)});
     a.push_back({"pmrender/error_bias_stderr", number_text(bias.bias_error)});
     a.push_back({"pmrender/error_control_paths", std::to_string(bias.paths)});
+    // Of the estimate, the part the film's own noise does not explain (its even/odd passes).
+    if (bias.bias_floor >= 0) a.push_back({"pmrender/error_bias_floor", number_text(bias.bias_floor)});
   }
   a.insert(a.end(), extra_attributes_.begin(), extra_attributes_.end());
   for (auto& layer_attribute : film_layer_attributes(renderer_.layers(), scene_, options_.full_float))
@@ -110,7 +112,22 @@ RenderedFrame FrameJob::render(int frame, const std::string& path, const std::st
   const double per_pass = work.second;
   auto last_draw = std::chrono::steady_clock::time_point{};
   ProgressiveCallbacks callbacks;
+  // --verbose under a target error: the control's reading each time the passes double (and the
+  // bias it sees beside the film's own noise), so that a frame that levels off shows why.
+  const bool log_readings = options_.verbose && options_.budget.target_error > 0 && pass_progress_;
+  auto log_reading = [&](const PassReport& r) {
+    if (!log_readings || r.error < 0 || r.passes < kMinPassesForError || (r.passes & (r.passes - 1)) != 0) return;
+    const BiasEstimate& b = renderer_.last_bias();
+    std::string floor = b.known && b.bias_floor >= 0 ? ", bias at least " + percent_text(b.bias_floor) : "";
+    std::lock_guard<std::mutex> lock(*pass_progress_);
+    progress.clear();
+    std::printf("frame %d: %u passes in %s, error %s (+-%s%s)\n", frame, r.passes, seconds_text(r.seconds).c_str(),
+                percent_text(r.error).c_str(), percent_text(b.known ? b.mean_abs_error_stderr : 0.0).c_str(),
+                floor.c_str());
+    std::fflush(stdout);
+  };
   if (pass_progress_) callbacks.after_pass = [&](const PassReport& r) {
+    log_reading(r);
     const auto now = std::chrono::steady_clock::now();
     if (now - last_draw < std::chrono::milliseconds(100)) return;
     last_draw = now;

@@ -20,6 +20,7 @@ struct FrameJobOptions {
   bool full_float = false;
   bool resume = false;   // continue from a checkpoint where one fits
   bool quiet = false;
+  bool verbose = false;  // under a target error: the error control's readings as the passes double
   std::optional<double> preview_exposure_ev;  // --exposure; without it each preview's automatic one
 };
 

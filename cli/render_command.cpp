@@ -177,6 +177,7 @@ int run_render(const RenderCommandOptions& o) {
   job_options.full_float = o.full_float;
   job_options.resume = o.resume;
   job_options.quiet = o.quiet;
+  job_options.verbose = o.verbose && !o.quiet;
   if (o.exposure_option->count() > 0) job_options.preview_exposure_ev = o.exposure_ev;
 
   // Devices, their renderers and the frame jobs (frame_devices.h), once the input is known good.

@@ -166,6 +166,7 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
     const double spread =
         std::sqrt(std::max(0.0, (squared_bias_squares / counted - squared_bias * squared_bias) / (counted - 1)));
     e.bias_floor = mae / level * std::sqrt(std::clamp((squared_bias - spread) / mse, 0.0, 1.0));
+    e.bias_ceiling = mae / level * std::sqrt(std::clamp((squared_bias + 2.0 * spread) / mse, 0.0, 1.0));
   }
   e.known = true;
   return e;
@@ -184,7 +185,7 @@ void BiasControl::launch(LaunchParams params, uint32_t samples, uint64_t first_s
   device_.launch(KernelId::bias_control_sum, items, params);
 }
 
-BiasEstimate BiasControl::add_and_compare(LaunchParams params, uint32_t samples) {
+BiasEstimate BiasControl::add_and_compare(LaunchParams params, uint32_t samples, ControlFilmPasses film_passes) {
   const uint64_t items = grid_.pixels();
   if (!cleared_) {
     device_.fill_zero(buffers_[BufferSlot::control_sums], buffers_[BufferSlot::control_sums].bytes());
@@ -195,7 +196,7 @@ BiasEstimate BiasControl::add_and_compare(LaunchParams params, uint32_t samples)
   std::vector<float4> sums(items), film(items);
   device_.download(buffers_[BufferSlot::control_sums], sums.data(), items * sizeof(float4));
   device_.download(buffers_[BufferSlot::control_film], film.data(), items * sizeof(float4));
-  return compare_with_control(sums, film, grid_, paths_, kControlRegionSide);
+  return compare_with_control(sums, film, grid_, paths_, kControlRegionSide, film_passes);
 }
 
 void BiasControl::grow_shared(LaunchParams params, SharedControl& shared, uint32_t samples) {

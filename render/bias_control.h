@@ -42,6 +42,8 @@ struct BiasEstimate {
   // absolute error. What more passes of a method whose passes are independent samples of one
   // estimate cannot remove (docs/method-auto.md, "The duel"). -1: not known.
   double bias_floor = -1;
+  // The same with two standard errors added: the part that is bias, at most. -1: not known.
+  double bias_ceiling = -1;
   bool known = false;         // false: no control ran, or the control saw no light
 };
 
@@ -100,7 +102,8 @@ class BiasControl {
   void begin_frame() { paths_ = 0; cleared_ = false; }
   // `samples` more paths per control pixel under `params` (the frame's, with the method's
   // bounces and the film's pass count), then the comparison. Waits for the device.
-  BiasEstimate add_and_compare(LaunchParams params, uint32_t samples);
+  // With film_passes (params.film_odd_passes set to its odd count), the estimate's bias_floor too.
+  BiasEstimate add_and_compare(LaunchParams params, uint32_t samples, ControlFilmPasses film_passes = {});
   const ControlGrid& grid() const { return grid_; }
   uint64_t paths() const { return paths_; }
   // `samples` more paths per control pixel added to shared (on this device, under params).

@@ -15,6 +15,11 @@ double ErrorForecast::seconds_to(double target) const {
   return start + passes * std::pow(above / wanted, 0.5 / rate);
 }
 
+double ErrorForecast::seconds_to_proof(double target) const {
+  const double share = last.error > 0 ? std::max(0.0, last.error_stderr) / last.error : 0.0;
+  return seconds_to(target / (1.0 + 2.0 * share));
+}
+
 double ErrorForecast::error_at(double seconds) const {
   const double passes = last.seconds - start;
   if (seconds <= last.seconds || passes <= 0) return last.error;

@@ -86,10 +86,12 @@ std::string round_text(int round, RacePhase phase, double elapsed, const std::ve
     const Runner& r = runners[i];
     if (r.out) continue;
     const ErrorForecast& f = r.entry.forecast;
-    char part[224];
-    std::snprintf(part, sizeof(part), " %s %s, error %s (+-%.2f), rate %.2f%s%s%s, %s %s;", r.entry.label.c_str(),
-                  seconds_text(r.own_seconds).c_str(), percent(r.entry.readings.back().error).c_str(),
-                  100.0 * r.entry.readings.back().error_stderr, f.rate,
+    const ErrorReading& last = r.entry.readings.back();
+    const std::string own_floor = last.floor >= 0 ? ", bias at least " + percent(last.floor) : "";
+    char part[288];
+    std::snprintf(part, sizeof(part), " %s %s, error %s (+-%.2f%s), rate %.2f%s%s%s, %s %s;", r.entry.label.c_str(),
+                  seconds_text(r.own_seconds).c_str(), percent(last.error).c_str(), 100.0 * last.error_stderr,
+                  own_floor.c_str(), f.rate,
                   standings[i].measured ? "" : " (assumed)", f.floor > 0 ? " over a floor of " : "",
                   f.floor > 0 ? percent(f.floor).c_str() : "", by_error ? "needs" : "forecast",
                   by_error ? seconds_text(standings[i].value).c_str() : percent(standings[i].value).c_str());
@@ -121,6 +123,7 @@ void measure(Runner& r, const SharedControl& control) {
     r.entry.readings[i].error = e.known ? e.mean_abs_error : -1;
     r.entry.readings[i].error_stderr = e.known ? e.mean_abs_error_stderr : 0;
     r.entry.readings[i].floor = e.known ? e.bias_floor : -1;
+    r.entry.readings[i].floor_upper = e.known ? e.bias_ceiling : -1;
     if (i + 1 == r.films.size()) r.last_upper = e.known ? e.mean_abs_error_upper : -1;
   }
 }
@@ -252,7 +255,7 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
       r.entry.forecast = forecast_error(r.entry.readings, r.decay(), r.start_seconds);
       const bool known = !r.entry.readings.empty() && r.entry.readings.back().error >= 0;
       if (!known) r.entry.forecast_value = std::numeric_limits<double>::infinity();
-      else if (by_error) r.entry.forecast_value = r.entry.forecast.seconds_to(target);
+      else if (by_error) r.entry.forecast_value = r.entry.forecast.seconds_to_proof(target);
       else r.entry.forecast_value = r.entry.forecast.error_at(r.own_seconds + remaining);
       st.forecast_total = r.entry.forecast_value;
       st.value = by_error ? std::max(0.0, r.entry.forecast_value - r.own_seconds) : r.entry.forecast_value;
@@ -260,6 +263,7 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
       st.measured = r.measured();
       st.biased = r.renderer->method() && r.renderer->method()->may_be_biased();
       st.error = known ? r.entry.readings.back().error : -1;
+      st.bias_at_most = known ? r.entry.readings.back().floor_upper : -1;
       st.duel_rounds = r.duel_rounds;
     }
     const RoundCall call = call_round(standings, phase, {by_error, target, budget.seconds, elapsed, round});

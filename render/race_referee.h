@@ -35,6 +35,7 @@ struct RaceStanding {
   bool measured = false;  // its forecast rests on a measured rate (or on its final error)
   bool biased = false;    // its passes may converge to a bias (Renderer::method()->may_be_biased())
   double error = -1;      // its last reading
+  double bias_at_most = -1;  // of that reading, the part that is bias at most; -1: not known
   bool out = false;       // dropped earlier
   int duel_rounds = 0;    // rounds it has run in the duel
 };
@@ -70,17 +71,21 @@ constexpr int kMaxDuelRounds = 12;
 // duel it renders kDuelShare of the leader's time a round. It is dropped once, after
 // kDuelRoundsToJudge rounds of its own there, its remaining time is kDuelDropRatio times the
 // leader's, and the leader's forecast can be trusted: an unbiased leader's at once, a biased
-// one's once its error is within kDuelProofRatio of the target. A bias b under a target E slows a
-// method long before it stops it (at b = 0.7 E it needs twice the time, at 0.87 E four times),
-// and its readings show it only near the target: final gathering over radiosity on Sponza, its
-// floor about 0.8 % under a target of 1 %, fell from 2.07 to 1.50 % as its time doubled, as
-// noise alone would, and from 1.21 to 1.15 % over the next half again (docs/method-auto.md,
-// "The duel").
+// one's once its error is within kDuelProofRatio of the target, or once its reading bounds its
+// bias (plus two standard errors) within kTrustedBiasShare of the target. A bias b under a
+// target E slows a method long before it stops it (at b = 0.7 E it needs twice the time, at
+// 0.87 E four times), and its readings show it only near the target: final gathering over
+// radiosity on Sponza, its floor about 0.8 % under a target of 1 %, fell from 2.07 to 1.50 % as
+// its time doubled, as noise alone would, and from 1.21 to 1.15 % over the next half again
+// (docs/method-auto.md, "The duel"). A bias of at most half the target lengthens the time to it
+// by at most a third (1 / (1 - 0.5^2)), less than kDuelDropRatio, even were the forecast to
+// leave it out.
 constexpr double kDuelTimeRatio = 4.0;
 constexpr double kDuelShare = 0.25;
 constexpr int kDuelRoundsToJudge = 2;
 constexpr double kDuelDropRatio = 1.5;
 constexpr double kDuelProofRatio = 1.2;
+constexpr double kTrustedBiasShare = 0.5;
 
 // The call after a round in `phase` (race or duel).
 RoundCall call_round(const std::vector<RaceStanding>& standings, RacePhase phase, const RaceRules& rules);

@@ -79,6 +79,23 @@ TEST(MethodRaceForecast, ASampledEstimatesBiasIsAFloorUnderItsNoise) {
   EXPECT_DOUBLE_EQ(forecast_error({{1.0, 0.04, 4}, {4.0, 0.01, 16}}, ErrorDecay::sampled).floor, 0.0);
 }
 
+TEST(MethodRaceForecast, TheTimeToProveATargetCountsTheReadingsStandardError) {
+  // The stopping rule wants the estimate plus two standard errors under the target: with a
+  // standard error of 5 % of the error, the error must reach target / 1.1.
+  ErrorReading last{1.0, 0.02, 16, 0.001};
+  const ErrorForecast noise = forecast_error({last}, ErrorDecay::monte_carlo);
+  EXPECT_NEAR(noise.seconds_to_proof(0.01), 4.0 * 1.1 * 1.1, 1e-9);
+  // Over a floor the proof costs more than the noise's share: 0.8 % under a target of 1 %.
+  ErrorForecast biased = noise;
+  biased.floor = 0.008;
+  const double to_target = biased.seconds_to(0.01), to_proof = biased.seconds_to_proof(0.01);
+  EXPECT_NEAR(to_proof / to_target, (0.01 * 0.01 - 0.008 * 0.008) / (0.01 * 0.01 / 1.21 - 0.008 * 0.008), 1e-9);
+  EXPECT_GT(to_proof / to_target, 1.9) << "the noise alone: 1.21";
+  // A reading without a standard error: the target itself.
+  last.error_stderr = 0;
+  EXPECT_DOUBLE_EQ(forecast_error({last}, ErrorDecay::monte_carlo).seconds_to_proof(0.01), 4.0);
+}
+
 TEST(MethodRaceForecast, AFinishedMethodStaysWhereItIs) {
   const ErrorForecast radiosity = forecast_error({{0.5, 0.02, 1}}, ErrorDecay::fixed);
   EXPECT_DOUBLE_EQ(radiosity.error_at(100.0), 0.02);
