@@ -165,7 +165,7 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
     const double squared_bias = squared_bias_sum / counted;
     const double spread =
         std::sqrt(std::max(0.0, (squared_bias_squares / counted - squared_bias * squared_bias) / (counted - 1)));
-    e.bias_floor = mae / level * std::sqrt(std::clamp((squared_bias - spread) / mse, 0.0, 1.0));
+    e.bias_floor = mae / level * std::sqrt(std::clamp((squared_bias - 2.0 * spread) / mse, 0.0, 1.0));
     e.bias_ceiling = mae / level * std::sqrt(std::clamp((squared_bias + 2.0 * spread) / mse, 0.0, 1.0));
   }
   e.known = true;

@@ -301,7 +301,8 @@ double Renderer::estimate_error(bool final, double noise_scale) {
     LaunchParams p = frame_.params;
     p.max_bounces = method_->light_bounces();
     p.film_passes = passes_done_;
-    last_bias_ = control_->add_and_compare(p, uint32_t(want - have));
+    p.film_odd_passes = odd_passes_;  // the film's own noise told from its bias (bias_floor)
+    last_bias_ = control_->add_and_compare(p, uint32_t(want - have), film_passes_at_control());
     // Where the path tracer is noisy (a small lamp in a closed box), the control's own noise
     // can dwarf the film's error: at the end of a frame the control doubles its paths, up to
     // kControlPathsGrowth times control_paths, until its noise per pixel is below the error it
@@ -319,7 +320,7 @@ double Renderer::estimate_error(bool final, double noise_scale) {
     while (final && last_bias_.known && control_->paths() < uint64_t(settings_.control_paths) * kControlPathsGrowth &&
            unresolved(last_bias_) && growth_s + (growth_s > 0 ? 2.0 * last_step_s : 0.0) <= frame_s) {
       const Clock::time_point step_begun = Clock::now();
-      last_bias_ = control_->add_and_compare(p, uint32_t(control_->paths()));
+      last_bias_ = control_->add_and_compare(p, uint32_t(control_->paths()), film_passes_at_control());
       last_step_s = std::chrono::duration<double>(Clock::now() - step_begun).count();
       growth_s = std::chrono::duration<double>(Clock::now() - growth_begun).count();
     }
