@@ -144,6 +144,7 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
                                         : 0.0;
   // The point estimate with the control's own resolution folded in (one standard error of the
   // mean squared error): an imprecise control never reports an error of zero.
+  e.mean_square = mse / (level * level);
   e.rms_error = std::sqrt(std::max(0.0, mse) + mse_spread) / level;
   const double mae = abs_error_sum / counted;
   const double per_pixel_mean = per_pixel_sum / region_count;

@@ -28,6 +28,7 @@ struct BiasEstimate {
                                // control mean; plus its standard error (over the regions)
   double mean_abs_error_upper = 0; // the same with two standard errors (the stopping rule's)
   double mean_abs_error_stderr = 0; // that standard error
+  double mean_square = 0;      // mean(d_c^2 - v_c) / mean control^2: unbiased for the film's relative MSE
   double rms_error = 0;        // sqrt(mean(d_c^2 - v_c) + its standard error) / mean control: the
                                // film's relative RMS error (an unbiased mean square)
   double signed_bias = 0;     // (film - control) summed over every control pixel / control sum

@@ -27,6 +27,42 @@ double ErrorForecast::error_at(double seconds) const {
   return std::sqrt(floor * floor + above * std::pow(passes / (seconds - start), 2 * rate));
 }
 
+namespace {
+
+// The floor of a sampled estimate from its recent readings' mean squared errors, fitted as
+// MSE = a / p + floor^2 by least squares (p: the passes' time) over the readings within
+// kFloorFitSpan of the last in time and of kFloorFitLeastPasses passes or more, when there are
+// kFloorFitReadings of them spanning at least kFloorFitLeastSpan; as a share of the last reading's error. The mean squares are unbiased
+// and all of a candidate's readings are measured against the same control, so the fit sees how
+// the error falls, not the control's noise, which shifts every reading alike (the relative mean
+// absolute errors moved a standard error apart, as the two-reading fit must, read Sponza's floor
+// of about 0.8 % as 0.17-0.36 %). -1: too few readings.
+double fitted_floor(const std::vector<ErrorReading>& readings, double start_seconds) {
+  const ErrorReading& last = readings.back();
+  const double last_passes = last.seconds - start_seconds;
+  if (!(last_passes > 0) || !(last.mean_square > 0) || !(last.error > 0)) return -1;
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, earliest = last_passes;
+  for (const ErrorReading& r : readings) {
+    const double passes = r.seconds - start_seconds;
+    if (!(passes > 0) || r.mean_square < 0 || r.passes < kFloorFitLeastPasses || passes * kFloorFitSpan < last_passes)
+      continue;
+    const double x = 1.0 / passes;
+    n += 1;
+    sx += x;
+    sy += r.mean_square;
+    sxx += x * x;
+    sxy += x * r.mean_square;
+    earliest = std::min(earliest, passes);
+  }
+  if (n < kFloorFitReadings || last_passes < kFloorFitLeastSpan * earliest) return -1;
+  const double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx);
+  if (!(slope > 0)) return last.error;  // the error does not fall: all of it is floor
+  const double floor_square = (sy - slope * sx) / n;
+  return last.error * std::sqrt(std::clamp(floor_square / last.mean_square, 0.0, 1.0));
+}
+
+}  // namespace
+
 ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDecay decay, double start_seconds) {
   ErrorForecast f;
   f.start = start_seconds;
@@ -53,6 +89,15 @@ ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDec
     const double measured = std::log(a.error / f.last.error) / std::log(last_passes / passes);
     f.rate = std::clamp(measured, decay == ErrorDecay::monte_carlo ? kLeastMonteCarloRate : 0.0, 0.5);
     break;
+  }
+  // Over enough readings, their mean squares' fit instead of the two readings' (whose standard
+  // errors are mostly the control's, which all readings share).
+  if (decay == ErrorDecay::sampled) {
+    const double fitted = fitted_floor(readings, start_seconds);
+    if (fitted >= 0) {
+      f.floor = std::min(fitted, f.last.error);
+      f.rate = f.floor < f.last.error ? 0.5 : 0.0;
+    }
   }
   // The bias the last reading itself shows beside the film's own noise, where it says more.
   if (decay == ErrorDecay::sampled && f.last.floor > f.floor) {

@@ -16,6 +16,7 @@ struct ErrorReading {
   double error_stderr = 0;  // the standard error of that estimate
   double floor = -1;        // the part of it that is bias, at least (BiasEstimate::bias_floor); -1: not known
   double floor_upper = -1;  // and at most (BiasEstimate::bias_ceiling); -1: not known
+  double mean_square = -1;  // the relative mean squared error, unbiased (BiasEstimate::mean_square); -1: not known
 };
 
 // How a candidate's error falls with its render time t (its own; start is what it spent
@@ -37,6 +38,8 @@ struct ErrorReading {
 //   the spot-lit box's coarse solution (levelling at 3.2-3.7 %, read at 4.7-4.9 %) it read
 //   2.5-2.9 %; on Sponza, about 0.8 % under 1.2-1.5 %, it read 0.26-0.36 % (docs/method-auto.md,
 //   "The duel"). A power law instead takes the bias's slowing for a slower rate that never stops.
+//   With three readings or more spanning 3.5 times in pass time, the floor is fitted instead
+//   through their mean squared errors by least squares (fitted_floor, error_forecast.cpp).
 //   Where the last reading knows the part of its error that the film's own noise does not explain
 //   (ErrorReading::floor, from the film's even and odd passes at the control pixels), that is the
 //   floor if it is the higher: it needs no second reading and no fit across time.
@@ -68,6 +71,16 @@ constexpr double kLeastMonteCarloRate = 0.25;
 // Readings this far apart in pass time (a factor) measure a rate; closer ones are mostly the
 // estimate's own noise.
 constexpr double kRateSpan = 1.5;
+// The floor of a sampled estimate is fitted over its readings within kFloorFitSpan of the last
+// in pass time and of kFloorFitLeastPasses passes or more, once there are kFloorFitReadings of
+// them spanning kFloorFitLeastSpan (three rounds of doubling): readings of fewer passes, while
+// pixels have few rays, fall more slowly than 1/sqrt(t) and would read a floor that is not there
+// (the race's first three readings of final gathering over radiosity on Sibenik, 0.2 to 0.7 s,
+// fitted so: 1.3 %, where its later readings show about 0.6 %).
+constexpr double kFloorFitSpan = 8.0;
+constexpr int kFloorFitReadings = 3;
+constexpr double kFloorFitLeastSpan = 3.5;
+constexpr uint32_t kFloorFitLeastPasses = 16;
 ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDecay decay, double start_seconds = 0);
 
 }  // namespace pm

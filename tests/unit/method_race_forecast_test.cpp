@@ -96,6 +96,38 @@ TEST(MethodRaceForecast, TheTimeToProveATargetCountsTheReadingsStandardError) {
   EXPECT_DOUBLE_EQ(forecast_error({last}, ErrorDecay::monte_carlo).seconds_to_proof(0.01), 4.0);
 }
 
+TEST(MethodRaceForecast, ASampledEstimatesFloorIsFittedThroughItsReadingsMeanSquares) {
+  // Final gathering over radiosity on Sponza: MSE = a / p + b^2 with b = 0.8 %, the relative mean
+  // absolute error 0.8 times the RMS error; each reading's standard error 7 % of its error.
+  const double a = 0.0001, b = 0.008;
+  std::vector<ErrorReading> readings;
+  for (double t : {0.4, 0.8, 1.6, 3.2, 6.4}) {
+    ErrorReading r;
+    r.seconds = t;
+    r.passes = uint32_t(80 * t);
+    r.mean_square = a / t + b * b;
+    r.error = 0.8 * std::sqrt(r.mean_square);
+    r.error_stderr = 0.07 * r.error;
+    readings.push_back(r);
+  }
+  const ErrorForecast f = forecast_error(readings, ErrorDecay::sampled);
+  EXPECT_NEAR(f.floor, 0.8 * b, 1e-9);
+  EXPECT_DOUBLE_EQ(f.rate, 0.5);
+  // Readings of few passes are left out of the fit, and three within the span are needed: with
+  // two, the two-reading fit, each a standard error apart (lower).
+  for (ErrorReading& r : readings) r.passes = kFloorFitLeastPasses - 1;
+  readings.back().passes = 600;
+  const ErrorForecast two = forecast_error({readings[3], readings[4]}, ErrorDecay::sampled);
+  EXPECT_DOUBLE_EQ(forecast_error(readings, ErrorDecay::sampled).floor, two.floor);
+  EXPECT_LT(two.floor, f.floor);
+  // An error that does not fall over the fitted readings is all floor.
+  std::vector<ErrorReading> stalled(3, readings.back());
+  for (int i = 0; i < 3; ++i) stalled[size_t(i)].seconds = std::pow(2.0, i);
+  const ErrorForecast flat = forecast_error(stalled, ErrorDecay::sampled);
+  EXPECT_DOUBLE_EQ(flat.floor, stalled.back().error);
+  EXPECT_TRUE(std::isinf(flat.seconds_to(0.5 * flat.floor)));
+}
+
 TEST(MethodRaceForecast, AFinishedMethodStaysWhereItIs) {
   const ErrorForecast radiosity = forecast_error({{0.5, 0.02, 1}}, ErrorDecay::fixed);
   EXPECT_DOUBLE_EQ(radiosity.error_at(100.0), 0.02);
