@@ -97,7 +97,6 @@ ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDec
     if (fitted >= 0) {
       f.floor = std::min(fitted, f.last.error);
       f.rate = f.floor < f.last.error ? 0.5 : 0.0;
-      f.floor_fitted = true;
     }
   }
   // The bias the last reading itself shows beside the film's own noise, where it says more.

@@ -50,7 +50,6 @@ struct ErrorForecast {
   ErrorReading last;
   double rate = 0;
   double floor = 0;  // the error it cannot go below (sampled)
-  bool floor_fitted = false;  // that floor fitted through three readings or more (fitted_floor)
   double start = 0;  // own seconds before the first pass
   // Render time at which the error reaches `target` (its own time, the time spent included);
   // infinity if never.

@@ -264,10 +264,7 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
       st.measured = r.measured();
       st.biased = r.renderer->method() && r.renderer->method()->may_be_biased();
       st.error = known ? r.entry.readings.back().error : -1;
-      // The bias it stays under: its reading's ceiling, or the floor fitted through its readings.
-      const double ceiling = known ? r.entry.readings.back().floor_upper : -1;
-      const ErrorForecast& f = r.entry.forecast;
-      st.bias_at_most = f.floor_fitted && known ? (ceiling >= 0 ? std::min(ceiling, f.floor) : f.floor) : ceiling;
+      st.bias_at_most = known ? r.entry.readings.back().floor_upper : -1;
       st.duel_rounds = r.duel_rounds;
     }
     const RoundCall call = call_round(standings, phase, {by_error, target, budget.seconds, elapsed, round});

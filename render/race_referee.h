@@ -35,10 +35,7 @@ struct RaceStanding {
   bool measured = false;  // its forecast rests on a measured rate (or on its final error)
   bool biased = false;    // its passes may converge to a bias (Renderer::method()->may_be_biased())
   double error = -1;      // its last reading
-  // Of that reading, the part that is bias at most (its ceiling), or the floor fitted through its
-  // readings where that is lower (a fit over readings whose shared control noise cancels, not a
-  // bound); -1: not known.
-  double bias_at_most = -1;
+  double bias_at_most = -1;  // of that reading, the part that is bias at most; -1: not known
   bool out = false;       // dropped earlier
   int duel_rounds = 0;    // rounds it has run in the duel
 };
@@ -75,8 +72,7 @@ constexpr int kMaxDuelRounds = 12;
 // kDuelRoundsToJudge rounds of its own there, its remaining time is kDuelDropRatio times the
 // leader's, and the leader's forecast can be trusted: an unbiased leader's at once, a biased
 // one's once its error is within kDuelProofRatio of the target, or once its reading bounds its
-// bias (plus two standard errors), or the fit through its readings puts it, within
-// kTrustedBiasShare of the target. A bias b under a
+// bias (plus two standard errors) within kTrustedBiasShare of the target. A bias b under a
 // target E slows a method long before it stops it (at b = 0.7 E it needs twice the time, at
 // 0.87 E four times), and its readings show it only near the target: final gathering over
 // radiosity on Sponza, its floor about 0.8 % under a target of 1 %, fell from 2.07 to 1.50 % as

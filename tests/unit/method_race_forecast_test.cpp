@@ -113,14 +113,12 @@ TEST(MethodRaceForecast, ASampledEstimatesFloorIsFittedThroughItsReadingsMeanSqu
   const ErrorForecast f = forecast_error(readings, ErrorDecay::sampled);
   EXPECT_NEAR(f.floor, 0.8 * b, 1e-9);
   EXPECT_DOUBLE_EQ(f.rate, 0.5);
-  EXPECT_TRUE(f.floor_fitted);
   // Readings of few passes are left out of the fit, and three within the span are needed: with
   // two, the two-reading fit, each a standard error apart (lower).
   for (ErrorReading& r : readings) r.passes = kFloorFitLeastPasses - 1;
   readings.back().passes = 600;
   const ErrorForecast two = forecast_error({readings[3], readings[4]}, ErrorDecay::sampled);
   EXPECT_DOUBLE_EQ(forecast_error(readings, ErrorDecay::sampled).floor, two.floor);
-  EXPECT_FALSE(two.floor_fitted);
   EXPECT_LT(two.floor, f.floor);
   // An error that does not fall over the fitted readings is all floor.
   std::vector<ErrorReading> stalled(3, readings.back());
