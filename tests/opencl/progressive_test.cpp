@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <sstream>
 #include <vector>
 #include <thread>
@@ -359,6 +360,31 @@ TEST_F(ProgressiveCli, ABudgetMakesPhotonPassesShrinkUnlessToldOtherwise) {
   EXPECT_EQ(progressive_of("--passes 2"), "progressive=average");
   EXPECT_EQ(progressive_of("--time 0.05 --progressive average"), "progressive=average");
   EXPECT_EQ(progressive_of("--passes 2 --progressive shrink"), "progressive=shrink");
+}
+
+// Under a target error --verbose prints the control's reading as the passes double, with the part
+// of the error that is bias at least, and the header carries that floor beside the estimate.
+TEST_F(ProgressiveCli, UnderATargetErrorVerboseShowsTheControlsReadingsAndTheHeaderTheBiasFloor) {
+  const std::string file = (dir_ / "readings.exr").string();
+  // 32 x 32: at 16 x 16 the control's own noise can exceed the film's whole error, and then no
+  // part of it is known to be bias.
+  const test::ProcessResult r = pmrender("render --backend opencl --resolution 32x32 --photons 2000 "
+                                         "--target-error 0.001 --passes 8 --verbose -o " + file);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* passes : {"frame 0: 4 passes in ", "frame 0: 8 passes in "}) {
+    const size_t at = r.out.find(passes);
+    ASSERT_NE(at, std::string::npos) << r.out;
+    const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
+    EXPECT_NE(line.find("error "), std::string::npos) << line;
+    EXPECT_NE(line.find("bias at least "), std::string::npos) << line;
+  }
+  EXPECT_EQ(r.out.find("frame 0: 6 passes in "), std::string::npos) << "only as the passes double";
+  std::map<std::string, std::string> h;
+  for (const auto& [name, value] : read_exr(file).attributes) h[name] = value;
+  ASSERT_FALSE(h["pmrender/error_bias_floor"].empty());
+  ASSERT_FALSE(h["pmrender/error_estimate"].empty());
+  EXPECT_GE(std::stod(h["pmrender/error_bias_floor"]), 0.0);
+  EXPECT_LE(std::stod(h["pmrender/error_bias_floor"]), std::stod(h["pmrender/error_estimate"]));
 }
 
 TEST_F(ProgressiveCli, KilledCheckpointedFrameResumesToTheSameImage) {
