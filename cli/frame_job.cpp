@@ -118,12 +118,16 @@ RenderedFrame FrameJob::render(int frame, const std::string& path, const std::st
   auto log_reading = [&](const PassReport& r) {
     if (!log_readings || r.error < 0 || r.passes < kMinPassesForError || (r.passes & (r.passes - 1)) != 0) return;
     const BiasEstimate& b = renderer_.last_bias();
-    std::string floor = b.known && b.bias_floor >= 0 ? ", bias at least " + percent_text(b.bias_floor) : "";
+    // Without a control reading the estimate is the even/odd noise alone, and says so.
+    std::string detail = "noise only";
+    if (b.known) {
+      detail = "+-" + percent_text(b.mean_abs_error_stderr);
+      if (b.bias_floor >= 0) detail += ", bias at least " + percent_text(b.bias_floor);
+    }
     std::lock_guard<std::mutex> lock(*pass_progress_);
     progress.clear();
-    std::printf("frame %d: %u passes in %s, error %s (+-%s%s)\n", frame, r.passes, seconds_text(r.seconds).c_str(),
-                percent_text(r.error).c_str(), percent_text(b.known ? b.mean_abs_error_stderr : 0.0).c_str(),
-                floor.c_str());
+    std::printf("frame %d: %u passes in %s, error %s (%s)\n", frame, r.passes, seconds_text(r.seconds).c_str(),
+                percent_text(r.error).c_str(), detail.c_str());
     std::fflush(stdout);
   };
   if (pass_progress_) callbacks.after_pass = [&](const PassReport& r) {

@@ -32,11 +32,12 @@ namespace {
 // The floor of a sampled estimate from its recent readings' mean squared errors, fitted as
 // MSE = a / p + floor^2 by least squares (p: the passes' time) over the readings within
 // kFloorFitSpan of the last in time and of kFloorFitLeastPasses passes or more, when there are
-// kFloorFitReadings of them spanning at least kFloorFitLeastSpan; as a share of the last reading's error. The mean squares are unbiased
-// and all of a candidate's readings are measured against the same control, so the fit sees how
-// the error falls, not the control's noise, which shifts every reading alike (the relative mean
-// absolute errors moved a standard error apart, as the two-reading fit must, read Sponza's floor
-// of about 0.8 % as 0.17-0.36 %). -1: too few readings.
+// kFloorFitReadings of them spanning at least kFloorFitLeastSpan; as a share of the last
+// reading's error. The mean squares are unbiased and all of a candidate's readings are measured
+// against the same control, so the fit sees how the error falls, not the control's noise, which
+// shifts every reading alike (the relative mean absolute errors moved a standard error apart, as
+// the two-reading fit must, read Sponza's floor of about 0.8 % as 0.26-0.36 %). -1: too few
+// readings.
 double fitted_floor(const std::vector<ErrorReading>& readings, double start_seconds) {
   const ErrorReading& last = readings.back();
   const double last_passes = last.seconds - start_seconds;

@@ -73,10 +73,11 @@ constexpr double kLeastMonteCarloRate = 0.25;
 constexpr double kRateSpan = 1.5;
 // The floor of a sampled estimate is fitted over its readings within kFloorFitSpan of the last
 // in pass time and of kFloorFitLeastPasses passes or more, once there are kFloorFitReadings of
-// them spanning kFloorFitLeastSpan (three rounds of doubling): readings of fewer passes, while
-// pixels have few rays, fall more slowly than 1/sqrt(t) and would read a floor that is not there
-// (the race's first three readings of final gathering over radiosity on Sibenik, 0.2 to 0.7 s,
-// fitted so: 1.3 %, where its later readings show about 0.6 %).
+// them spanning kFloorFitLeastSpan (three rounds of doubling): readings of few passes, while
+// pixels have few rays, fall more slowly than 1/sqrt(t) and read a floor that is not there
+// (docs/method-auto.md, "The duel"). The rules lower that risk, not remove it: on Sibenik the
+// fit read 1.44 % from readings at 0.36-1.43 s of passes, where its later readings show about
+// 0.6 % ("A floor fitted across readings").
 constexpr double kFloorFitSpan = 8.0;
 constexpr int kFloorFitReadings = 3;
 constexpr double kFloorFitLeastSpan = 3.5;
