@@ -22,15 +22,19 @@
    photon method does.
 
    Directions: the lobe (diffuse or glossy) in proportion to the reflectances, as the path tracer's
-   first vertex (path_trace.h). The N rays of a pass are stratified: the first number is jittered
-   in N strata, the second a rotated golden-ratio lattice, so that the rays spread over the
-   hemisphere rather than clump. Random numbers: Philox keyed by (seed, photon_frame), counter
-   (pixel, mirror depth and vertex, "FGAT", ray index within the frame: pass * N + ray); the light
-   samples at a hit are the camera pass's (sampled_light_direct, one per kind, keyed by the frame). */
+   first vertex (path_trace.h), chosen by the direction's first number. The directions are the
+   points of two scrambled Sobol sequences, one for the even passes and one for the odd
+   (low_discrepancy.h): pass 2j + r takes the next N points of sequence r, so a pixel's rays over
+   the frame spread over its hemisphere as a net does, and its error falls faster than
+   independent rays' (docs/final-gathering.md, "Directions from a scrambled sequence"). The
+   scrambles are keyed by Philox (seed, photon_frame), counter (pixel, mirror depth, "FGAT", ~0);
+   the light samples at a hit by (pixel, mirror depth and vertex, ray index within the frame:
+   pass * N + ray), as the camera pass's (sampled_light_direct, one per kind). */
 #ifndef PM_FINAL_GATHER_H
 #define PM_FINAL_GATHER_H
 
 #include "gather.h"
+#include "low_discrepancy.h"
 #include "path_trace.h"
 #include "radiosity_interpolate.h"
 #include "sampled_lights.h"
@@ -116,18 +120,16 @@ PM_DEVICE void final_gather_pixel(const KernelGlobals* kg, const LaunchParams* p
       caustic = vec3_add(caustic, vec3_mul(sp.weight, point_caustic));
     }
     uint event_base = depth << 8; /* at most PM_PHOTON_MAX_SPECULAR + 2 vertices below x */
-    Uniform4 lattice = rng_uniform4_bits(
-        rng_bits4(p->seed, p->photon_frame, pixel, event_base, PM_STREAM_FINAL_GATHER, 0xffffffffu - p->pass_index));
+    /* The scrambles of the pixel's two replicates: the same in every pass of the frame. */
+    Bits4 keys = rng_bits4(p->seed, p->photon_frame, pixel, event_base, PM_STREAM_FINAL_GATHER, 0xffffffffu);
     Vec3 origin = offset_ray_origin(sp.position, sp.normal, ray_offset_distance(sp.position, 0.0f, p->ray_epsilon));
     float p_lobe_diffuse = p_diffuse / (p_diffuse + p_glossy);
     Vec3 sum = vec3_splat(0.0f);
     for (uint s = 0; s < rays; ++s) {
       uint ray = p->pass_index * rays + s;
-      Uniform4 u = rng_uniform4_bits(rng_bits4(p->seed, p->photon_frame, pixel, event_base, PM_STREAM_FINAL_GATHER, ray));
-      float u0 = ((float)s + u.u0) / (float)rays;
-      float u1 = lattice.u1 + (float)s * 0.6180339887f;
-      u1 -= pm_floorf(u1);
-      int glossy = u.u2 >= p_lobe_diffuse;
+      float u0, u1;
+      first_bounce_point(keys, p->pass_index, rays, s, &u0, &u1);
+      int glossy = first_bounce_lobe(p_lobe_diffuse, &u0);
       Vec3 dir;
       Vec3 beta = path_sample_lobe(m, glossy, sp.normal, sp.outgoing, u0, u1, &dir);
       beta = vec3_scale(beta, 1.0f / (glossy ? 1.0f - p_lobe_diffuse : p_lobe_diffuse));

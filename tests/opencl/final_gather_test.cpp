@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <vector>
 
 #include "render/path/path_settings.h"
 #include "render/photon/photon_settings.h"
@@ -44,6 +45,23 @@ class FinalGather : public ::testing::Test {
     const FrameImage image = renderer.render_frame(0);
     EXPECT_TRUE(test::all_finite(image.find("")->rgb));
     return test::mean(image.find("indirect")->rgb) + test::mean(image.find("caustic")->rgb);
+  }
+
+  // The indirect light (indirect and caustic layers) of one frame of the spot-lit box, w x w.
+  std::vector<float> indirect_image(std::shared_ptr<const MethodSettings> method, uint32_t passes, uint32_t seed,
+                                    int w) {
+    RenderSettings settings;
+    settings.width = settings.height = w;
+    settings.passes = passes;
+    settings.seed = seed;
+    settings.control_paths = 0;  // the image only
+    settings.method = std::move(method);
+    Renderer renderer(*device_, scene_, settings);
+    const FrameImage image = renderer.render_frame(0);
+    std::vector<float> rgb = image.find("indirect")->rgb;
+    const std::vector<float>& caustic = image.find("caustic")->rgb;
+    for (size_t i = 0; i < rgb.size(); ++i) rgb[i] += caustic[i];
+    return rgb;
   }
 
   double path_mean(int bounces) {
@@ -136,6 +154,22 @@ TEST_F(FinalGather, OverRadiosityWithOneBounceIsTheDirectLightAtItsRaysHits) {
   const double gathered = indirect_mean(coarse_solution(1, 64), 4) / reference - 1;
   std::printf("spot-lit box, first bounce: final gather over radiosity %+.4f against the path tracer\n", gathered);
   EXPECT_LT(std::fabs(gathered), 0.01);
+}
+
+TEST_F(FinalGather, ItsPixelsErrorFallsFasterThanWithIndependentRays) {
+  // A pixel's rays over the frame are points of a scrambled Sobol sequence (low_discrepancy.h):
+  // from 8 to 128 passes its error falls by more than the 4 times that independent rays would
+  // give. Measured against 512 passes of another seed (whose own error is in the ratio): 2.07 %
+  // to 0.12 %, 17 times; with independent rays (the build before, with this test) 8.50 % to
+  // 2.34 %, 3.6 times.
+  auto solution = std::make_shared<RadiositySettings>();
+  solution->final_gather = 16;
+  const std::vector<float> reference = indirect_image(solution, 512, 7, 24);
+  const double at8 = test::compare_rgb(indirect_image(solution, 8, 1, 24), reference).mean_relative;
+  const double at128 = test::compare_rgb(indirect_image(solution, 128, 1, 24), reference).mean_relative;
+  std::printf("spot-lit box, final gather over radiosity: relMAE %.4f at 8 passes, %.4f at 128: %.2f times less\n",
+              at8, at128, at8 / at128);
+  EXPECT_GT(at8 / at128, 5.0);
 }
 
 TEST_F(FinalGather, OverACoarseSolutionATargetBelowItsBiasStopsLevelled) {

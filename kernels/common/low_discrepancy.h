@@ -1,0 +1,107 @@
+/* Low-discrepancy points for the first bounce's directions (final_gather.h, path_trace.h): the
+   first two dimensions of Sobol's sequence, randomised by Owen's nested uniform scrambling.
+
+   Why: a pixel's final-gathered light (and the path tracer's first bounce) is an integral over
+   the shading point's hemisphere, two numbers a ray. Independent rays lower its error as
+   n^-1/2; the points of a scrambled (0,2)-sequence lower it as about n^-3/4 where the integrand
+   is smooth but for edges (visibility, shadow boundaries), n^-1 where it is smooth (Owen 1997,
+   "Scrambled net variance for integrals of smooth functions"), and never worse than independent
+   rays by more than a constant (Owen 1997, "Monte Carlo variance of scrambled net quadrature":
+   at most e = 2.718 times for a (0,m,2)-net in base 2).
+
+   Sobol's first two dimensions form a (0,2)-sequence in base 2 (Sobol 1967; Niederreiter 1992,
+   section 4.5): every 2^m consecutive points from a multiple of 2^m form a (0,m,2)-net, one
+   point in each of the 2^m elementary intervals [a 2^-j, (a+1) 2^-j) x [b 2^-(m-j), (b+1)
+   2^-(m-j)). Dimension 0 is the van der Corput sequence (the index's bits mirrored); dimension 1
+   XORs the direction numbers v_k = v_(k-1) XOR (v_(k-1) >> 1), v_1 = 1/2 (primitive polynomial
+   x + 1), one per set bit of the index.
+
+   Owen's scrambling (Owen 1995, "Randomly permuted (t,m,s)-nets and (t,s)-sequences") flips each
+   binary digit of a coordinate by a random bit that depends on the digits before it: each point
+   is then uniform on [0, 1)^2 (the estimate stays unbiased), and a net stays a net. The random
+   bits come from a hash of the scramble's key, the digit's place and the digits before it, so a
+   scramble is a pure function of its key (the same on every backend).
+
+   Replicates: a frame's passes alternate between two independently scrambled sequences (even
+   passes the first, odd passes the second, each pass the next block of its own). The even and
+   odd passes' means are then independent estimates, as with independent rays, so the frame's own
+   noise is still read from their difference (render/bias_control.cpp, the film's variance from
+   its even and odd passes): one scrambled sequence would make the halves' difference larger than
+   the whole's error and the bias read beside it too small. */
+#ifndef PM_LOW_DISCREPANCY_H
+#define PM_LOW_DISCREPANCY_H
+
+#include "rng.h"
+
+/* Scrambled digits: the 24 a float in [0, 1) keeps (rng_to_unit). */
+#define PM_SCRAMBLED_DIGITS 24u
+
+/* Sobol's second dimension of index i, as a 32-bit fraction. */
+PM_DEVICE uint sobol_dimension1_bits(uint i)
+{
+  uint v = 0x80000000u, x = 0u;
+  for (; i != 0u; i >>= 1, v ^= v >> 1)
+    if (i & 1u) x ^= v;
+  return x;
+}
+
+/* A 32-bit integer hash of good avalanche (two multiply-xorshift rounds). */
+PM_DEVICE uint scramble_hash(uint x)
+{
+  x ^= x >> 16;
+  x *= 0x7feb352du;
+  x ^= x >> 15;
+  x *= 0x846ca68bu;
+  x ^= x >> 16;
+  return x;
+}
+
+/* Owen's nested uniform scrambling of the fraction x's first PM_SCRAMBLED_DIGITS binary digits
+   under `key`: digit k (from the most significant, k = 0, 1, ...) is flipped by a bit hashed from
+   the key, k and the k digits before it (as x has them before scrambling): (k, digits) is one
+   word, k in its top byte, unique for every node of the digit tree, XORed with the key. */
+PM_DEVICE uint owen_scramble_bits(uint x, uint key)
+{
+  uint scrambled = x;
+  for (uint k = 0u; k < PM_SCRAMBLED_DIGITS; ++k) {
+    uint before = k == 0u ? 0u : x >> (32u - k); /* the digits before digit k: below 2^23 */
+    uint flip = scramble_hash((k << 24) ^ before ^ key) >> 31;
+    scrambled ^= flip << (31u - k);
+  }
+  return scrambled;
+}
+
+/* Point `index` of the sequence scrambled by (key0, key1), one key a dimension; in [0, 1)^2. */
+PM_DEVICE void scrambled_sobol2(uint index, uint key0, uint key1, float* u0, float* u1)
+{
+  *u0 = rng_to_unit(owen_scramble_bits(radical_inverse2_bits(index), key0));
+  *u1 = rng_to_unit(owen_scramble_bits(sobol_dimension1_bits(index), key1));
+}
+
+/* The first bounce's 2D point of ray `ray` of pass `pass` (rays_per_pass a pass), from the
+   replicate of the pass's parity: pass 2j + r draws points j * rays_per_pass .. of replicate r.
+   `keys`: four random words of the pixel and the frame (the same for every pass): b0, b1
+   scramble replicate 0, b2, b3 replicate 1. */
+PM_DEVICE void first_bounce_point(Bits4 keys, uint pass, uint rays_per_pass, uint ray, float* u0, float* u1)
+{
+  uint index = (pass >> 1) * rays_per_pass + ray;
+  if (pass & 1u)
+    scrambled_sobol2(index, keys.b2, keys.b3, u0, u1);
+  else
+    scrambled_sobol2(index, keys.b0, keys.b1, u0, u1);
+}
+
+/* A lobe chosen by the point's first coordinate, which is then stretched back over [0, 1): the
+   diffuse lobe below p_diffuse. So each lobe's directions keep the points' spread (a separate
+   random number per ray would hand each lobe a random subset of them). Returns 1 for glossy. */
+PM_DEVICE int first_bounce_lobe(float p_diffuse, float* u0)
+{
+  if (*u0 < p_diffuse) {
+    *u0 = pm_fminf(*u0 / p_diffuse, 0.99999994f);
+    return 0;
+  }
+  *u0 = pm_fminf((*u0 - p_diffuse) / (1.0f - p_diffuse), 0.99999994f);
+  return 1;
+}
+
+#endif
