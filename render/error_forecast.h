@@ -25,13 +25,15 @@ struct ErrorReading {
 //   error(t)^2 = floor^2 + (last.error^2 - floor^2) * (p_last / p)^(2 rate)
 // With no floor that is error(t) = last.error * (p_last / p)^rate. The rate is measured from the
 // last reading and the latest one far enough before it in pass time (kRateSpan), clamped to at
-// most 1/2 (no method beats Monte Carlo's 1/sqrt(t)):
+// most the method's noise can fall: 1/2 for independent samples (Monte Carlo's 1/sqrt(t)), 1 for
+// final gathering, whose rays over the frame are points of scrambled (0,2)-sequences
+// (kernels/common/low_discrepancy.h; noise_rate, below):
 // - monte_carlo (unbiased: the path tracer): assumed 1/2 until measured, kept at least 1/4 (its
 //   relative mean absolute error falls slower than 1/sqrt(t) only while most pixels have seen few
 //   paths); no floor.
-// - sampled (passes are independent samples of one biased estimate: final gathering over a
-//   radiosity solution): noise falling as 1/sqrt(t) over a constant bias, the floor, fitted from
-//   the same two readings (error^2 = a / p + floor^2), each a standard error towards the lower
+// - sampled (passes are samples of one biased estimate: final gathering over a radiosity
+//   solution): noise falling as p^-noise_rate over a constant bias, the floor, fitted from
+//   the same two readings (error^2 = a p^(-2 noise_rate) + floor^2), each a standard error towards the lower
 //   floor: a floor is a difference of squares, and the readings' noise alone would make one (for
 //   readings twice apart in time whose ratio is 7 % low, about half the last error), which would
 //   count a converging candidate out. Over those readings a floor shows where it is a large part of the error: in
@@ -44,7 +46,8 @@ struct ErrorReading {
 //   (ErrorReading::floor, from the film's even and odd passes at the control pixels), that is the
 //   floor if it is the higher: it needs no second reading and no fit across time.
 // - measured (passes also shrink a bias: photon passes shrinking): assumed kAssumedShrinkRate until
-//   measured, may measure 0; no floor (the bias shrinks with the passes).
+//   measured (1/2 with final gathering, whose rays' noise is most of its error), may measure 0;
+//   no floor (the bias shrinks with the passes).
 // - fixed (its passes are done): stays where it is.
 struct ErrorForecast {
   ErrorReading last;
@@ -68,6 +71,16 @@ enum class ErrorDecay { monte_carlo, sampled, measured, fixed };
 // (docs/method-auto.md); progressive photon mapping's error falls at best as t^-1/3.
 constexpr double kAssumedShrinkRate = 0.2;
 constexpr double kLeastMonteCarloRate = 0.25;
+// How a pixel's noise falls with its passes, as p^-rate (IndirectMethod::noise_rate): 1/2 for
+// independent samples; final gathering's rays over the frame are points of scrambled
+// (0,2)-sequences, whose error falls as about n^-3/4 where the integrand has edges, as
+// visibility gives it (He & Wang 2015: the variance of scrambled nets for a discontinuity along
+// a smooth curve in d = 2 is O(n^-3/2)), and as n^-1 where it is smooth (Owen 1997). Measured on
+// Sponza, Sibenik and Conference at 960 x 540 (H200): 0.53-0.77 per doubling of the passes, final
+// gathering over photons (docs/final-gathering.md, "Directions from a scrambled sequence").
+constexpr double kIndependentNoiseRate = 0.5;
+constexpr double kScrambledNetRate = 0.75;
+constexpr double kScrambledNetMostRate = 1.0;
 // Readings this far apart in pass time (a factor) measure a rate; closer ones are mostly the
 // estimate's own noise.
 constexpr double kRateSpan = 1.5;
@@ -82,6 +95,7 @@ constexpr double kFloorFitSpan = 8.0;
 constexpr int kFloorFitReadings = 3;
 constexpr double kFloorFitLeastSpan = 3.5;
 constexpr uint32_t kFloorFitLeastPasses = 16;
-ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDecay decay, double start_seconds = 0);
+ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDecay decay, double start_seconds = 0,
+                             double noise_rate = kIndependentNoiseRate);
 
 }  // namespace pm

@@ -14,6 +14,7 @@
 
 #include "render/buffer_table.h"
 #include "render/device.h"
+#include "render/error_forecast.h"
 #include "render/scene.h"
 #include "render/scene_scale.h"
 #include "render/stage_timer.h"
@@ -94,6 +95,10 @@ class IndirectMethod {
   // bias shows. Photon passes are not: they trace a new map each pass, and shrinking ones change
   // its bias as they go (--method auto forecasts them more slowly; render/method_race.h).
   virtual bool passes_are_samples() const { return true; }
+  // How fast a pixel's noise falls with the passes, as passes^-rate (render/error_forecast.h):
+  // kIndependentNoiseRate for independent samples, kScrambledNetRate where the passes' rays are
+  // points of scrambled (0,2)-sequences (final gathering, kernels/common/low_discrepancy.h).
+  virtual double noise_rate() const { return kIndependentNoiseRate; }
 
   // Takes over what `other`, a method on the same device and scene that has begun a frame, built
   // that does not depend on the frame and that this method would build the same (radiosity's

@@ -253,7 +253,8 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
       RaceStanding& st = standings[i];
       st.out = r.out;
       if (r.out) continue;
-      r.entry.forecast = forecast_error(r.entry.readings, r.decay(), r.start_seconds);
+      r.entry.forecast =
+          forecast_error(r.entry.readings, r.decay(), r.start_seconds, r.renderer->method()->noise_rate());
       const bool known = !r.entry.readings.empty() && r.entry.readings.back().error >= 0;
       if (!known) r.entry.forecast_value = std::numeric_limits<double>::infinity();
       else if (by_error) r.entry.forecast_value = r.entry.forecast.seconds_to_proof(target);

@@ -34,6 +34,7 @@ class PhotonMapping final : public IndirectMethod {
   uint32_t light_bounces() const override { return uint32_t(settings_.bounces); }
   bool may_be_biased() const override { return true; }
   bool passes_are_samples() const override { return false; }
+  double noise_rate() const override { return settings_.final_gather > 0 ? kScrambledNetRate : kIndependentNoiseRate; }
   void begin_frame(const FrameContext& frame, const FrameChange& change) override;
   void run_pass(const FrameContext& frame, uint32_t pass) override;
   MethodStats stats() const override { return stats_; }

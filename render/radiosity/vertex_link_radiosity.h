@@ -29,6 +29,7 @@ class VertexLinkRadiosity final : public IndirectMethod {
   uint32_t max_passes() const override { return settings_.final_gather > 0 ? 0 : 1; }
   uint32_t light_bounces() const override { return uint32_t(settings_.bounces); }
   bool may_be_biased() const override { return true; }
+  double noise_rate() const override { return settings_.final_gather > 0 ? kScrambledNetRate : kIndependentNoiseRate; }
   bool adopt_setup(const IndirectMethod& other) override;
   void begin_frame(const FrameContext& frame, const FrameChange& change) override;
   void run_pass(const FrameContext& frame, uint32_t pass) override;
