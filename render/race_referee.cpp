@@ -54,7 +54,14 @@ RoundCall call_duel(const std::vector<RaceStanding>& s, double target) {
 }  // namespace
 
 RoundCall call_round(const std::vector<RaceStanding>& s, RacePhase phase, const RaceRules& rules) {
-  if (phase == RacePhase::duel) return call_duel(s, rules.target);
+  // Under a target error and --time both, the time is the frame's cap: the race and the duel
+  // take no more of it than a race under the time alone would.
+  const bool out_of_time = rules.budget_seconds > 0 && rules.elapsed >= kRaceShareOfTime * rules.budget_seconds;
+  if (phase == RacePhase::duel) {
+    RoundCall call = call_duel(s, rules.target);
+    if (out_of_time) call.phase = RacePhase::over;
+    return call;
+  }
   RoundCall call;
   call.best = leader(s, rules.by_error);
   if (call.best < 0) {
@@ -87,9 +94,8 @@ RoundCall call_round(const std::vector<RaceStanding>& s, RacePhase phase, const 
   // Racing on costs more than it could save: the race has taken its share of the time, or of the
   // time the best is forecast to need; or it has run its rounds.
   const bool last_round = rules.round + 1 >= kMaxRaceRounds;
-  if (!rules.by_error) {
-    if ((rules.budget_seconds > 0 && rules.elapsed >= kRaceShareOfTime * rules.budget_seconds) || last_round)
-      call.phase = RacePhase::over;
+  if (!rules.by_error || out_of_time) {
+    if (out_of_time || last_round) call.phase = RacePhase::over;
     return call;
   }
   const bool settled = (known && best.measured && rules.elapsed >= kRaceShareOfForecast * best.forecast_total) ||

@@ -138,6 +138,21 @@ TEST(RaceReferee, NoneForecastToReachTheTargetRanksByTheErrorItWouldReach) {
   EXPECT_EQ(call.phase, RacePhase::race);
 }
 
+TEST(RaceReferee, UnderATargetErrorAndATimeTheRaceKeepsToItsShareOfTheTime) {
+  // --target-error 0.01 --time 2: 0.6 s into the race (over a quarter of 2 s), the forecasts
+  // unsettled, the race ends; so does a duel. Under the target alone both go on.
+  const std::vector<RaceStanding> unsettled = {standing(10), standing(12, false), standing(15)};
+  RaceRules both = by_error(0.6);
+  both.budget_seconds = 2;
+  EXPECT_EQ(call_round(unsettled, RacePhase::race, both).phase, RacePhase::over);
+  EXPECT_EQ(call_round(unsettled, RacePhase::race, by_error(0.6)).phase, RacePhase::race);
+  const std::vector<RaceStanding> duel = {standing(10, true, -1, 1), standing(12, true, -1, 1)};
+  EXPECT_EQ(call_round(duel, RacePhase::duel, both).phase, RacePhase::over);
+  EXPECT_EQ(call_round(duel, RacePhase::duel, by_error(0.6)).phase, RacePhase::duel);
+  both.elapsed = 0.4;
+  EXPECT_EQ(call_round(unsettled, RacePhase::race, both).phase, RacePhase::race) << "within its share";
+}
+
 TEST(RaceReferee, UnderATimeBudgetTheRaceIsAsBeforeWithoutADuel) {
   // Forecast errors at the time: 2 %, 2.4 % (kept: within 1.25x) and 3 % (dropped).
   const RaceRules by_time{false, 0, 10.0, 1.0, 2};
