@@ -88,10 +88,14 @@ ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDec
       // standard error higher and the later one lower; an error that did not fall even so is all floor.
       const double high = a.error + a.error_stderr, low = std::max(0.0, f.last.error - f.last.error_stderr);
       const double e0 = high * high, e1 = low * low;
-      const double x0 = std::pow(passes, -2.0 * noise_rate), x1 = std::pow(last_passes, -2.0 * noise_rate);
+      // A net's error falls faster than independent samples' only once its pixels have many
+      // rays: from readings of fewer passes than the fits' least, as independent samples (the
+      // net's rate through Sponza's first readings, of 1 and 9 passes, read a floor of 3.8 %).
+      const double fit_rate = a.passes >= kFloorFitLeastPasses ? noise_rate : kIndependentNoiseRate;
+      const double x0 = std::pow(passes, -2.0 * fit_rate), x1 = std::pow(last_passes, -2.0 * fit_rate);
       const double noise = (e0 - e1) / (x0 - x1);
       f.floor = noise > 0 ? std::sqrt(std::max(0.0, e1 - noise * x1)) : low;
-      f.rate = noise > 0 ? noise_rate : 0.0;
+      f.rate = noise > 0 ? fit_rate : 0.0;
       break;
     }
     const double measured = std::log(a.error / f.last.error) / std::log(last_passes / passes);

@@ -40,6 +40,8 @@ struct ErrorReading {
 //   the spot-lit box's coarse solution (levelling at 3.2-3.7 %, read at 4.7-4.9 %) it read
 //   2.5-2.9 %; on Sponza, about 0.8 % under 1.2-1.5 %, it read 0.26-0.36 % (docs/method-auto.md,
 //   "The duel"). A power law instead takes the bias's slowing for a slower rate that never stops.
+//   From readings of fewer than kFloorFitLeastPasses passes the noise is taken to fall as
+//   independent samples' (1/2): a net's faster fall shows only once its pixels have many rays.
 //   With three readings or more spanning 3.5 times in pass time, the floor is fitted instead
 //   through their mean squared errors by least squares (fitted_floor, error_forecast.cpp).
 //   Where the last reading knows the part of its error that the film's own noise does not explain

@@ -149,6 +149,12 @@ TEST(MethodRaceForecast, FinalGatheringsNoiseFallsAsAScrambledNetsOverItsFloor) 
   EXPECT_NEAR(f.error_at(12.8), std::sqrt(a * std::pow(12.8, -1.5) + b * b), 1e-12);
   const ErrorForecast two = forecast_error({readings[0], readings[1]}, ErrorDecay::sampled, 0, kScrambledNetRate);
   EXPECT_NEAR(two.floor, b, 1e-9);
+  // Readings of few passes fall as independent samples': through them, the 1 / p model.
+  std::vector<ErrorReading> early = {readings[0], readings[1]};
+  early[0].passes = kFloorFitLeastPasses - 1;
+  const ErrorForecast few = forecast_error(early, ErrorDecay::sampled, 0, kScrambledNetRate);
+  EXPECT_DOUBLE_EQ(few.rate, kIndependentNoiseRate);
+  EXPECT_DOUBLE_EQ(few.floor, forecast_error(early, ErrorDecay::sampled).floor);
   const ErrorForecast as_independent = forecast_error(readings, ErrorDecay::sampled);
   EXPECT_LT(as_independent.floor, 0.9 * b) << "the 1 / p model takes the net's fast fall for noise";
   // Over photons (measured) the rate may read up to 1 (a net's smooth integrand), 1/2 assumed
