@@ -32,24 +32,21 @@ struct ErrorReading {
 //   relative mean absolute error falls slower than 1/sqrt(t) only while most pixels have seen few
 //   paths); no floor.
 // - sampled (passes are samples of one biased estimate: final gathering over a radiosity
-//   solution): noise falling as 1/sqrt(t) over a constant bias, the floor, fitted from
-//   the same two readings (error^2 = a / p + floor^2), each a standard error towards the lower
+//   solution): noise falling as p^-noise_rate over a constant bias, the floor, fitted from
+//   the same two readings (error^2 = a p^(-2 noise_rate) + floor^2), each a standard error towards the lower
 //   floor: a floor is a difference of squares, and the readings' noise alone would make one (for
 //   readings twice apart in time whose ratio is 7 % low, about half the last error), which would
 //   count a converging candidate out. Over those readings a floor shows where it is a large part of the error: in
 //   the spot-lit box's coarse solution (levelling at 3.2-3.7 %, read at 4.7-4.9 %) it read
 //   2.5-2.9 %; on Sponza, about 0.8 % under 1.2-1.5 %, it read 0.26-0.36 % (docs/method-auto.md,
 //   "The duel"). A power law instead takes the bias's slowing for a slower rate that never stops.
+//   From readings of fewer than kFloorFitLeastPasses passes the noise is taken to fall as
+//   independent samples' (1/2): a net's faster fall shows only once its pixels have many rays.
 //   With three readings or more spanning 3.5 times in pass time, the floor is fitted instead
 //   through their mean squared errors by least squares (fitted_floor, error_forecast.cpp).
 //   Where the last reading knows the part of its error that the film's own noise does not explain
 //   (ErrorReading::floor, from the film's even and odd passes at the control pixels), that is the
 //   floor if it is the higher: it needs no second reading and no fit across time.
-//   Where the passes' noise falls faster than independent samples' (noise_rate above 1/2: final
-//   gathering's scrambled nets), the rate above the floor is measured between the same two
-//   readings, the floor taken off both, within [1/2, 1]; the floor is still fitted with 1/p, so
-//   that only an error falling slower than any noise reads as bias (a net's fall is not steady:
-//   a p^-3/2 model read floors that were only its slower start).
 // - measured (passes also shrink a bias: photon passes shrinking): assumed kAssumedShrinkRate until
 //   measured (1/2 with final gathering, whose rays' noise is most of its error), may measure 0;
 //   no floor (the bias shrinks with the passes).

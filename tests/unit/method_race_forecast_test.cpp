@@ -128,38 +128,35 @@ TEST(MethodRaceForecast, ASampledEstimatesFloorIsFittedThroughItsReadingsMeanSqu
   EXPECT_TRUE(std::isinf(flat.seconds_to(0.5 * flat.floor)));
 }
 
-TEST(MethodRaceForecast, FinalGatheringsNoiseFallsFasterAboveAFloorReadAsIndependentNoises) {
-  // Final gathering's rays are scrambled nets' points: noise as p^-3/4 (MSE as p^-3/2). With no
-  // bias, no floor is read and the rate above it measures 3/4; the same readings as independent
-  // samples' are held to 1/2.
-  const double a = 0.0001;
+TEST(MethodRaceForecast, FinalGatheringsNoiseFallsAsAScrambledNetsOverItsFloor) {
+  // Final gathering's rays are scrambled nets' points: noise as p^-3/4 (MSE as p^-3/2) over the
+  // solution's bias. Sponza's readings at 1 % (H200): 2.22 % at 1.35 s, 1.57 % at 2.71 s, 1.24 %
+  // at 5.42 s. This model through the first two (no standard errors taken off) has a floor of
+  // 1.06 % and 1.26 % at 5.42 s; the independent samples' 1 / p model a floor of 0.14 % and 1.11 %.
+  const double a = 0.0001, b = 0.008;
   std::vector<ErrorReading> readings;
   for (double t : {0.4, 0.8, 1.6, 3.2, 6.4}) {
     ErrorReading r;
     r.seconds = t;
     r.passes = uint32_t(80 * t);
-    r.mean_square = a * std::pow(t, -1.5);
+    r.mean_square = a * std::pow(t, -1.5) + b * b;
     r.error = std::sqrt(r.mean_square);
     readings.push_back(r);
   }
-  const ErrorForecast net = forecast_error(readings, ErrorDecay::sampled, 0, kScrambledNetRate);
-  EXPECT_DOUBLE_EQ(net.floor, 0.0);
-  EXPECT_NEAR(net.rate, 0.75, 1e-9);
-  EXPECT_NEAR(net.error_at(25.6), std::sqrt(a * std::pow(25.6, -1.5)), 1e-9);
-  EXPECT_DOUBLE_EQ(forecast_error(readings, ErrorDecay::sampled).rate, 0.5);
-  // Over a bias b the floor is fitted as independent samples' noise would fall: never above b
-  // (a net's faster fall is not read as bias), and the rate above it at least 1/2.
-  const double b = 0.008;
-  for (ErrorReading& r : readings) {
-    r.mean_square += b * b;
-    r.error = std::sqrt(r.mean_square);
-  }
-  const ErrorForecast biased = forecast_error(readings, ErrorDecay::sampled, 0, kScrambledNetRate);
-  EXPECT_LE(biased.floor, b);
-  EXPECT_GT(biased.floor, 0.5 * b) << "the bias still shows";
-  EXPECT_GE(biased.rate, 0.5);
-  EXPECT_LE(biased.rate, kScrambledNetMostRate);
-  EXPECT_TRUE(std::isinf(biased.seconds_to(0.99 * biased.floor)));
+  const ErrorForecast f = forecast_error(readings, ErrorDecay::sampled, 0, kScrambledNetRate);
+  EXPECT_NEAR(f.floor, b, 1e-9);
+  EXPECT_DOUBLE_EQ(f.rate, kScrambledNetRate);
+  EXPECT_NEAR(f.error_at(12.8), std::sqrt(a * std::pow(12.8, -1.5) + b * b), 1e-12);
+  const ErrorForecast two = forecast_error({readings[0], readings[1]}, ErrorDecay::sampled, 0, kScrambledNetRate);
+  EXPECT_NEAR(two.floor, b, 1e-9);
+  // Readings of few passes fall as independent samples': through them, the 1 / p model.
+  std::vector<ErrorReading> early = {readings[0], readings[1]};
+  early[0].passes = kFloorFitLeastPasses - 1;
+  const ErrorForecast few = forecast_error(early, ErrorDecay::sampled, 0, kScrambledNetRate);
+  EXPECT_DOUBLE_EQ(few.rate, kIndependentNoiseRate);
+  EXPECT_DOUBLE_EQ(few.floor, forecast_error(early, ErrorDecay::sampled).floor);
+  const ErrorForecast as_independent = forecast_error(readings, ErrorDecay::sampled);
+  EXPECT_LT(as_independent.floor, 0.9 * b) << "the 1 / p model takes the net's fast fall for noise";
   // Over photons (measured) the rate may read up to 1 (a net's smooth integrand), 1/2 assumed
   // until measured; independent samples' is clamped to 1/2.
   const std::vector<ErrorReading> fast = {{1.0, 0.04, 4}, {4.0, 0.01, 16}};
