@@ -96,20 +96,29 @@ TEST(MethodRaceForecast, TheTimeToProveATargetCountsTheReadingsStandardError) {
   EXPECT_DOUBLE_EQ(forecast_error({last}, ErrorDecay::monte_carlo).seconds_to_proof(0.01), 4.0);
 }
 
-TEST(MethodRaceForecast, ASampledEstimatesFloorIsFittedThroughItsReadingsMeanSquares) {
-  // Final gathering over radiosity on Sponza: MSE = a / p + b^2 with b = 0.8 %, the relative mean
-  // absolute error 0.8 times the RMS error; each reading's standard error 7 % of its error.
-  const double a = 0.0001, b = 0.008;
+// Readings at 0.4, 0.8, ... 6.4 s of passes (80 passes a second) of an estimate whose mean squared
+// error is a t^-exponent + floor^2, its relative mean absolute error mae_share times the RMS
+// error, its standard error stderr_share of that.
+std::vector<ErrorReading> doubling_readings(double a, double exponent, double floor, double mae_share,
+                                            double stderr_share) {
   std::vector<ErrorReading> readings;
   for (double t : {0.4, 0.8, 1.6, 3.2, 6.4}) {
     ErrorReading r;
     r.seconds = t;
     r.passes = uint32_t(80 * t);
-    r.mean_square = a / t + b * b;
-    r.error = 0.8 * std::sqrt(r.mean_square);
-    r.error_stderr = 0.07 * r.error;
+    r.mean_square = a * std::pow(t, -exponent) + floor * floor;
+    r.error = mae_share * std::sqrt(r.mean_square);
+    r.error_stderr = stderr_share * r.error;
     readings.push_back(r);
   }
+  return readings;
+}
+
+TEST(MethodRaceForecast, ASampledEstimatesFloorIsFittedThroughItsReadingsMeanSquares) {
+  // Final gathering over radiosity on Sponza: MSE = a / p + b^2 with b = 0.8 %, the relative mean
+  // absolute error 0.8 times the RMS error; each reading's standard error 7 % of its error.
+  const double a = 0.0001, b = 0.008;
+  std::vector<ErrorReading> readings = doubling_readings(a, 1.0, b, 0.8, 0.07);
   const ErrorForecast f = forecast_error(readings, ErrorDecay::sampled);
   EXPECT_NEAR(f.floor, 0.8 * b, 1e-9);
   EXPECT_DOUBLE_EQ(f.rate, 0.5);
@@ -134,15 +143,7 @@ TEST(MethodRaceForecast, FinalGatheringsNoiseFallsAsAScrambledNetsOverItsFloor) 
   // at 5.42 s. This model through the first two (no standard errors taken off) has a floor of
   // 1.06 % and 1.26 % at 5.42 s; the independent samples' 1 / p model a floor of 0.14 % and 1.11 %.
   const double a = 0.0001, b = 0.008;
-  std::vector<ErrorReading> readings;
-  for (double t : {0.4, 0.8, 1.6, 3.2, 6.4}) {
-    ErrorReading r;
-    r.seconds = t;
-    r.passes = uint32_t(80 * t);
-    r.mean_square = a * std::pow(t, -1.5) + b * b;
-    r.error = std::sqrt(r.mean_square);
-    readings.push_back(r);
-  }
+  const std::vector<ErrorReading> readings = doubling_readings(a, 1.5, b, 1.0, 0.0);
   const ErrorForecast f = forecast_error(readings, ErrorDecay::sampled, 0, kScrambledNetRate);
   EXPECT_NEAR(f.floor, b, 1e-9);
   EXPECT_DOUBLE_EQ(f.rate, kScrambledNetRate);
