@@ -78,7 +78,7 @@ constexpr double kLeastMonteCarloRate = 0.25;
 // (0,2)-sequences, whose error falls as about n^-3/4 where the integrand has edges, as
 // visibility gives it (He & Wang 2015: the variance of scrambled nets for a discontinuity along
 // a smooth curve in d = 2 is O(n^-3/2)), and as n^-1 where it is smooth (Owen 1997). Measured on
-// Sponza, Sibenik and Conference at 960 x 540 (H200): 0.53-0.77 per doubling of the passes, final
+// Sponza, Sibenik and Conference at 960 x 540 (H200): rates of 0.52-0.77 between readings, final
 // gathering over photons (docs/final-gathering.md, "Directions from a scrambled sequence").
 constexpr double kIndependentNoiseRate = 0.5;
 constexpr double kScrambledNetRate = 0.75;

@@ -7,7 +7,7 @@
    is smooth but for edges (visibility, shadow boundaries), n^-1 where it is smooth (Owen 1997,
    "Scrambled net variance for integrals of smooth functions"), and never worse than independent
    rays by more than a constant (Owen 1997, "Monte Carlo variance of scrambled net quadrature":
-   at most e = 2.718 times for a (0,m,2)-net in base 2).
+   the variance of a scrambled (0,m,2)-net in base 2 is at most twice independent points').
 
    Sobol's first two dimensions form a (0,2)-sequence in base 2 (Sobol 1967; Niederreiter 1992,
    section 4.5): every 2^m consecutive points from a multiple of 2^m form a (0,m,2)-net, one
