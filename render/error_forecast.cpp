@@ -119,4 +119,16 @@ ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDec
   return f;
 }
 
+ErrorForecast best_case_forecast(const std::vector<ErrorReading>& readings, ErrorDecay decay, double start_seconds,
+                                 double noise_rate) {
+  ErrorForecast f;
+  f.start = start_seconds;
+  if (readings.empty()) return f;
+  f.last = readings.back();
+  if (decay == ErrorDecay::fixed) return f;
+  f.rate = noise_rate > kIndependentNoiseRate ? kScrambledNetMostRate : kIndependentNoiseRate;
+  if (decay == ErrorDecay::sampled) f.floor = std::clamp(f.last.floor, 0.0, f.last.error);
+  return f;
+}
+
 }  // namespace pm

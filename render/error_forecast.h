@@ -99,5 +99,11 @@ constexpr double kFloorFitLeastSpan = 3.5;
 constexpr uint32_t kFloorFitLeastPasses = 16;
 ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDecay decay, double start_seconds = 0,
                              double noise_rate = kIndependentNoiseRate);
+// The fastest its error could fall from its last reading: at the most rate its decay allows (1/2
+// for independent samples, kScrambledNetMostRate for scrambled nets' passes), over no floor but
+// the bias its last reading shows at least (sampled). Before a rate is measured, a candidate
+// even this forecast puts far behind the best is out (race_referee.h, RaceStanding::best_case).
+ErrorForecast best_case_forecast(const std::vector<ErrorReading>& readings, ErrorDecay decay, double start_seconds = 0,
+                                 double noise_rate = kIndependentNoiseRate);
 
 }  // namespace pm

@@ -106,6 +106,13 @@ class IndirectMethod {
   // Returns whether it did; the image is the same either way. --method auto's race shares work
   // between its candidates so (render/method_race.h).
   virtual bool adopt_setup(const IndirectMethod& /*other*/) { return false; }
+  // Whether adopt_setup(other) takes over other's setup once other has begun a frame.
+  virtual bool shares_setup_with(const IndirectMethod& /*other*/) const { return false; }
+  // Starts the host work of the first begin_frame on a thread of its own, where the method has
+  // any (radiosity: the mesh refinement, its elements and their texture tints), so that it runs
+  // while the device renders something else; begin_frame then takes its result, the same as it
+  // would have computed. The race begins frames this way (render/method_race.h).
+  virtual void prepare_ahead() {}
 
   // Once per frame, before its passes. change says what differs from the previous frame.
   virtual void begin_frame(const FrameContext& frame, const FrameChange& change) = 0;

@@ -179,20 +179,32 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
   device.synchronize();
   choice.setup_seconds = seconds_since(setup_begun);
   const Clock::time_point race_begun = Clock::now();
-  // The frame begins on each, timed as its own: a method may do much of its work there (radiosity
-  // solves its links for the frame's lights before its one pass). What an earlier candidate built
-  // and this one would build the same (radiosity's mesh and links) is copied rather than rebuilt.
-  for (size_t i = 0; i < runners.size(); ++i) {
+  // The host work of beginning the frame (radiosity's mesh) starts at once on threads of its own,
+  // for each candidate that will not take an earlier one's, so that it runs while the candidates
+  // before it render their first round.
+  const auto shares_earlier_setup = [&](size_t i) {
+    const IndirectMethod* method = runners[i].renderer->method();
+    for (size_t j = 0; method && j < i; ++j)
+      if (runners[j].renderer->method() && method->shares_setup_with(*runners[j].renderer->method())) return true;
+    return false;
+  };
+  for (size_t i = 0; i < runners.size(); ++i)
+    if (runners[i].renderer->method() && !shares_earlier_setup(i)) runners[i].renderer->method()->prepare_ahead();
+  // The frame begins on each just before its first round, timed as its own: a method may do much
+  // of its work there (radiosity solves its links for the frame's lights before its one pass).
+  // What an earlier candidate built and this one would build the same (radiosity's mesh and
+  // links) is copied rather than rebuilt.
+  const auto begin_frame = [&](size_t i) {
     Runner& r = runners[i];
     const Clock::time_point begun = Clock::now();
     for (size_t j = 0; j < i; ++j)
-      if (r.renderer->method() && runners[j].renderer->method() &&
+      if (r.renderer->method() && runners[j].renderer && runners[j].renderer->method() &&
           r.renderer->method()->adopt_setup(*runners[j].renderer->method()))
         break;
     r.renderer->begin_frame(frame);
     r.renderer->wait();
     r.own_seconds = r.start_seconds = seconds_since(begun);
-  }
+  };
 
   // With a time budget the race takes up to kRaceShareOfTime of it; without, it starts short.
   // The rounds double.
@@ -213,6 +225,7 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
     const double lead_slice = duelling ? duel_lead_slice(runners[best], best_remaining) : slice;
     for (size_t i = 0; i < runners.size(); ++i) {
       Runner& r = runners[i];
+      if (round == 0) begin_frame(i);
       if (r.out || r.decay() == ErrorDecay::fixed) continue;
       // In the duel the runner-up renders a share of the leader's time (race_referee.h).
       run_round(r, duelling && int(i) != best ? kDuelShare * lead_slice : lead_slice);
@@ -263,6 +276,12 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
       st.value = by_error ? std::max(0.0, r.entry.forecast_value - r.own_seconds) : r.entry.forecast_value;
       if (by_error && known) st.error_at_ten_times = r.entry.forecast.error_at(10 * r.own_seconds);
       st.measured = r.measured();
+      if (known) {
+        const ErrorForecast fastest =
+            best_case_forecast(r.entry.readings, r.decay(), r.start_seconds, r.renderer->method()->noise_rate());
+        st.best_case = by_error ? std::max(0.0, fastest.seconds_to_proof(target) - r.own_seconds)
+                                : fastest.error_at(r.own_seconds + remaining);
+      }
       st.biased = r.renderer->method() && r.renderer->method()->may_be_biased();
       st.error = known ? r.entry.readings.back().error : -1;
       st.bias_at_most = known ? r.entry.readings.back().floor_upper : -1;

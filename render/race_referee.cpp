@@ -79,7 +79,10 @@ RoundCall call_round(const std::vector<RaceStanding>& s, RacePhase phase, const 
   bool only_the_kept_one_left = true;
   for (size_t i = 0; i < s.size(); ++i) {
     if (s[i].out || int(i) == call.best) continue;
-    const bool behind = known && s[i].measured && s[i].value > ratio * best.value;
+    // Behind on its forecast once its rate is measured; before that, only if behind even at the
+    // fastest rate its method allows (the path tracer and photon passes at 1/2: their next round
+    // would only measure what cannot bring them back).
+    const bool behind = known && (s[i].measured ? s[i].value : s[i].best_case) > ratio * best.value;
     if (behind && !(duel_worthy && int(i) == runner_up)) {
       call.dropped.push_back(i);
       continue;

@@ -33,6 +33,10 @@ struct RaceStanding {
   // is forecast to reach the target
   double error_at_ten_times = std::numeric_limits<double>::infinity();
   bool measured = false;  // its forecast rests on a measured rate (or on its final error)
+  // value as the fastest fall its method allows would make it (best_case_forecast): before its
+  // rate is measured, a candidate even this puts more than the drop ratio behind the best is
+  // dropped (its assumed rate is not what keeps it in). 0: not known (never drops it).
+  double best_case = 0;
   bool biased = false;    // its passes may converge to a bias (Renderer::method()->may_be_biased())
   double error = -1;      // its last reading
   double bias_at_most = -1;  // of that reading, the part that is bias at most; -1: not known

@@ -54,13 +54,43 @@ std::vector<StageInfo> VertexLinkRadiosity::stages(const FrameContext& frame) co
   };
 }
 
+// The first frame's host work: the refined mesh, its elements and, in a textured scene, the
+// elements' texture colours (sampled from the packed images the device has).
+struct RadiosityHostMesh {
+  RefinedMesh mesh;
+  RadiosityElements elements;
+  std::vector<float4> tints;
+};
+
+namespace {
+
+std::shared_ptr<const RadiosityHostMesh> build_host_mesh(const Scene& scene, const RadiositySettings& settings) {
+  auto built = std::make_shared<RadiosityHostMesh>();
+  built->mesh = refine_mesh(scene, settings.max_edge);
+  built->elements = build_radiosity_elements(scene, built->mesh, settings.feature_angle, settings.sides == 2);
+  if (scene.has_textures()) {
+    DeviceTextures textures;
+    pack_texture_images(scene, &textures);
+    built->tints = radiosity_texture_tints(scene, built->mesh, built->elements, textures);
+  }
+  return built;
+}
+
+}  // namespace
+
+void VertexLinkRadiosity::prepare_ahead() {
+  if (prepared_ || host_mesh_ahead_.valid() || settings_.solution_bounces() == 0) return;
+  host_mesh_ahead_ = std::async(std::launch::async, build_host_mesh, std::cref(scene_), settings_);
+}
+
 // Refinement, elements and their upload ("radiosity: refine", host work between two device
-// markers, so it is timed like a device stage).
+// markers, so it is timed like a device stage; what prepare_ahead began is waited for there).
 void VertexLinkRadiosity::prepare(StageTimer* timer) {
   StageScope scope(timer, "radiosity: refine");
-  const RefinedMesh mesh = refine_mesh(scene_, settings_.max_edge);
-  const RadiosityElements elements =
-      build_radiosity_elements(scene_, mesh, settings_.feature_angle, settings_.sides == 2);
+  const std::shared_ptr<const RadiosityHostMesh> built =
+      host_mesh_ahead_.valid() ? host_mesh_ahead_.get() : build_host_mesh(scene_, settings_);
+  const RefinedMesh& mesh = built->mesh;
+  const RadiosityElements& elements = built->elements;
   element_count_ = uint32_t(elements.count());
   ranges_ = elements.ranges;
   count_light_samples();
@@ -70,12 +100,7 @@ void VertexLinkRadiosity::prepare(StageTimer* timer) {
   buffers_.upload(BufferSlot::rad_adjacency, elements.adjacency);
   buffers_.upload(BufferSlot::rad_smooth_weights, elements.smooth_weights);
   buffers_.upload(BufferSlot::rad_element_ranges, ranges_);
-  if (scene_.has_textures()) {
-    // Each element's texture colour, sampled on the host from the packed images the device has.
-    DeviceTextures textures;
-    pack_texture_images(scene_, &textures);
-    buffers_.upload(BufferSlot::rad_texture_tint, radiosity_texture_tints(scene_, mesh, elements, textures));
-  }
+  if (scene_.has_textures()) buffers_.upload(BufferSlot::rad_texture_tint, built->tints);
   BufferExtents extents;
   extents.elements = element_count_;
   buffers_.allocate(BufferGroup::radiosity, extents);
@@ -101,11 +126,15 @@ void VertexLinkRadiosity::count_light_samples() {
 
 // The mesh and links of another renderer's radiosity, copied on the device: what prepare() and
 // build_links() would have made here (same_links_as), without refining or tracing again.
+bool VertexLinkRadiosity::shares_setup_with(const IndirectMethod& other_method) const {
+  const auto* other = dynamic_cast<const VertexLinkRadiosity*>(&other_method);
+  return other && other != this && &other->device_ == &device_ && &other->scene_ == &scene_ &&
+         settings_.same_links_as(other->settings_);
+}
+
 bool VertexLinkRadiosity::adopt_setup(const IndirectMethod& other_method) {
   const auto* other = dynamic_cast<const VertexLinkRadiosity*>(&other_method);
-  if (!other || other == this || prepared_ || !other->prepared_ || &other->device_ != &device_ ||
-      &other->scene_ != &scene_ || !settings_.same_links_as(other->settings_))
-    return false;
+  if (prepared_ || !shares_setup_with(other_method) || !other->prepared_) return false;
   for (BufferSlot slot : {BufferSlot::rad_elements, BufferSlot::rad_tree, BufferSlot::rad_triangles,
                           BufferSlot::rad_adjacency, BufferSlot::rad_smooth_weights, BufferSlot::rad_element_ranges,
                           BufferSlot::rad_texture_tint, BufferSlot::rad_links})

@@ -12,6 +12,8 @@
 #pragma once
 
 #include <cstdint>
+#include <future>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,6 +22,8 @@
 #include "render/radiosity/radiosity_settings.h"
 
 namespace pm {
+
+struct RadiosityHostMesh;  // the first frame's host work (vertex_link_radiosity.cpp)
 
 class VertexLinkRadiosity final : public IndirectMethod {
  public:
@@ -31,6 +35,8 @@ class VertexLinkRadiosity final : public IndirectMethod {
   bool may_be_biased() const override { return true; }
   double noise_rate() const override { return settings_.final_gather > 0 ? kScrambledNetRate : kIndependentNoiseRate; }
   bool adopt_setup(const IndirectMethod& other) override;
+  bool shares_setup_with(const IndirectMethod& other) const override;
+  void prepare_ahead() override;
   void begin_frame(const FrameContext& frame, const FrameChange& change) override;
   void run_pass(const FrameContext& frame, uint32_t pass) override;
   MethodStats stats() const override { return stats_; }
@@ -62,6 +68,7 @@ class VertexLinkRadiosity final : public IndirectMethod {
   int ray_frame_ = 0;               // the key of the gather rays of the frame begun last
 
   bool prepared_ = false;
+  std::future<std::shared_ptr<const RadiosityHostMesh>> host_mesh_ahead_;  // prepare_ahead's, until prepare takes it
   bool adopted_ = false;            // the mesh and links are copies of another renderer's (adopt_setup)
   bool solved_ = false;
   uint32_t element_count_ = 0;

@@ -172,6 +172,35 @@ TEST_F(Radiosity, AdoptedLinksRenderAsBuiltOnes) {
   EXPECT_FALSE(late.method()->adopt_setup(*unbegun.method())) << "a renderer that has not begun a frame has nothing to share";
 }
 
+// The race starts radiosity's host work (refinement, elements) on a thread of its own while other
+// candidates render (VertexLinkRadiosity::prepare_ahead); the frame begun after it is the frame
+// built in begin_frame, bit for bit, and a method that shares another's setup says so.
+TEST_F(Radiosity, AMeshPreparedAheadRendersAsOneBuiltInTheFrame) {
+  Scene scene = moving_room();
+  const RenderSettings plain = small_radiosity(24, 18, 16), gathered = small_final_gathering();
+  Renderer ahead(*device_, scene, plain), inline_built(*device_, scene, plain);
+  ahead.method()->prepare_ahead();
+  ahead.method()->prepare_ahead();  // once is enough: a second call starts nothing more
+  FrameStats stats;
+  const FrameImage from_ahead = ahead.render_frame(0, &stats);
+  EXPECT_EQ(stat(stats, "links_built"), 1);
+  const FrameImage built = inline_built.render_frame(0);
+  EXPECT_GT(test::mean(built.find("indirect")->rgb), 0.0);
+  for (const char* layer : {"", "indirect"})
+    EXPECT_TRUE(from_ahead.find(layer)->rgb == built.find(layer)->rgb) << "layer '" << layer << "'";
+  EXPECT_EQ(ahead.method()->stats().get("elements"), inline_built.method()->stats().get("elements"));
+
+  Renderer same_links(*device_, scene, plain);
+  EXPECT_TRUE(same_links.method()->shares_setup_with(*ahead.method()));
+  EXPECT_FALSE(ahead.method()->shares_setup_with(*ahead.method())) << "not with itself";
+  RadiositySettings coarser = static_cast<const RadiositySettings&>(*gathered.method);
+  coarser.max_edge = 1.0f;
+  RenderSettings other = gathered;
+  other.method = std::make_shared<RadiositySettings>(coarser);
+  Renderer elsewhere(*device_, scene, other);
+  EXPECT_FALSE(elsewhere.method()->shares_setup_with(*ahead.method()));
+}
+
 // Both methods estimate the same indirect light (bounces 1 and 2, all diffuse). Their biases
 // differ: radiosity interpolates vertex values linearly over 3.8 cm triangles and samples
 // visibility with nC rays per vertex, and reads 2.7 % under the path-traced reference in this box

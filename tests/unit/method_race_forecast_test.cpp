@@ -169,6 +169,26 @@ TEST(MethodRaceForecast, FinalGatheringsNoiseFallsAsAScrambledNetsOverItsFloor) 
       << "final gathering over photons on Sponza, 3.64 % to 2.33 % as its passes' time grew 1.78 times";
 }
 
+TEST(MethodRaceForecast, TheBestCaseFallsAtTheFastestRateItsSamplesAllow) {
+  // One reading, as after the race's first round: independent samples (the path tracer, photon
+  // passes) at best 1/2, a scrambled net's passes at best 1, whatever the assumed rates.
+  const std::vector<ErrorReading> one = {{0.1, 0.2, 2}};
+  EXPECT_NEAR(best_case_forecast(one, ErrorDecay::monte_carlo).seconds_to(0.1), 0.4, 1e-12);
+  EXPECT_NEAR(best_case_forecast(one, ErrorDecay::measured).seconds_to(0.1), 0.4, 1e-12);
+  EXPECT_NEAR(best_case_forecast(one, ErrorDecay::measured, 0, kScrambledNetRate).seconds_to(0.1), 0.2, 1e-12);
+  EXPECT_LT(best_case_forecast(one, ErrorDecay::measured).seconds_to(0.1),
+            forecast_error(one, ErrorDecay::measured).seconds_to(0.1))
+      << "never slower than the forecast on an assumed rate";
+  // Over radiosity the bias its reading shows at least stays under it: it cannot go below it.
+  std::vector<ErrorReading> biased = {{1.0, 0.05, 8}};
+  biased[0].floor = 0.02;
+  const ErrorForecast over_floor = best_case_forecast(biased, ErrorDecay::sampled, 0.5, kScrambledNetRate);
+  EXPECT_TRUE(std::isinf(over_floor.seconds_to(0.015)));
+  EXPECT_NEAR(over_floor.error_at(1.5), std::sqrt(0.02 * 0.02 + (0.05 * 0.05 - 0.02 * 0.02) / 4), 1e-12)
+      << "its noise halves as its passes' time doubles";
+  EXPECT_TRUE(std::isinf(best_case_forecast(one, ErrorDecay::fixed).seconds_to(0.1))) << "its passes are done";
+}
+
 TEST(MethodRaceForecast, AFinishedMethodStaysWhereItIs) {
   const ErrorForecast radiosity = forecast_error({{0.5, 0.02, 1}}, ErrorDecay::fixed);
   EXPECT_DOUBLE_EQ(radiosity.error_at(100.0), 0.02);

@@ -34,6 +34,29 @@ TEST(RaceReferee, ARunnerUpWithinFourTimesTheBestIsKeptForADuel) {
   EXPECT_EQ(call.phase, RacePhase::duel) << "only the kept runner-up is left: the duel begins";
 }
 
+TEST(RaceReferee, ACandidateBehindEvenAtItsFastestRateGoesBeforeItsRateIsMeasured) {
+  // Sponza asked for 2 %, after the first round (H200): final gathering over radiosity forecast
+  // 0.73 s more on its assumed rate; the path tracer 12.4 s at its assumed 1/2, which is also the
+  // fastest its noise can fall, and photon passes 3.2 s even at 1/2: both out without a second
+  // round. Final gathering over photons, 7.2 s on its assumed rate but 0.63 s at a net's fastest,
+  // stays; so does the path tracer while its best case is within the drop ratio.
+  RaceStanding best = standing(0.73, false), gather = standing(7.2, false), path = standing(12.4, false),
+               photon = standing(1380, false);
+  gather.best_case = 0.63;
+  path.best_case = 12.4;
+  photon.best_case = 3.2;
+  RoundCall call = call_round({best, gather, path, photon}, RacePhase::race, by_error(0.7, 0));
+  EXPECT_EQ(call.best, 0);
+  EXPECT_EQ(call.dropped, (std::vector<size_t>{2, 3}));
+  EXPECT_EQ(call.phase, RacePhase::race);
+  path.best_case = 1.4;
+  call = call_round({best, gather, path, photon}, RacePhase::race, by_error(0.7, 0));
+  EXPECT_EQ(call.dropped, std::vector<size_t>{3});
+  // Without a best case (not known), only a measured forecast drops a candidate.
+  photon.best_case = 0;
+  EXPECT_TRUE(call_round({best, photon}, RacePhase::race, by_error(0.7, 0)).dropped.empty());
+}
+
 TEST(RaceReferee, TheRaceGoesOnWhileItsForecastsAreUnsettled) {
   // 0.5 s into a race whose best is forecast 10 s, a candidate not yet measured: another round.
   const RoundCall call = call_round({standing(10), standing(12, false), standing(15)}, RacePhase::race, by_error(0.5));
