@@ -41,8 +41,7 @@ RoundCall call_duel(const std::vector<RaceStanding>& s, double target) {
   const bool trusted = !leader.biased || (leader.error >= 0 && leader.error <= kDuelProofRatio * target) ||
                        (leader.bias_at_most >= 0 && leader.bias_at_most <= kTrustedBiasShare * target);
   const bool judged = other.measured && other.duel_rounds >= kDuelRoundsToJudge;
-  if (std::isfinite(leader.value) && judged &&
-      other.value > (trusted ? kDuelDropRatio : kDuelTimeRatio) * leader.value) {
+  if (std::isfinite(leader.value) && judged && (trusted || other.value > kDuelTimeRatio * leader.value)) {
     call.dropped.push_back(size_t(challenger));
     call.phase = RacePhase::over;
   } else if (leader.duel_rounds >= kMaxDuelRounds) {

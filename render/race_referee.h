@@ -72,22 +72,25 @@ constexpr double kRaceShareOfForecast = 0.2;
 constexpr int kMaxRaceRounds = 10;
 constexpr int kMaxDuelRounds = 12;
 // The duel: a runner-up within kDuelTimeRatio of the best's remaining time is kept for it; in the
-// duel it renders kDuelShare of the leader's time a round. It is dropped once, after
-// kDuelRoundsToJudge rounds of its own there, its remaining time is kDuelDropRatio times the
-// leader's, and the leader's forecast can be trusted: an unbiased leader's at once, a biased
-// one's once its error is within kDuelProofRatio of the target, or once its reading bounds its
-// bias (plus two standard errors) within kTrustedBiasShare of the target. A bias b under a
-// target E slows a method long before it stops it (at b = 0.7 E it needs twice the time, at
-// 0.87 E four times), and its readings show it only near the target: final gathering over
-// radiosity on Sponza, its floor about 0.8 % under a target of 1 %, fell from 2.07 to 1.50 % as
-// its time doubled, as noise alone would, and from 1.21 to 1.15 % over the next half again
-// (docs/method-auto.md, "The duel"). A bias of at most half the target lengthens the time to it
-// by at most a third (1 / (1 - 0.5^2)), less than kDuelDropRatio, even were the forecast to
-// leave it out.
+// duel it renders kDuelShare of the leader's time a round. Once it has run kDuelRoundsToJudge
+// rounds of its own there, the duel ends with the leader as soon as the leader's forecast can be
+// trusted: an unbiased leader's at once, a biased one's once its error is within kDuelProofRatio
+// of the target, or once its reading bounds its bias (plus two standard errors) within
+// kTrustedBiasShare of the target; an untrusted leader's lead ends it only at kDuelTimeRatio.
+// A trusted lead ends it however close the two are: two final gatherings within 1.5x of each
+// other duelled on for up to eight rounds while their forecasts swapped the lead (Conference at
+// 1 %: 8.5 s where each alone took 3.0-3.7 s), each round costing the runner-up's quarter
+// for a gain of at most the difference, which forecasts a third apart cannot tell
+// (docs/method-auto.md, "The race's start and the duel's end"). A bias b under a target E slows a
+// method long before it stops it (at b = 0.7 E it needs twice the time, at 0.87 E four times),
+// and its readings show it only near the target: final gathering over radiosity on Sponza, its
+// floor about 0.8 % under a target of 1 %, fell from 2.07 to 1.50 % as its time doubled, as noise
+// alone would, and from 1.21 to 1.15 % over the next half again (docs/method-auto.md, "The
+// duel"). A bias of at most half the target lengthens the time to it by at most a third (1 / (1 -
+// 0.5^2)), even were the forecast to leave it out.
 constexpr double kDuelTimeRatio = 4.0;
 constexpr double kDuelShare = 0.25;
 constexpr int kDuelRoundsToJudge = 2;
-constexpr double kDuelDropRatio = 1.5;
 constexpr double kDuelProofRatio = 1.2;
 constexpr double kTrustedBiasShare = 0.5;
 

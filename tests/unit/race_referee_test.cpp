@@ -93,17 +93,24 @@ TEST(RaceReferee, TheRunnerUpIsJudgedOnReadingsOfItsOwnInTheDuel) {
   RoundCall call = call_round({standing(10, true, 20, 1), standing(30, true, 31, 1)}, RacePhase::duel, by_error(10));
   EXPECT_TRUE(call.dropped.empty());
   EXPECT_EQ(call.phase, RacePhase::duel);
-  // After kDuelRoundsToJudge rounds, more than kDuelDropRatio behind: dropped, and the leader goes on alone.
-  call = call_round({standing(10, true, 20, kDuelRoundsToJudge), standing(16, true, 20, kDuelRoundsToJudge)},
-                    RacePhase::duel, by_error(12));
-  EXPECT_EQ(call.dropped, std::vector<size_t>{1});
-  EXPECT_EQ(call.phase, RacePhase::over);
-  // Within kDuelDropRatio, the duel goes on...
-  call = call_round({standing(10, true, 20, 4), standing(14, true, 20, 4)}, RacePhase::duel, by_error(20));
+  // After kDuelRoundsToJudge rounds behind a trusted (here unbiased) leader, however close: dropped,
+  // and the leader goes on alone.
+  for (double behind : {16.0, 10.5}) {
+    call = call_round({standing(10, true, 20, kDuelRoundsToJudge), standing(behind, true, 20, kDuelRoundsToJudge)},
+                      RacePhase::duel, by_error(12));
+    EXPECT_EQ(call.dropped, std::vector<size_t>{1}) << behind;
+    EXPECT_EQ(call.phase, RacePhase::over) << behind;
+  }
+  // Behind a leader whose forecast is not yet trusted (biased, its error far from the target),
+  // within kDuelTimeRatio, the duel goes on...
+  RaceStanding untrusted = standing(10, true, 20, 4);
+  untrusted.biased = true;
+  untrusted.error = 3 * kTarget;
+  call = call_round({untrusted, standing(14, true, 20, 4)}, RacePhase::duel, by_error(20));
   EXPECT_EQ(call.phase, RacePhase::duel);
   // ... until its last round.
-  call = call_round({standing(10, true, 20, kMaxDuelRounds), standing(14, true, 20, kMaxDuelRounds)}, RacePhase::duel,
-                    by_error(20));
+  untrusted.duel_rounds = kMaxDuelRounds;
+  call = call_round({untrusted, standing(14, true, 20, kMaxDuelRounds)}, RacePhase::duel, by_error(20));
   EXPECT_EQ(call.best, 0);
   EXPECT_EQ(call.phase, RacePhase::over);
 }
