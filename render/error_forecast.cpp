@@ -62,17 +62,27 @@ double fitted_floor(const std::vector<ErrorReading>& readings, double start_seco
   return last.error * std::sqrt(std::clamp(floor_square / last.mean_square, 0.0, 1.0));
 }
 
+// A forecast from the last reading, at rate 0 (where a finished method stays).
+ErrorForecast from_last_reading(const std::vector<ErrorReading>& readings, double start_seconds) {
+  ErrorForecast f;
+  f.start = start_seconds;
+  if (!readings.empty()) f.last = readings.back();
+  return f;
+}
+
+// The fastest a method's error can fall: as independent samples' or as scrambled nets'.
+double fastest_rate(double noise_rate) {
+  return noise_rate > kIndependentNoiseRate ? kScrambledNetMostRate : kIndependentNoiseRate;
+}
+
 }  // namespace
 
 ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDecay decay, double start_seconds,
                              double noise_rate) {
-  ErrorForecast f;
-  f.start = start_seconds;
-  if (readings.empty()) return f;
-  f.last = readings.back();
-  if (decay == ErrorDecay::fixed) return f;
+  ErrorForecast f = from_last_reading(readings, start_seconds);
+  if (readings.empty() || decay == ErrorDecay::fixed) return f;
   const bool scrambled = noise_rate > kIndependentNoiseRate;
-  const double most_rate = scrambled ? kScrambledNetMostRate : kIndependentNoiseRate;
+  const double most_rate = fastest_rate(noise_rate);
   if (decay == ErrorDecay::measured)
     f.rate = scrambled ? kIndependentNoiseRate : kAssumedShrinkRate;
   else
@@ -121,12 +131,9 @@ ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDec
 
 ErrorForecast best_case_forecast(const std::vector<ErrorReading>& readings, ErrorDecay decay, double start_seconds,
                                  double noise_rate) {
-  ErrorForecast f;
-  f.start = start_seconds;
-  if (readings.empty()) return f;
-  f.last = readings.back();
-  if (decay == ErrorDecay::fixed) return f;
-  f.rate = noise_rate > kIndependentNoiseRate ? kScrambledNetMostRate : kIndependentNoiseRate;
+  ErrorForecast f = from_last_reading(readings, start_seconds);
+  if (readings.empty() || decay == ErrorDecay::fixed) return f;
+  f.rate = fastest_rate(noise_rate);
   if (decay == ErrorDecay::sampled) f.floor = std::clamp(f.last.floor, 0.0, f.last.error);
   return f;
 }
