@@ -34,8 +34,8 @@ struct RaceStanding {
   double error_at_ten_times = std::numeric_limits<double>::infinity();
   bool measured = false;  // its forecast rests on a measured rate (or on its final error)
   // value as the fastest fall its method allows would make it (best_case_forecast): before its
-  // rate is measured, a candidate even this puts more than the drop ratio behind the best is
-  // dropped (its assumed rate is not what keeps it in). 0: not known (never drops it).
+  // rate is measured, a biased candidate even this puts more than the drop ratio behind the best
+  // is dropped (its assumed rate is not what keeps it in). 0: not known (never drops it).
   double best_case = 0;
   bool biased = false;    // its passes may converge to a bias (Renderer::method()->may_be_biased())
   double error = -1;      // its last reading
