@@ -124,14 +124,16 @@ void VertexLinkRadiosity::count_light_samples() {
   }
 }
 
-// The mesh and links of another renderer's radiosity, copied on the device: what prepare() and
-// build_links() would have made here (same_links_as), without refining or tracing again.
+// Another renderer's radiosity on the same device and scene, whose mesh and links are the ones
+// this one would build (same_links_as).
 bool VertexLinkRadiosity::shares_setup_with(const IndirectMethod& other_method) const {
   const auto* other = dynamic_cast<const VertexLinkRadiosity*>(&other_method);
   return other && other != this && &other->device_ == &device_ && &other->scene_ == &scene_ &&
          settings_.same_links_as(other->settings_);
 }
 
+// The mesh and links of such a renderer, once it has built them, copied on the device: what
+// prepare() and build_links() would have made here, without refining or tracing again.
 bool VertexLinkRadiosity::adopt_setup(const IndirectMethod& other_method) {
   const auto* other = dynamic_cast<const VertexLinkRadiosity*>(&other_method);
   if (prepared_ || !shares_setup_with(other_method) || !other->prepared_) return false;
