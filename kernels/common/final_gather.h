@@ -27,7 +27,8 @@
    (low_discrepancy.h): pass 2j + r takes the next N points of sequence r, so a pixel's rays over
    the frame spread over its hemisphere as a net does, and its error falls faster than
    independent rays' (docs/final-gathering.md, "Directions from a scrambled sequence"). The
-   scrambles are keyed by Philox (seed, photon_frame), counter (pixel, mirror depth, "FGAT", ~0);
+   scrambles are keyed by Philox (seed, photon_frame), counter (pixel, mirror depth, "FGAT", ~0),
+   their first digits by (tile, mirror depth, "FGAT", ~1), shared by the pixels of a warp;
    the light samples at a hit by (pixel, mirror depth and vertex, ray index within the frame:
    pass * N + ray), as the camera pass's (sampled_light_direct, one per kind). */
 #ifndef PM_FINAL_GATHER_H
@@ -120,8 +121,12 @@ PM_DEVICE void final_gather_pixel(const KernelGlobals* kg, const LaunchParams* p
       caustic = vec3_add(caustic, vec3_mul(sp.weight, point_caustic));
     }
     uint event_base = depth << 8; /* at most PM_PHOTON_MAX_SPECULAR + 2 vertices below x */
-    /* The scrambles of the pixel's two replicates: the same in every pass of the frame. */
-    Bits4 keys = rng_bits4(p->seed, p->photon_frame, pixel, event_base, PM_STREAM_FINAL_GATHER, 0xffffffffu);
+    /* The scrambles of the pixel's two replicates, the same in every pass of the frame: the
+       first digits the tile's, so that the warp's rays leave together (low_discrepancy.h). */
+    FirstBounceKeys keys;
+    keys.own = rng_bits4(p->seed, p->photon_frame, pixel, event_base, PM_STREAM_FINAL_GATHER, 0xffffffffu);
+    keys.tile = rng_bits4(p->seed, p->photon_frame, tile_of_pixel(pixel, p->width), event_base, PM_STREAM_FINAL_GATHER,
+                          0xfffffffeu);
     Vec3 origin = offset_ray_origin(sp.position, sp.normal, ray_offset_distance(sp.position, 0.0f, p->ray_epsilon));
     float p_lobe_diffuse = p_diffuse / (p_diffuse + p_glossy);
     Vec3 sum = vec3_splat(0.0f);

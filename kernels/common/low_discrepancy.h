@@ -22,6 +22,19 @@
    bits come from a hash of the scramble's key, the digit's place and the digits before it, so a
    scramble is a pure function of its key (the same on every backend).
 
+   Coherent rays (Sadeghi, Chen and Jensen 2009, "Coherent path tracing", share random numbers
+   between pixels for the same reason): the first PM_TILE_SHARED_DIGITS digits of each coordinate
+   are scrambled under the pixel's tile's key (pixel_order.h: the 8 x 4 pixels a GPU warp
+   shades), the rest under the pixel's own. Ray s of a pass then leaves every pixel of a warp
+   into the same 2^-4 x 2^-4 cell of the square, about the same direction about each normal, so
+   the warp's rays walk the scene's tree and read the cache together. Each pixel's points are
+   still an Owen-scrambled net (each digit's flip is a random bit; which key gave it does not
+   matter to one pixel), so a pixel's estimate and its error are what they were. Pixels of a tile
+   share only which cells their points lie in: given the tile's scramble, a point is uniform in
+   its cell, so their errors share at most the net's error on the cells' averages, and none once
+   a replicate has 2^8 points (sixteen passes of 16 rays: its points then fill every 2^-4 x 2^-4
+   cell once, an elementary interval of area 2^-8, and the cells' averages integrate exactly).
+
    Replicates: a frame's passes alternate between two independently scrambled sequences (even
    passes the first, odd passes the second, each pass the next block of its own). The even and
    odd passes' means are then independent estimates, as with independent rays, so the frame's own
@@ -56,19 +69,29 @@ PM_DEVICE uint scramble_hash(uint x)
   return x;
 }
 
-/* Owen's nested uniform scrambling of the fraction x's first PM_SCRAMBLED_DIGITS binary digits
-   under `key`: digit k (from the most significant, k = 0, 1, ...) is flipped by a bit hashed from
-   the key, k and the k digits before it (as x has them before scrambling): (k, digits) is one
-   word, k in its top byte, unique for every node of the digit tree, XORed with the key. */
-PM_DEVICE uint owen_scramble_bits(uint x, uint key)
+/* Digits of each coordinate scrambled under the tile's key rather than the pixel's own (above). */
+#define PM_TILE_SHARED_DIGITS 4u
+
+/* Owen's nested uniform scrambling of the fraction x's first PM_SCRAMBLED_DIGITS binary digits:
+   digit k (from the most significant, k = 0, 1, ...) is flipped by a bit hashed from a key, k and
+   the k digits before it (as x has them before scrambling): (k, digits) is one word, k in its top
+   byte, unique for every node of the digit tree, XORed with the key. The digits k < shared_digits
+   take shared_key, the others key. */
+PM_DEVICE uint owen_scramble_bits_split(uint x, uint shared_key, uint shared_digits, uint key)
 {
   uint scrambled = x;
   for (uint k = 0u; k < PM_SCRAMBLED_DIGITS; ++k) {
     uint before = k == 0u ? 0u : x >> (32u - k); /* the digits before digit k: below 2^23 */
-    uint flip = scramble_hash((k << 24) ^ before ^ key) >> 31;
+    uint flip = scramble_hash((k << 24) ^ before ^ (k < shared_digits ? shared_key : key)) >> 31;
     scrambled ^= flip << (31u - k);
   }
   return scrambled;
+}
+
+/* Owen's scrambling of every digit under one key. */
+PM_DEVICE uint owen_scramble_bits(uint x, uint key)
+{
+  return owen_scramble_bits_split(x, key, 0u, key);
 }
 
 /* Point `index` of the sequence scrambled by (key0, key1), one key a dimension; in [0, 1)^2. */
@@ -78,17 +101,24 @@ PM_DEVICE void scrambled_sobol2(uint index, uint key0, uint key1, float* u0, flo
   *u1 = rng_to_unit(owen_scramble_bits(sobol_dimension1_bits(index), key1));
 }
 
+/* The scrambles of a pixel's two replicates, the same in every pass of the frame: each four
+   random words, b0, b1 replicate 0's two dimensions, b2, b3 replicate 1's; `tile`'s for the first
+   PM_TILE_SHARED_DIGITS digits (the same for every pixel of the tile), `own` for the rest. */
+typedef struct FirstBounceKeys {
+  Bits4 tile, own;
+} FirstBounceKeys;
+
 /* The first bounce's 2D point of ray `ray` of pass `pass` (rays_per_pass a pass), from the
-   replicate of the pass's parity: pass 2j + r draws points j * rays_per_pass .. of replicate r.
-   `keys`: four random words of the pixel and the frame (the same for every pass): b0, b1
-   scramble replicate 0, b2, b3 replicate 1. */
-PM_DEVICE void first_bounce_point(Bits4 keys, uint pass, uint rays_per_pass, uint ray, float* u0, float* u1)
+   replicate of the pass's parity: pass 2j + r draws points j * rays_per_pass .. of replicate r. */
+PM_DEVICE void first_bounce_point(FirstBounceKeys keys, uint pass, uint rays_per_pass, uint ray, float* u0, float* u1)
 {
   uint index = (pass >> 1) * rays_per_pass + ray;
-  if (pass & 1u)
-    scrambled_sobol2(index, keys.b2, keys.b3, u0, u1);
-  else
-    scrambled_sobol2(index, keys.b0, keys.b1, u0, u1);
+  uint odd = pass & 1u;
+  uint x = radical_inverse2_bits(index), y = sobol_dimension1_bits(index);
+  *u0 = rng_to_unit(owen_scramble_bits_split(x, odd ? keys.tile.b2 : keys.tile.b0, PM_TILE_SHARED_DIGITS,
+                                             odd ? keys.own.b2 : keys.own.b0));
+  *u1 = rng_to_unit(owen_scramble_bits_split(y, odd ? keys.tile.b3 : keys.tile.b1, PM_TILE_SHARED_DIGITS,
+                                             odd ? keys.own.b3 : keys.own.b1));
 }
 
 /* A lobe chosen by the point's first coordinate, which is then stretched back over [0, 1): the

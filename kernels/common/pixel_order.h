@@ -29,4 +29,11 @@ PM_DEVICE int pixel_of_work_item(uint item, uint width, uint height, uint* pixel
   return 1;
 }
 
+/* The tile (in row-major order) that holds `pixel`: the pixels one warp shades together. */
+PM_DEVICE uint tile_of_pixel(uint pixel, uint width)
+{
+  uint tiles_x = (width + PM_TILE_W - 1u) / PM_TILE_W;
+  return (pixel / width / PM_TILE_H) * tiles_x + (pixel % width) / PM_TILE_W;
+}
+
 #endif

@@ -1,8 +1,10 @@
 // The first bounce's scrambled Sobol points (kernels/common/low_discrepancy.h): Sobol's second
 // dimension against its known first points, the (0,m,2)-net property of every aligned block with
 // and without Owen's scrambling, each scrambled point uniform over the keys, two replicates
-// independent of each other, the lobe choice that keeps each lobe's points spread, and the
-// integration error of an integrand with an edge far under independent points'.
+// independent of each other, the lobe choice that keeps each lobe's points spread, the
+// integration error of an integrand with an edge far under independent points', and the pixels of
+// a tile sending their rays together without sharing their errors once a replicate fills the
+// shared cells.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -35,6 +37,15 @@ bool is_net(uint first, int m, uint k0, uint k1, bool scrambled)
     }
   }
   return true;
+}
+
+// A pixel's keys: its tile's and its own, random.
+FirstBounceKeys random_keys(std::mt19937& rng)
+{
+  FirstBounceKeys keys;
+  keys.tile = {uint(rng()), uint(rng()), uint(rng()), uint(rng())};
+  keys.own = {uint(rng()), uint(rng()), uint(rng()), uint(rng())};
+  return keys;
 }
 
 TEST(LowDiscrepancy, SobolsSecondDimensionStartsAsKnown)
@@ -92,7 +103,7 @@ TEST(LowDiscrepancy, AnEdgesIntegralConvergesFarFasterThanWithIndependentPoints)
   const int n = 4096, trials = 200;
   double squares = 0;
   for (int t = 0; t < trials; ++t) {
-    Bits4 keys = {uint(rng()), uint(rng()), uint(rng()), uint(rng())};
+    FirstBounceKeys keys = random_keys(rng);
     double sum = 0;
     for (int i = 0; i < n; ++i) {
       float u0, u1;
@@ -114,7 +125,7 @@ TEST(LowDiscrepancy, EvenAndOddPassesDrawIndependentReplicates)
   const int trials = 400, passes = 64;
   double even_sq = 0, odd_sq = 0, cross = 0;
   for (int t = 0; t < trials; ++t) {
-    Bits4 keys = {uint(rng()), uint(rng()), uint(rng()), uint(rng())};
+    FirstBounceKeys keys = random_keys(rng);
     double even = 0, odd = 0;
     for (uint pass = 0; pass < uint(passes); ++pass)
       for (uint ray = 0; ray < 16; ++ray) {
@@ -130,7 +141,7 @@ TEST(LowDiscrepancy, EvenAndOddPassesDrawIndependentReplicates)
   }
   const double correlation = cross / std::sqrt(even_sq * odd_sq);
   EXPECT_LT(std::fabs(correlation), 4.0 / std::sqrt(double(trials))) << correlation;
-  Bits4 keys = {1, 2, 3, 4};
+  FirstBounceKeys keys = {{1, 2, 3, 4}, {5, 6, 7, 8}};
   for (uint pass : {0u, 1u, 6u, 9u}) {
     std::vector<int> count(16, 0);
     for (uint ray = 0; ray < 16; ++ray) {
@@ -146,7 +157,7 @@ TEST(LowDiscrepancy, TheLobeChoiceKeepsEachLobesPointsSpread)
 {
   // 1024 points, diffuse with probability 0.25: 256 go to the diffuse lobe, stretched back over
   // [0, 1) in the first number; in 16 x 16 cells of the stretched square each holds one.
-  Bits4 keys = {9, 8, 7, 6};
+  FirstBounceKeys keys = {{9, 8, 7, 6}, {1, 3, 5, 7}};
   std::vector<int> diffuse(256, 0);
   int glossy = 0;
   for (uint i = 0; i < 1024; ++i) {
@@ -163,6 +174,84 @@ TEST(LowDiscrepancy, TheLobeChoiceKeepsEachLobesPointsSpread)
   int empty = 0;
   for (int c : diffuse) empty += c == 0;
   EXPECT_EQ(empty, 0);
+}
+
+TEST(LowDiscrepancy, APixelsPointsAreANetWhicheverKeysItsTileShares)
+{
+  // The first PM_TILE_SHARED_DIGITS digits under one key, the rest under another: every aligned
+  // block of a pixel's points is still a net.
+  std::mt19937 rng(5);
+  for (int m = 0; m <= 10; ++m)
+    for (int s = 0; s < 8; ++s) {
+      FirstBounceKeys keys = random_keys(rng);
+      const uint n = 1u << m, block = uint(rng() % 64);
+      for (int j = 0; j <= m; ++j) {
+        std::vector<int> count(n, 0);
+        for (uint i = block * n; i < (block + 1) * n; ++i) {
+          float u0, u1;
+          first_bounce_point(keys, 2 * (i / n), n, i % n, &u0, &u1);
+          const uint a = uint(std::ldexp(double(u0), j)), b = uint(std::ldexp(double(u1), m - j));
+          ASSERT_EQ(++count[(a << (m - j)) | b], 1) << "m " << m << " shape " << j;
+        }
+      }
+    }
+}
+
+TEST(LowDiscrepancy, ATilesPixelsSendEachRayIntoOneCellOfTheSquare)
+{
+  // Ray s of a pass leaves every pixel of a tile within the same 2^-4 x 2^-4 cell (about the same
+  // direction about each normal: the warp's rays traverse together); pixels of other tiles do not.
+  std::mt19937 rng(17);
+  const double cells = double(1u << PM_TILE_SHARED_DIGITS);
+  FirstBounceKeys a = random_keys(rng), b = random_keys(rng), other = random_keys(rng);
+  b.tile = a.tile;
+  int same_cell_elsewhere = 0, rays = 0;
+  for (uint pass = 0; pass < 8; ++pass)
+    for (uint ray = 0; ray < 16; ++ray, ++rays) {
+      float a0, a1, b0, b1, o0, o1;
+      first_bounce_point(a, pass, 16, ray, &a0, &a1);
+      first_bounce_point(b, pass, 16, ray, &b0, &b1);
+      first_bounce_point(other, pass, 16, ray, &o0, &o1);
+      EXPECT_EQ(int(a0 * cells), int(b0 * cells)) << pass << " " << ray;
+      EXPECT_EQ(int(a1 * cells), int(b1 * cells)) << pass << " " << ray;
+      EXPECT_NE(a0, b0);  // within the cell each pixel's own
+      same_cell_elsewhere += int(a0 * cells) == int(o0 * cells) && int(a1 * cells) == int(o1 * cells);
+    }
+  EXPECT_LT(same_cell_elsewhere, rays / 8);  // by chance 1 in 256
+}
+
+TEST(LowDiscrepancy, ATilesPixelsShareNoErrorOnceAReplicateFillsTheSharedCells)
+{
+  // Two pixels of a tile integrate the disc (an edge, as visibility makes). Over 4000 tiles their
+  // errors after one pass of 16 rays are correlated (they lie in the same cells, the test can
+  // tell); after 16 passes of one replicate (256 points, every 2^-4 x 2^-4 cell once) they are not.
+  std::mt19937 rng(29);
+  const double area = M_PI * 0.2025;
+  const int trials = 4000;
+  auto correlation = [&](uint passes) {
+    double aa = 0, bb = 0, ab = 0;
+    for (int t = 0; t < trials; ++t) {
+      FirstBounceKeys a = random_keys(rng), b = random_keys(rng);
+      b.tile = a.tile;
+      double sa = 0, sb = 0;
+      for (uint pass = 0; pass < passes; ++pass)
+        for (uint ray = 0; ray < 16; ++ray) {
+          float u0, u1;
+          first_bounce_point(a, 2 * pass, 16, ray, &u0, &u1);
+          sa += disc(u0, u1);
+          first_bounce_point(b, 2 * pass, 16, ray, &u0, &u1);
+          sb += disc(u0, u1);
+        }
+      const double ea = sa / (16.0 * passes) - area, eb = sb / (16.0 * passes) - area;
+      aa += ea * ea;
+      bb += eb * eb;
+      ab += ea * eb;
+    }
+    return ab / std::sqrt(aa * bb);
+  };
+  const double one_pass = correlation(1), filled = correlation(16), bound = 4.0 / std::sqrt(double(trials));
+  EXPECT_GT(one_pass, bound) << one_pass;
+  EXPECT_LT(std::fabs(filled), bound) << filled;
 }
 
 }  // namespace
