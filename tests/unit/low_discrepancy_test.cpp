@@ -223,8 +223,9 @@ TEST(LowDiscrepancy, ATilesPixelsSendEachRayIntoOneCellOfTheSquare)
 TEST(LowDiscrepancy, ATilesPixelsShareNoErrorOnceAReplicateFillsTheSharedCells)
 {
   // Two pixels of a tile integrate the disc (an edge, as visibility makes). Over 4000 tiles their
-  // errors after one pass of 16 rays are correlated (they lie in the same cells, the test can
-  // tell); after 16 passes of one replicate (256 points, every 2^-4 x 2^-4 cell once) they are not.
+  // errors after one pass of 16 rays are correlated (they lie in the same cells: 0.66; the test
+  // can tell); after 16 passes of one replicate (256 points, every 2^-4 x 2^-4 cell once) they are
+  // not (0.02; four passes: 0.36).
   std::mt19937 rng(29);
   const double area = M_PI * 0.2025;
   const int trials = 4000;
@@ -249,7 +250,8 @@ TEST(LowDiscrepancy, ATilesPixelsShareNoErrorOnceAReplicateFillsTheSharedCells)
     }
     return ab / std::sqrt(aa * bb);
   };
-  const double one_pass = correlation(1), filled = correlation(16), bound = 4.0 / std::sqrt(double(trials));
+  const uint filled_passes = (1u << (2 * PM_TILE_SHARED_DIGITS)) / 16;  // 16 at 4 shared digits
+  const double one_pass = correlation(1), filled = correlation(filled_passes), bound = 4.0 / std::sqrt(double(trials));
   EXPECT_GT(one_pass, bound) << one_pass;
   EXPECT_LT(std::fabs(filled), bound) << filled;
 }
