@@ -3,18 +3,20 @@
 // and without Owen's scrambling, each scrambled point uniform over the keys, two replicates
 // independent of each other, the lobe choice that keeps each lobe's points spread, the
 // integration error of an integrand with an edge far under independent points', and the pixels of
-// a tile sending their rays together without sharing their errors once a replicate fills the
-// shared cells.
+// a tile (the pixels of one warp) sending their rays together without sharing their errors once a
+// replicate fills the shared cells.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdint>
 #include <random>
+#include <utility>
 #include <vector>
 
 // clang-format off
 #include "kernels/common/compat_host.h"
 #include "kernels/common/low_discrepancy.h"
+#include "kernels/common/pixel_order.h"
 // clang-format on
 
 namespace {
@@ -218,6 +220,24 @@ TEST(LowDiscrepancy, ATilesPixelsSendEachRayIntoOneCellOfTheSquare)
       same_cell_elsewhere += int(a0 * cells) == int(o0 * cells) && int(a1 * cells) == int(o1 * cells);
     }
   EXPECT_LT(same_cell_elsewhere, rays / 8);  // by chance 1 in 256
+}
+
+TEST(LowDiscrepancy, ATilesKeyIsTheKeyOfTheWarpThatShadesIt)
+{
+  // The pixels that share a tile's key (tile_of_pixel) are the work items one 32-wide warp
+  // shades in tile order (pixel_of_work_item): items 32 t .. 32 t + 31 are tile t's pixels.
+  for (auto [width, height] : {std::pair<uint, uint>{960, 540}, {13, 7}, {8, 4}, {97, 55}}) {
+    const uint items = pixel_work_items(width, height);
+    ASSERT_EQ(items % (PM_TILE_W * PM_TILE_H), 0u);
+    uint covered = 0;
+    for (uint item = 0; item < items; ++item) {
+      uint pixel;
+      if (!pixel_of_work_item(item, width, height, &pixel)) continue;
+      ++covered;
+      ASSERT_EQ(tile_of_pixel(pixel, width), item / (PM_TILE_W * PM_TILE_H)) << width << "x" << height << " item " << item;
+    }
+    EXPECT_EQ(covered, width * height);
+  }
 }
 
 TEST(LowDiscrepancy, ATilesPixelsShareNoErrorOnceAReplicateFillsTheSharedCells)
