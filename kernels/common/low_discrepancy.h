@@ -88,17 +88,13 @@ PM_DEVICE uint owen_scramble_bits_split(uint x, uint shared_key, uint shared_dig
   return scrambled;
 }
 
-/* Owen's scrambling of every digit under one key. */
-PM_DEVICE uint owen_scramble_bits(uint x, uint key)
+/* Point `index` of the sequence scrambled as a pixel's replicate is, one key a dimension for the
+   first PM_TILE_SHARED_DIGITS digits (tile_key0, tile_key1) and one for the rest (key0, key1); in
+   [0, 1)^2. */
+PM_DEVICE void scrambled_sobol2(uint index, uint tile_key0, uint tile_key1, uint key0, uint key1, float* u0, float* u1)
 {
-  return owen_scramble_bits_split(x, key, 0u, key);
-}
-
-/* Point `index` of the sequence scrambled by (key0, key1), one key a dimension; in [0, 1)^2. */
-PM_DEVICE void scrambled_sobol2(uint index, uint key0, uint key1, float* u0, float* u1)
-{
-  *u0 = rng_to_unit(owen_scramble_bits(radical_inverse2_bits(index), key0));
-  *u1 = rng_to_unit(owen_scramble_bits(sobol_dimension1_bits(index), key1));
+  *u0 = rng_to_unit(owen_scramble_bits_split(radical_inverse2_bits(index), tile_key0, PM_TILE_SHARED_DIGITS, key0));
+  *u1 = rng_to_unit(owen_scramble_bits_split(sobol_dimension1_bits(index), tile_key1, PM_TILE_SHARED_DIGITS, key1));
 }
 
 /* The scrambles of a pixel's two replicates, the same in every pass of the frame: each four
@@ -113,12 +109,10 @@ typedef struct FirstBounceKeys {
 PM_DEVICE void first_bounce_point(FirstBounceKeys keys, uint pass, uint rays_per_pass, uint ray, float* u0, float* u1)
 {
   uint index = (pass >> 1) * rays_per_pass + ray;
-  uint odd = pass & 1u;
-  uint x = radical_inverse2_bits(index), y = sobol_dimension1_bits(index);
-  *u0 = rng_to_unit(owen_scramble_bits_split(x, odd ? keys.tile.b2 : keys.tile.b0, PM_TILE_SHARED_DIGITS,
-                                             odd ? keys.own.b2 : keys.own.b0));
-  *u1 = rng_to_unit(owen_scramble_bits_split(y, odd ? keys.tile.b3 : keys.tile.b1, PM_TILE_SHARED_DIGITS,
-                                             odd ? keys.own.b3 : keys.own.b1));
+  if (pass & 1u)
+    scrambled_sobol2(index, keys.tile.b2, keys.tile.b3, keys.own.b2, keys.own.b3, u0, u1);
+  else
+    scrambled_sobol2(index, keys.tile.b0, keys.tile.b1, keys.own.b0, keys.own.b1, u0, u1);
 }
 
 /* A lobe chosen by the point's first coordinate, which is then stretched back over [0, 1): the

@@ -21,9 +21,10 @@
 
 namespace {
 
-// Whether points first .. first + 2^m - 1 with keys (k0, k1) put exactly one point in every
-// elementary interval of area 2^-m (all m + 1 shapes).
-bool is_net(uint first, int m, uint k0, uint k1, bool scrambled)
+// Whether points first .. first + 2^m - 1, scrambled as a pixel's are (its tile's keys t0, t1 for
+// the first digits, its own k0, k1 for the rest), put exactly one point in every elementary
+// interval of area 2^-m (all m + 1 shapes).
+bool is_net(uint first, int m, uint t0, uint t1, uint k0, uint k1, bool scrambled)
 {
   const uint n = 1u << m;
   for (int j = 0; j <= m; ++j) {
@@ -31,8 +32,8 @@ bool is_net(uint first, int m, uint k0, uint k1, bool scrambled)
     for (uint i = first; i < first + n; ++i) {
       uint x = radical_inverse2_bits(i), y = sobol_dimension1_bits(i);
       if (scrambled) {
-        x = owen_scramble_bits(x, k0);
-        y = owen_scramble_bits(y, k1);
+        x = owen_scramble_bits_split(x, t0, PM_TILE_SHARED_DIGITS, k0);
+        y = owen_scramble_bits_split(y, t1, PM_TILE_SHARED_DIGITS, k1);
       }
       const uint a = j == 0 ? 0u : x >> (32 - j), b = m - j == 0 ? 0u : y >> (32 - (m - j));
       if (++count[(a << (m - j)) | b] > 1) return false;
@@ -62,11 +63,11 @@ TEST(LowDiscrepancy, EveryAlignedBlockIsANetScrambledOrNot)
   for (int m = 0; m <= 12; ++m)
     for (uint block : {0u, 1u, 7u, 1000u}) {
       const uint first = block << m;
-      EXPECT_TRUE(is_net(first, m, 0, 0, false)) << "m " << m << " block " << block;
-      for (int s = 0; s < 4; ++s) EXPECT_TRUE(is_net(first, m, rng(), rng(), true)) << "m " << m << " block " << block;
+      EXPECT_TRUE(is_net(first, m, 0, 0, 0, 0, false)) << "m " << m << " block " << block;
+      for (int s = 0; s < 4; ++s) EXPECT_TRUE(is_net(first, m, rng(), rng(), rng(), rng(), true)) << "m " << m << " block " << block;
     }
   // A block that does not start at a multiple of its size is no net: the test can tell.
-  EXPECT_FALSE(is_net(3, 4, 0, 0, false));
+  EXPECT_FALSE(is_net(3, 4, 0, 0, 0, 0, false));
 }
 
 TEST(LowDiscrepancy, AScrambledPointIsUniformOverTheKeys)
@@ -79,7 +80,7 @@ TEST(LowDiscrepancy, AScrambledPointIsUniformOverTheKeys)
     std::vector<int> count(cells, 0);
     for (int k = 0; k < keys; ++k) {
       float u0, u1;
-      scrambled_sobol2(index, rng(), rng(), &u0, &u1);
+      scrambled_sobol2(index, rng(), rng(), rng(), rng(), &u0, &u1);
       ASSERT_GE(u0, 0.0f);
       ASSERT_LT(u0, 1.0f);
       ASSERT_LT(u1, 1.0f);
