@@ -87,7 +87,7 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
   std::vector<RegionSums> regions(size_t(regions_x) * regions_y);
   double control_total = 0, difference_total = 0, variance_total = 0;
   double squared_error_sum = 0, squared_error_squares = 0, counted = 0, noise_sum = 0;
-  double squared_bias_sum = 0, squared_bias_squares = 0, film_variance_sum = 0;
+  double squared_bias_sum = 0, squared_bias_squares = 0;
   const double all_passes = film_passes.passes, odd_passes = film_passes.odd, even_passes = all_passes - odd_passes;
   for (uint32_t by = 0; by < grid.blocks_y; ++by)
     for (uint32_t bx = 0; bx < grid.blocks_x; ++bx) {
@@ -119,7 +119,6 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
         const double odd = f.w, even = (film * all_passes - odd * odd_passes) / even_passes;
         const double film_variance = (even - odd) * (even - odd) * even_passes * odd_passes / (all_passes * all_passes);
         const double squared_bias = squared_error - film_variance;
-        film_variance_sum += film_variance;
         squared_bias_sum += squared_bias;
         squared_bias_squares += squared_bias * squared_bias;
       }
@@ -170,7 +169,6 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
     e.bias_floor = mae / level * std::sqrt(std::clamp((squared_bias - 2.0 * spread) / mse, 0.0, 1.0));
     e.bias_ceiling = mae / level * std::sqrt(std::clamp((squared_bias + 2.0 * spread) / mse, 0.0, 1.0));
   }
-  if (film_passes.split() && counted > 0) e.film_noise_square = film_variance_sum / counted / (level * level);
   e.known = true;
   return e;
 }

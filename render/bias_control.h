@@ -49,13 +49,6 @@ struct BiasEstimate {
   double bias_floor = -1;
   // The same with two standard errors added: the part that is bias, at most. -1: not known.
   double bias_ceiling = -1;
-  // The film's own noise at the control pixels from the same split: mean(n_c) / mean control^2,
-  // its relative mean squared noise, bias left out. How it falls between two readings is how the
-  // film's noise falls with its passes (error_forecast.h, measured_noise_rate). For final
-  // gathering, whose passes are blocks of one scrambled sequence, the even and odd halves are
-  // not independent estimates, so the level may read off by a factor; the forecast takes only
-  // its fall across readings. -1: not known.
-  double film_noise_square = -1;
   bool known = false;         // false: no control ran, or the control saw no light
 };
 

@@ -77,31 +77,12 @@ double fastest_rate(double noise_rate) {
 
 }  // namespace
 
-double measured_noise_rate(const std::vector<ErrorReading>& readings, double start_seconds, double noise_rate) {
-  if (readings.empty()) return -1;
-  const ErrorReading& last = readings.back();
-  const double last_passes = last.seconds - start_seconds;
-  if (!(last.noise_square > 0) || !(last_passes > 0)) return -1;
-  for (size_t i = readings.size() - 1; i-- > 0;) {
-    const ErrorReading& a = readings[i];
-    const double passes = a.seconds - start_seconds;
-    if (!(passes > 0) || !(a.noise_square > 0) || last_passes < kRateSpan * passes) continue;
-    const double measured = 0.5 * std::log(a.noise_square / last.noise_square) / std::log(last_passes / passes);
-    return std::clamp(measured, kIndependentNoiseRate, fastest_rate(noise_rate));
-  }
-  return -1;
-}
-
 ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDecay decay, double start_seconds,
                              double noise_rate) {
   ErrorForecast f = from_last_reading(readings, start_seconds);
   if (readings.empty() || decay == ErrorDecay::fixed) return f;
   const bool scrambled = noise_rate > kIndependentNoiseRate;
   const double most_rate = fastest_rate(noise_rate);
-  // A sampled estimate's noise falls as its film's even/odd split shows where two readings far
-  // enough apart have it, as its method's noise is assumed to fall where not.
-  const double noise_measured = decay == ErrorDecay::sampled ? measured_noise_rate(readings, start_seconds, noise_rate) : -1;
-  if (noise_measured >= 0) noise_rate = noise_measured;
   if (decay == ErrorDecay::measured)
     f.rate = scrambled ? kIndependentNoiseRate : kAssumedShrinkRate;
   else
@@ -120,8 +101,7 @@ ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDec
       // A net's error falls faster than independent samples' only once its pixels have many
       // rays: from readings of fewer passes than the fits' least, as independent samples (the
       // net's rate through Sponza's first readings, of 1 and 9 passes, read a floor of 3.8 %).
-      const double fit_rate =
-          noise_measured >= 0 || a.passes >= kFloorFitLeastPasses ? noise_rate : kIndependentNoiseRate;
+      const double fit_rate = a.passes >= kFloorFitLeastPasses ? noise_rate : kIndependentNoiseRate;
       const double x0 = std::pow(passes, -2.0 * fit_rate), x1 = std::pow(last_passes, -2.0 * fit_rate);
       const double noise = (e0 - e1) / (x0 - x1);
       f.floor = noise > 0 ? std::sqrt(std::max(0.0, e1 - noise * x1)) : low;

@@ -17,7 +17,6 @@ struct ErrorReading {
   double floor = -1;        // the part of it that is bias, at least (BiasEstimate::bias_floor); -1: not known
   double floor_upper = -1;  // and at most (BiasEstimate::bias_ceiling); -1: not known
   double mean_square = -1;  // the relative mean squared error, unbiased (BiasEstimate::mean_square); -1: not known
-  double noise_square = -1; // the film's own relative mean squared noise (BiasEstimate::film_noise_square); -1: not known
 };
 
 // How a candidate's error falls with its render time t (its own; start is what it spent
@@ -43,8 +42,6 @@ struct ErrorReading {
 //   "The duel"). A power law instead takes the bias's slowing for a slower rate that never stops.
 //   From readings of fewer than kFloorFitLeastPasses passes the noise is taken to fall as
 //   independent samples' (1/2): a net's faster fall shows only once its pixels have many rays.
-//   Where the film's even/odd noise of two readings far enough apart shows how fast the noise
-//   itself falls (measured_noise_rate), that rate replaces the assumed one in both fits.
 //   With three readings or more spanning 3.5 times in pass time, the floor is fitted instead
 //   through their mean squared errors by least squares (fitted_floor, error_forecast.cpp).
 //   Where the last reading knows the part of its error that the film's own noise does not explain
@@ -100,17 +97,6 @@ constexpr double kFloorFitSpan = 8.0;
 constexpr int kFloorFitReadings = 3;
 constexpr double kFloorFitLeastSpan = 3.5;
 constexpr uint32_t kFloorFitLeastPasses = 16;
-// How fast a sampled estimate's own noise falls, measured: the fall of the film's even/odd noise
-// (ErrorReading::noise_square, bias left out) from the latest reading kRateSpan or more before
-// the last one in pass time to the last, as a rate of its root, within what the method's noise
-// can do (kIndependentNoiseRate to the fastest its noise_rate allows: the variance of a mean of
-// independent passes falls as 1/p, a scrambled net's no slower). -1: not measured (no split, or
-// no reading far enough back). Final gathering over radiosity's whole error fell at rates of
-// 0.50-0.54 on Sibenik and 0.83-0.85 on Conference per doubling of its passes, 16 to 128 and 16
-// to 64 passes (H200, 960 x 540, docs/method-auto.md, "The noise's own rate"): one assumed rate
-// for both read a floor on Sibenik that is not there and missed Conference's.
-double measured_noise_rate(const std::vector<ErrorReading>& readings, double start_seconds = 0,
-                           double noise_rate = kIndependentNoiseRate);
 ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDecay decay, double start_seconds = 0,
                              double noise_rate = kIndependentNoiseRate);
 // The fastest its error could fall from its last reading: at the most rate its decay allows (1/2

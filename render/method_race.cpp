@@ -125,7 +125,6 @@ void measure(Runner& r, const SharedControl& control) {
     r.entry.readings[i].floor = e.known ? e.bias_floor : -1;
     r.entry.readings[i].floor_upper = e.known ? e.bias_ceiling : -1;
     r.entry.readings[i].mean_square = e.known ? e.mean_square : -1;
-    r.entry.readings[i].noise_square = e.known ? e.film_noise_square : -1;
     if (i + 1 == r.films.size()) r.last_upper = e.known ? e.mean_abs_error_upper : -1;
   }
 }

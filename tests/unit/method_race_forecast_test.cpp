@@ -169,56 +169,6 @@ TEST(MethodRaceForecast, FinalGatheringsNoiseFallsAsAScrambledNetsOverItsFloor) 
       << "final gathering over photons on Sponza, 3.64 % to 2.33 % as its passes' time grew 1.78 times";
 }
 
-// doubling_readings with the film's own noise from its even/odd split: noise_share times the
-// noise part of the mean squared error (the split of a scrambled sequence's passes may read its
-// level off by a factor; its fall across readings is what counts).
-std::vector<ErrorReading> with_split_noise(std::vector<ErrorReading> readings, double a, double exponent,
-                                           double noise_share) {
-  for (ErrorReading& r : readings) r.noise_square = noise_share * a * std::pow(r.seconds, -exponent);
-  return readings;
-}
-
-TEST(MethodRaceForecast, ASampledEstimatesNoiseFallsAsItsFilmsSplitShows) {
-  // Sibenik's final gathering over radiosity: its error fell as 1/sqrt(p) with no floor in
-  // sight. The net's assumed p^-3/4 reads the slower fall as a floor; the split's noise, falling
-  // as 1/p in its mean square, says the noise is all of it.
-  const double a = 0.0004;
-  const std::vector<ErrorReading> plain = doubling_readings(a, 1.0, 0.0, 1.0, 0.0);
-  const std::vector<ErrorReading> split = with_split_noise(plain, a, 1.0, 1.4);
-  for (size_t n : {size_t(2), size_t(5)}) {
-    const std::vector<ErrorReading> assumed(plain.begin(), plain.begin() + long(n));
-    const std::vector<ErrorReading> seen(split.begin(), split.begin() + long(n));
-    EXPECT_GT(forecast_error(assumed, ErrorDecay::sampled, 0, kScrambledNetRate).floor, 0.3 * assumed.back().error)
-        << n << " readings at the assumed rate read a floor that is not there";
-    const ErrorForecast f = forecast_error(seen, ErrorDecay::sampled, 0, kScrambledNetRate);
-    EXPECT_NEAR(measured_noise_rate(seen, 0, kScrambledNetRate), 0.5, 1e-9);
-    EXPECT_DOUBLE_EQ(f.rate, 0.5) << n << " readings";
-    EXPECT_NEAR(f.floor, 0.0, 1e-6) << n << " readings";
-    EXPECT_NEAR(f.error_at(4 * seen.back().seconds), 0.5 * seen.back().error, 1e-9);
-  }
-  // Conference's: noise falling as p^-0.85 over a floor of 0.6 %, which the assumed p^-3/4 through
-  // two readings puts at about half of that; the measured rate finds it.
-  const double b = 0.006;
-  const std::vector<ErrorReading> fast = with_split_noise(doubling_readings(a, 1.7, b, 1.0, 0.0), a, 1.7, 1.4);
-  const std::vector<ErrorReading> two = {fast[1], fast[2]};
-  EXPECT_NEAR(measured_noise_rate(two, 0, kScrambledNetRate), 0.85, 1e-9);
-  EXPECT_NEAR(forecast_error(two, ErrorDecay::sampled, 0, kScrambledNetRate).floor, b, 1e-9);
-  std::vector<ErrorReading> unseen = two;
-  for (ErrorReading& r : unseen) r.noise_square = -1;
-  EXPECT_LT(forecast_error(unseen, ErrorDecay::sampled, 0, kScrambledNetRate).floor, 0.7 * b);
-  EXPECT_NEAR(forecast_error(fast, ErrorDecay::sampled, 0, kScrambledNetRate).floor, b, 1e-9) << "and the fit across readings";
-  // Within what samples can do: independent passes' variance falls as 1/p at least, and a
-  // method of independent samples no faster; no split or no reading far enough back: not measured.
-  EXPECT_DOUBLE_EQ(measured_noise_rate(with_split_noise(plain, a, 0.6, 1.0), 0, kScrambledNetRate), 0.5);
-  EXPECT_DOUBLE_EQ(measured_noise_rate(with_split_noise(plain, a, 2.6, 1.0), 0, kScrambledNetRate), 1.0);
-  EXPECT_DOUBLE_EQ(measured_noise_rate(two), 0.5);
-  EXPECT_DOUBLE_EQ(measured_noise_rate(plain, 0, kScrambledNetRate), -1.0);
-  EXPECT_DOUBLE_EQ(measured_noise_rate({split[3], split[3]}, 0, kScrambledNetRate), -1.0);
-  // Other kinds of decay measure their whole error's rate, as before.
-  EXPECT_DOUBLE_EQ(forecast_error(split, ErrorDecay::measured, 0, kScrambledNetRate).rate,
-                   forecast_error(plain, ErrorDecay::measured, 0, kScrambledNetRate).rate);
-}
-
 TEST(MethodRaceForecast, TheBestCaseFallsAtTheFastestRateItsSamplesAllow) {
   // One reading, as after the race's first round: independent samples (the path tracer, photon
   // passes) at best 1/2, a scrambled net's passes at best 1, whatever the assumed rates.
