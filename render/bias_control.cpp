@@ -77,7 +77,7 @@ double region_abs_error(const RegionSums& r) {
 
 BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const std::vector<float4>& control_film,
                                   const ControlGrid& grid, uint64_t paths, uint32_t region_side,
-                                  ControlFilmPasses film_passes) {
+                                  ControlFilmPasses film_passes, double level_of) {
   BiasEstimate e;
   e.paths = paths;
   if (paths < 2 || control_sums.size() < grid.pixels() || control_film.size() < grid.pixels()) return e;
@@ -125,7 +125,9 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
       noise_sum += std::sqrt(variance);
       counted += 1;
     }
-  if (!(control_total > 0)) return e;
+  if (!(control_total > 0) && !(level_of > 0)) return e;
+  // The light the relative errors are of: the control's own, or level_of's per pixel.
+  const double light_total = level_of > 0 ? level_of * counted : control_total;
   // The regions' |errors|, and their spread per pixel, from which the mean's standard error.
   double regional = 0, abs_error_sum = 0, per_pixel_sum = 0, per_pixel_squares = 0, region_count = 0;
   for (const RegionSums& r : regions) {
@@ -137,7 +139,7 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
     per_pixel_squares += (abs_error / r.pixels) * (abs_error / r.pixels);
     region_count += 1;
   }
-  const double level = control_total / counted;
+  const double level = light_total / counted;
   const double mse = squared_error_sum / counted;
   const double mse_spread = counted > 1 ? std::sqrt(std::max(0.0, (squared_error_squares / counted - mse * mse) /
                                                                       (counted - 1)))
@@ -158,10 +160,10 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
   e.mean_abs_error = (mae + mae_spread) / level;
   e.mean_abs_error_upper = (mae + 2.0 * mae_spread) / level;
   e.mean_abs_error_stderr = mae_spread / level;
-  e.signed_bias = difference_total / control_total;
-  e.bias_error = std::sqrt(variance_total) / control_total;
-  e.regional_bias = regional / control_total;
-  e.control_noise = noise_sum / control_total;
+  e.signed_bias = difference_total / light_total;
+  e.bias_error = std::sqrt(variance_total) / light_total;
+  e.regional_bias = regional / light_total;
+  e.control_noise = noise_sum / light_total;
   if (film_passes.split() && mse > 0 && counted > 1) {
     const double squared_bias = squared_bias_sum / counted;
     const double spread =
@@ -173,16 +175,35 @@ BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const
   return e;
 }
 
+double control_level(const SharedControl& control) {
+  if (control.paths == 0 || control.sums.empty()) return 0;
+  double total = 0;
+  for (const float4& s : control.sums) total += (double(s.x) + s.y + s.z) / 3.0;
+  return total / double(control.paths) / double(control.sums.size());
+}
+
+BiasEstimate paired_bias(const SharedControl& probe, const ControlGrid& grid, double level) {
+  // Each control pixel's mean delta is the truth less the method's expectation there, read
+  // through the deltas' own noise as compare_with_control reads a film through a control's: a
+  // film of zeros against "paths" that are the deltas, 0 - mean delta its error (signed_bias:
+  // the method's signed bias).
+  const std::vector<float4> zeros(probe.sums.size(), float4{0, 0, 0, 0});
+  return compare_with_control(probe.sums, zeros, grid, probe.paths, kControlRegionSide, {}, level);
+}
+
 BiasControl::BiasControl(Device& device, BufferTable& buffers, int width, int height)
     : device_(device), buffers_(buffers), grid_(control_grid(width, height)) {}
 
-void BiasControl::launch(LaunchParams params, uint32_t samples, uint64_t first_sample) {
+void BiasControl::launch(LaunchParams params, uint32_t samples, uint64_t first_sample, const PathsLaunch& paths) {
   const uint64_t items = grid_.pixels();
   params.control_stride = grid_.stride;
   params.control_samples = samples;
   params.control_first_sample = uint32_t(first_sample);
   params.control_lanes = std::min<uint32_t>(PM_CONTROL_LANES, std::max<uint32_t>(samples, 1));
-  if (samples > 0) device_.launch(KernelId::bias_control, items * params.control_lanes, params);
+  if (samples > 0) {
+    if (paths) paths(params, items * params.control_lanes);
+    else device_.launch(KernelId::bias_control, items * params.control_lanes, params);
+  }
   device_.launch(KernelId::bias_control_sum, items, params);
 }
 
@@ -200,12 +221,12 @@ BiasEstimate BiasControl::add_and_compare(LaunchParams params, uint32_t samples,
   return compare_with_control(sums, film, grid_, paths_, kControlRegionSide, film_passes);
 }
 
-void BiasControl::grow_shared(LaunchParams params, SharedControl& shared, uint32_t samples) {
+void BiasControl::grow_shared(LaunchParams params, SharedControl& shared, uint32_t samples, const PathsLaunch& paths) {
   const uint64_t items = grid_.pixels();
   DeviceBuffer& sums = buffers_[BufferSlot::control_sums];
   if (shared.sums.size() == items) device_.upload(sums, shared.sums.data(), items * sizeof(float4));
   else device_.fill_zero(sums, sums.bytes());
-  launch(params, samples, shared.paths);
+  launch(params, samples, shared.paths, paths);
   shared.sums.resize(items);
   device_.download(sums, shared.sums.data(), items * sizeof(float4));
   shared.paths += samples;

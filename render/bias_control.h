@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "render/kernel_abi.h"
@@ -86,9 +87,11 @@ ControlGrid control_grid(int width, int height);
 // control_film as the kernel writes them). Regions are groups of region_side x region_side
 // control pixels: within one, the film's bias is summed before its absolute value is taken,
 // and the control's variance there is subtracted from the square (an unbiased |bias|^2).
+// level_of: the mean light per control pixel the relative figures are of, where not the
+// control's own (paired_bias: sums of differences, whose mean is near zero).
 BiasEstimate compare_with_control(const std::vector<float4>& control_sums, const std::vector<float4>& control_film,
                                   const ControlGrid& grid, uint64_t paths, uint32_t region_side,
-                                  ControlFilmPasses film_passes = {});
+                                  ControlFilmPasses film_passes = {}, double level_of = 0);
 
 // A control shared by several renderers of one frame (--method auto's race,
 // render/method_race.h): its paths depend only on the frame, the seed and the bounces, so one set
@@ -98,6 +101,15 @@ struct SharedControl {
   uint64_t paths = 0;        // per control pixel
   uint32_t bounces = 0;      // the light bounces its paths follow
 };
+
+// The mean light per control pixel of a control's paths (its channel mean); 0 with no paths.
+double control_level(const SharedControl& control);
+// A method's bias measured along the control's paths (IndirectMethod::launch_bias_probe: per
+// path, the path's estimate less the method's along the path's first direction): its relative
+// mean absolute error (mean_abs_error, with one standard error; mean_abs_error_stderr), read per
+// control pixel through the differences' own noise and per region where that noise is the larger,
+// as compare_with_control reads a film, relative to `level` (control_level of the frame's control).
+BiasEstimate paired_bias(const SharedControl& probe, const ControlGrid& grid, double level);
 
 // Runs the control beside a renderer's film: clears it per frame, adds paths on demand.
 class BiasControl {
@@ -112,7 +124,11 @@ class BiasControl {
   const ControlGrid& grid() const { return grid_; }
   uint64_t paths() const { return paths_; }
   // `samples` more paths per control pixel added to shared (on this device, under params).
-  void grow_shared(LaunchParams params, SharedControl& shared, uint32_t samples);
+  // How a control pixel's paths are launched: the control's own (bias_control) where empty, or a
+  // method's probe (launch_bias_probe), given the launch's parameters and work items.
+  using PathsLaunch = std::function<void(const LaunchParams&, uint64_t)>;
+  // With paths, the probe's sums grow instead (paired_bias reads them).
+  void grow_shared(LaunchParams params, SharedControl& shared, uint32_t samples, const PathsLaunch& paths = {});
   // shared's paths become this control's (the frame's, on this renderer from now on).
   void adopt(const SharedControl& shared);
   // This film (params.film_passes) at the control pixels, as compare_with_control reads it.
@@ -122,7 +138,7 @@ class BiasControl {
  private:
   // samples paths per control pixel (paths first_sample... of its stream), shared out over up to
   // PM_CONTROL_LANES work items each, added to control_sums; then the film read at the pixels.
-  void launch(LaunchParams params, uint32_t samples, uint64_t first_sample);
+  void launch(LaunchParams params, uint32_t samples, uint64_t first_sample, const PathsLaunch& paths = {});
 
   Device& device_;
   BufferTable& buffers_;

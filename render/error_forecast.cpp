@@ -75,6 +75,26 @@ double fastest_rate(double noise_rate) {
   return noise_rate > kIndependentNoiseRate ? kScrambledNetMostRate : kIndependentNoiseRate;
 }
 
+// The rate at which the part of the error above a known floor falls, from the last reading and
+// the latest one kRateSpan or more before it in pass time: error^2 - floor^2 as p^(-2 rate),
+// within kIndependentNoiseRate and the fastest the method's noise allows; noise_rate where no
+// reading is far enough back or the error is already at the floor.
+double noise_rate_over(const std::vector<ErrorReading>& readings, double start_seconds, double floor,
+                       double noise_rate) {
+  const ErrorReading& last = readings.back();
+  const double last_passes = last.seconds - start_seconds, above_last = last.error * last.error - floor * floor;
+  for (size_t i = readings.size() - 1; i-- > 0;) {
+    const ErrorReading& a = readings[i];
+    const double passes = a.seconds - start_seconds;
+    if (passes <= 0 || a.error <= 0 || last_passes < kRateSpan * passes) continue;
+    const double above = a.error * a.error - floor * floor;
+    if (!(above > 0) || !(above_last > 0)) return noise_rate;
+    const double measured = 0.5 * std::log(above / above_last) / std::log(last_passes / passes);
+    return std::clamp(measured, kIndependentNoiseRate, fastest_rate(noise_rate));
+  }
+  return noise_rate;
+}
+
 }  // namespace
 
 ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDecay decay, double start_seconds,
@@ -121,6 +141,11 @@ ErrorForecast forecast_error(const std::vector<ErrorReading>& readings, ErrorDec
       f.rate = f.floor < f.last.error ? noise_rate : 0.0;
     }
   }
+  // The bias measured along the control's paths: the floor, and the noise's rate over it.
+  if (decay == ErrorDecay::sampled && f.last.measured_floor >= 0) {
+    f.floor = std::min(f.last.measured_floor, f.last.error);
+    f.rate = noise_rate_over(readings, start_seconds, f.floor, noise_rate);
+  }
   // The bias the last reading itself shows beside the film's own noise, where it says more.
   if (decay == ErrorDecay::sampled && f.last.floor > f.floor) {
     f.floor = std::min(f.last.floor, f.last.error);
@@ -134,7 +159,11 @@ ErrorForecast best_case_forecast(const std::vector<ErrorReading>& readings, Erro
   ErrorForecast f = from_last_reading(readings, start_seconds);
   if (readings.empty() || decay == ErrorDecay::fixed) return f;
   f.rate = fastest_rate(noise_rate);
-  if (decay == ErrorDecay::sampled) f.floor = std::clamp(f.last.floor, 0.0, f.last.error);
+  if (decay == ErrorDecay::sampled) {
+    // At least the bias its reading shows, or the measured bias less two standard errors.
+    const double measured = f.last.measured_floor >= 0 ? f.last.measured_floor - 2.0 * f.last.measured_floor_stderr : 0.0;
+    f.floor = std::clamp(std::max(f.last.floor, measured), 0.0, f.last.error);
+  }
   return f;
 }
 

@@ -17,6 +17,10 @@ struct ErrorReading {
   double floor = -1;        // the part of it that is bias, at least (BiasEstimate::bias_floor); -1: not known
   double floor_upper = -1;  // and at most (BiasEstimate::bias_ceiling); -1: not known
   double mean_square = -1;  // the relative mean squared error, unbiased (BiasEstimate::mean_square); -1: not known
+  // The bias itself measured along the control's paths (paired_bias, render/bias_control.h): its
+  // relative mean absolute error and that figure's standard error; -1: not measured.
+  double measured_floor = -1;
+  double measured_floor_stderr = 0;
 };
 
 // How a candidate's error falls with its render time t (its own; start is what it spent
@@ -44,6 +48,12 @@ struct ErrorReading {
 //   independent samples' (1/2): a net's faster fall shows only once its pixels have many rays.
 //   With three readings or more spanning 3.5 times in pass time, the floor is fitted instead
 //   through their mean squared errors by least squares (fitted_floor, error_forecast.cpp).
+//   Where the bias itself is measured (ErrorReading::measured_floor: final gathering over
+//   radiosity, whose solution's bias the control's paths measure along their first directions,
+//   kernels/common/radiosity_bias_probe.h), that is the floor, and the noise's rate is measured
+//   over it from the same two readings (within kIndependentNoiseRate and the fastest the method
+//   allows): neither fit reads a floor from how the error falls (on the benchmark scenes they
+//   read 1.0-1.5 % where the error went on falling to 0.6-0.9 %, docs/method-auto.md).
 //   Where the last reading knows the part of its error that the film's own noise does not explain
 //   (ErrorReading::floor, from the film's even and odd passes at the control pixels), that is the
 //   floor if it is the higher: it needs no second reading and no fit across time.

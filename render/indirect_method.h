@@ -114,6 +114,17 @@ class IndirectMethod {
   // would have computed. The race begins frames this way (render/method_race.h).
   virtual void prepare_ahead() {}
 
+  // Where the method can measure its own bias directly, a kernel that does along the error
+  // control's paths (control: the frame's parameters with the control's fields set, as
+  // kernel_bias_control takes them; work_items its items), writing, per work item, the sums of
+  // each path's own estimate less the method's along the path's first direction into
+  // control_partials:
+  // final gathering over radiosity (kernels/common/radiosity_bias_probe.h), whose bias is its
+  // solution's one bounce away and does not fall with its passes. --method auto reads it as the
+  // floor under that candidate's error (render/method_race.h).
+  virtual bool has_bias_probe() const { return false; }
+  virtual void launch_bias_probe(const FrameContext& /*frame*/, const LaunchParams& /*control*/,
+                                 uint64_t /*work_items*/) {}
   // Once per frame, before its passes. change says what differs from the previous frame.
   virtual void begin_frame(const FrameContext& frame, const FrameChange& change) = 0;
   // Pass `pass` (0, 1, ...) of the frame: adds its estimate, weighted 1, into film_indirect_sum

@@ -46,6 +46,10 @@ struct Runner {
   bool out = false;
   int duel_rounds = 0;  // rounds run in the duel (race_referee.h)
   uint32_t cap = 0;  // its passes at most: the method's (radiosity: one) or --passes, the lower
+  // Its bias measured along the control's paths, where its method can (grow_bias_probe): as
+  // many paths per control pixel as the control has, grown beside it.
+  SharedControl probe;
+  bool probes = true;  // false once its renderer says it has no probe
 
   // Passes done: where it stands is where it stays (radiosity after its pass, or --passes reached).
   ErrorDecay decay() const {
@@ -87,8 +91,9 @@ std::string round_text(int round, RacePhase phase, double elapsed, const std::ve
     if (r.out) continue;
     const ErrorForecast& f = r.entry.forecast;
     const ErrorReading& last = r.entry.readings.back();
-    const std::string own_floor = last.floor >= 0 ? ", bias at least " + percent(last.floor) : "";
-    char part[288];
+    std::string own_floor = last.floor >= 0 ? ", bias at least " + percent(last.floor) : "";
+    if (last.measured_floor >= 0) own_floor += ", bias measured " + percent(last.measured_floor);
+    char part[352];
     std::snprintf(part, sizeof(part), " %s %s, error %s (+-%.2f%s), rate %.2f%s%s%s, %s %s;", r.entry.label.c_str(),
                   seconds_text(r.own_seconds).c_str(), percent(last.error).c_str(), 100.0 * last.error_stderr,
                   own_floor.c_str(), f.rate,
@@ -113,6 +118,9 @@ double duel_lead_slice(const Runner& leader, double remaining) {
 // Every reading of r measured again against control.
 void measure(Runner& r, const SharedControl& control) {
   const ControlGrid& grid = r.renderer->error_control_grid();
+  // Its measured bias is the solution's, the same under every reading.
+  const BiasEstimate probed =
+      r.probe.paths > 0 && r.probe.bounces == control.bounces ? paired_bias(r.probe, grid, control_level(control)) : BiasEstimate{};
   // The control's paths follow its bounces: a film of other bounces cannot be read against them
   // (every method takes --bounces, so this holds for the command line's candidates).
   const bool comparable = r.renderer->control_bounces() == control.bounces;
@@ -125,6 +133,13 @@ void measure(Runner& r, const SharedControl& control) {
     r.entry.readings[i].floor = e.known ? e.bias_floor : -1;
     r.entry.readings[i].floor_upper = e.known ? e.bias_ceiling : -1;
     r.entry.readings[i].mean_square = e.known ? e.mean_square : -1;
+    if (probed.known) {
+      ErrorReading& reading = r.entry.readings[i];
+      reading.measured_floor = probed.mean_abs_error - probed.mean_abs_error_stderr;
+      reading.measured_floor_stderr = probed.mean_abs_error_stderr;
+      // The part of its error that is bias, at most: the measured bias with two standard errors.
+      reading.floor_upper = probed.mean_abs_error + probed.mean_abs_error_stderr;
+    }
     if (i + 1 == r.films.size()) r.last_upper = e.known ? e.mean_abs_error_upper : -1;
   }
 }
@@ -246,6 +261,10 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
         control_step = control.paths;  // doubles it
         break;
       }
+    // The probes of the candidates that measure their own bias follow the control's paths.
+    for (Runner& r : runners)
+      if (!r.out && r.probes && r.decay() == ErrorDecay::sampled && r.probe.paths < control.paths)
+        r.probes = r.renderer->grow_bias_probe(r.probe, uint32_t(control.paths - r.probe.paths));
     for (size_t i = 0; i < runners.size(); ++i) {
       Runner& r = runners[i];
       if (r.out) continue;

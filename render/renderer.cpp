@@ -342,6 +342,18 @@ void Renderer::grow_shared_control(SharedControl& shared, uint32_t samples) {
   shared.bounces = p.max_bounces;
 }
 
+bool Renderer::grow_bias_probe(SharedControl& probe, uint32_t samples) {
+  if (!control_ || !method_ || !method_->has_bias_probe()) return false;
+  buffers_.bind_all();  // as in run_pass
+  LaunchParams p = frame_.params;
+  p.max_bounces = control_bounces();
+  control_->grow_shared(p, probe, samples, [&](const LaunchParams& control, uint64_t work_items) {
+    method_->launch_bias_probe(frame_, control, work_items);
+  });
+  probe.bounces = p.max_bounces;
+  return true;
+}
+
 std::vector<float4> Renderer::film_at_control() {
   buffers_.bind_all();  // as in run_pass
   LaunchParams p = frame_.params;

@@ -124,6 +124,10 @@ class Renderer {
   // included. Wait for the device.
   void grow_shared_control(SharedControl& shared, uint32_t samples);
   std::vector<float4> film_at_control();
+  // The method's own bias measured along `samples` more control paths per control pixel, added
+  // to probe (paired_bias reads it), where the method has such a measure
+  // (IndirectMethod::launch_bias_probe); returns false, and adds nothing, where not.
+  bool grow_bias_probe(SharedControl& probe, uint32_t samples);
   // The passes that film holds, for compare_with_control's bias_floor.
   ControlFilmPasses film_passes_at_control() const { return {passes_done_, odd_passes_}; }
   const ControlGrid& error_control_grid() const { return control_->grid(); }

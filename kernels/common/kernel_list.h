@@ -37,6 +37,7 @@
   K(radiosity_smooth)       /* radiosity: one-ring smoothing within alpha_f (eq. 5, 6) */      \
   K(radiosity_interpolate)  /* radiosity: vertex irradiance at the shading points, film */     \
   K(radiosity_final_gather) /* radiosity with final gathering: rays from every shading point, the solution at their hits */ \
+  K(radiosity_bias_probe)   /* radiosity with final gathering: its bias along the control's paths (--method auto) */ \
   K(sort_histogram)    /* portable radix sort: per tile and digit, its count, added to totals */\
   K(sort_scatter)      /* portable radix sort: per tile and digit, its keys moved in order */\
   K(layout_probe)      /* writes sizeof/offsetof of shared structs for the layout test */

@@ -64,22 +64,29 @@ PM_DEVICE Vec3 path_sample_lobe(const Material* m, int glossy, Vec3 n, Vec3 wo, 
   return vec3_scale(material_glossy(m), brdf_glossy_sample_weight(m->glossy.w, vec3_dot(n, *wi)));
 }
 
+/* The first direction of path `path` from x (m's diffuse or glossy lobe, chosen in proportion
+   to their reflectances) and its weight f cos / pdf; zero where x reflects nothing that way or
+   the path has no bounce. */
+PM_DEVICE Vec3 path_first_direction(const LaunchParams* p, const Material* m, Vec3 n, Vec3 wo, uint pixel, uint depth,
+                                    uint path, Vec3* dir)
+{
+  float p_diffuse = channel_mean(material_diffuse(m)), p_glossy = channel_mean(material_glossy(m));
+  if (p->max_bounces == 0u || p_diffuse + p_glossy <= 0.0f) return vec3_splat(0.0f);
+  Uniform4 u = rng_uniform4_bits(rng_bits4(p->seed, p->path_frame, pixel, depth << 8, PM_STREAM_PATH, path));
+  float p_lobe_diffuse = p_diffuse / (p_diffuse + p_glossy);
+  int glossy = u.u2 >= p_lobe_diffuse;
+  Vec3 beta = path_sample_lobe(m, glossy, n, wo, u.u0, u.u1, dir);
+  return vec3_scale(beta, 1.0f / (glossy ? 1.0f - p_lobe_diffuse : p_lobe_diffuse));
+}
+
 /* One path's estimate of the indirect radiance leaving x towards wo (n facing wo). */
 PM_DEVICE Vec3 path_radiance(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 x, Vec3 n, Vec3 wo,
                              uint pixel, uint depth, uint path)
 {
   Vec3 radiance = vec3_splat(0.0f);
-  float p_diffuse = channel_mean(material_diffuse(m)), p_glossy = channel_mean(material_glossy(m));
-  if (p->max_bounces == 0u || p_diffuse + p_glossy <= 0.0f) return radiance;
   uint event_base = depth << 8; /* at most max_bounces + PM_PHOTON_MAX_SPECULAR + 1 < 256 vertices */
-
-  /* x: the diffuse or the glossy lobe, chosen in proportion to their reflectances. */
-  Uniform4 u = rng_uniform4_bits(rng_bits4(p->seed, p->path_frame, pixel, event_base, PM_STREAM_PATH, path));
-  float p_lobe_diffuse = p_diffuse / (p_diffuse + p_glossy);
-  int glossy = u.u2 >= p_lobe_diffuse;
   Vec3 dir;
-  Vec3 beta = path_sample_lobe(m, glossy, n, wo, u.u0, u.u1, &dir);
-  beta = vec3_scale(beta, 1.0f / (glossy ? 1.0f - p_lobe_diffuse : p_lobe_diffuse));
+  Vec3 beta = path_first_direction(p, m, n, wo, pixel, depth, path, &dir);
   if (vec3_max_component(beta) <= 0.0f) return radiance;
 
   Vec3 origin = offset_ray_origin(x, n, ray_offset_distance(x, 0.0f, p->ray_epsilon));
@@ -145,7 +152,7 @@ PM_DEVICE Vec3 path_radiance(const KernelGlobals* kg, const LaunchParams* p, con
        most paths and returns it at 1 / albedo on the rest: 1.2-1.3 times the variance per path
        of this scheme on the benchmark scenes, 1.16-1.33 times Mitsuba 3's on the Cornell box,
        for 11-32 % less time per path (docs/tradeoff.md, "Noise per path"). */
-    u = rng_uniform4_bits(rng_bits4(p->seed, p->path_frame, pixel, event_base + vertex, PM_STREAM_PATH, path));
+    Uniform4 u = rng_uniform4_bits(rng_bits4(p->seed, p->path_frame, pixel, event_base + vertex, PM_STREAM_PATH, path));
     float albedo = pd + pg + pm;
     if (!(albedo > 0.0f)) break;
     float pick = u.u2 * albedo;

@@ -20,6 +20,7 @@
 #include "radiosity_interpolate.h"
 #include "radiosity_light.h"
 #include "radiosity_links.h"
+#include "radiosity_bias_probe.h"
 #include "radix_sort.h"
 #include "layout_probe.h"
 

@@ -28,8 +28,9 @@ VertexLinkRadiosity::VertexLinkRadiosity(const MethodContext& context, const Rad
                                        std::to_string(kMaxRefinedTriangles) + "); use a larger --max-edge");
 }
 
-LaunchParams VertexLinkRadiosity::launch_params(const FrameContext& frame) const {
-  LaunchParams p = frame.params;
+LaunchParams VertexLinkRadiosity::launch_params(const FrameContext& frame) const { return with_solution(frame.params); }
+
+LaunchParams VertexLinkRadiosity::with_solution(LaunchParams p) const {
   p.element_count = element_count_;
   p.link_directions = settings_.directions;
   p.light_sampling = uint32_t(settings_.light_samples);
@@ -286,6 +287,13 @@ void VertexLinkRadiosity::run_pass(const FrameContext& frame, uint32_t /*pass*/)
   if (element_count_ == 0) return;
   StageScope scope(frame.timer, "radiosity: interpolate");
   device_.launch(KernelId::radiosity_interpolate, pixel_work_items(p.width, p.height), p);
+}
+
+void VertexLinkRadiosity::launch_bias_probe(const FrameContext& /*frame*/, const LaunchParams& control,
+                                            uint64_t work_items) {
+  LaunchParams p = with_solution(control);
+  p.radiosity_source = final_source_;
+  device_.launch(KernelId::radiosity_bias_probe, work_items, p);
 }
 
 void VertexLinkRadiosity::update_stats(bool built, bool lit) {

@@ -39,6 +39,9 @@ class VertexLinkRadiosity final : public IndirectMethod {
   void prepare_ahead() override;
   void begin_frame(const FrameContext& frame, const FrameChange& change) override;
   void run_pass(const FrameContext& frame, uint32_t pass) override;
+  // Final gathering's bias along the control's paths (kernels/common/radiosity_bias_probe.h).
+  bool has_bias_probe() const override { return settings_.final_gather > 0; }
+  void launch_bias_probe(const FrameContext& frame, const LaunchParams& control, uint64_t work_items) override;
   MethodStats stats() const override { return stats_; }
   std::vector<StageInfo> stages(const FrameContext& frame) const override;
   std::pair<std::string, double> work_per_pass() const override { return {"element", double(element_count_)}; }
@@ -53,6 +56,7 @@ class VertexLinkRadiosity final : public IndirectMethod {
 
  private:
   LaunchParams launch_params(const FrameContext& frame) const;
+  LaunchParams with_solution(LaunchParams p) const;  // p with the solution's fields
   void prepare(StageTimer* timer);
   void count_light_samples();
   void build_links(LaunchParams params, StageTimer* timer);

@@ -156,5 +156,38 @@ TEST(BiasControl, TheFilmsOwnNoiseIsToldFromItsBias) {
   EXPECT_EQ(compare_with_control(c.sums, c.film, grid_of(32), 1024, kControlRegionSide, {64, 0}).bias_floor, -1.0);
 }
 
+TEST(BiasControl, APairedProbeReadsItsMethodsBiasAgainstTheControlsLight) {
+  // Per control pixel, paths of the truth less a method's estimate along the same first
+  // direction: the estimate 4 % of the light too dark in runs of 16 pixels and 4 % too bright in
+  // the others, each path's difference with a deviation of 0.2. Read against a film of zeros,
+  // relative to the control's light (control_level: 1 here), the method's absolute and signed bias.
+  const SyntheticControl light = synthetic(1024, 256, 0.5, 0.0, 0.0, 11);
+  SharedControl control;
+  control.sums = light.sums;
+  control.paths = 256;
+  EXPECT_NEAR(control_level(control), 1.0, 0.02);
+  SharedControl probe;
+  probe.paths = 512;
+  std::mt19937 rng(12);
+  std::normal_distribution<double> normal(0.0, 0.2);
+  for (size_t i = 0; i < 1024; ++i) {
+    const double truth_less_estimate = (i / 16) % 2 ? -0.04 : 0.04;
+    double sum = 0, squares = 0;
+    for (uint64_t k = 0; k < probe.paths; ++k) {
+      const double d = truth_less_estimate + normal(rng);
+      sum += d;
+      squares += d * d;
+    }
+    probe.sums.push_back({float(sum), float(sum), float(sum), float(squares)});
+  }
+  const BiasEstimate e = paired_bias(probe, grid_of(32), control_level(control));
+  ASSERT_TRUE(e.known);
+  EXPECT_NEAR(e.signed_bias, 0.0, 3 * e.bias_error) << "as much too bright as too dark";
+  EXPECT_NEAR(e.mean_abs_error - e.mean_abs_error_stderr, 0.04, 0.006) << "4 % of the light at every pixel";
+  // Too bright throughout: the signed bias is the method's, its estimate less the truth.
+  for (float4& s : probe.sums) s = {s.x - 0.04f * 512, s.y - 0.04f * 512, s.z - 0.04f * 512, s.w};
+  EXPECT_NEAR(paired_bias(probe, grid_of(32), control_level(control)).signed_bias, 0.04, 0.005);
+}
+
 }  // namespace
 }  // namespace pm

@@ -169,6 +169,39 @@ TEST(MethodRaceForecast, FinalGatheringsNoiseFallsAsAScrambledNetsOverItsFloor) 
       << "final gathering over photons on Sponza, 3.64 % to 2.33 % as its passes' time grew 1.78 times";
 }
 
+TEST(MethodRaceForecast, ASampledEstimatesMeasuredBiasIsItsFloor) {
+  // Sibenik's final gathering over radiosity: its noise fell as 1/sqrt(p) over a bias of about
+  // 0.6 %. Through readings of that fall the net's assumed p^-3/4 reads a floor near twice the bias;
+  // the bias measured along the control's paths is the floor, and the rate over it is measured.
+  const double a = 0.0004, b = 0.006;
+  std::vector<ErrorReading> readings = doubling_readings(a, 1.0, b, 1.0, 0.0);
+  const std::vector<ErrorReading> two = {readings[1], readings[2]};
+  EXPECT_GT(forecast_error(two, ErrorDecay::sampled, 0, kScrambledNetRate).floor, 1.5 * b) << "read from the fall";
+  for (ErrorReading& r : readings) {
+    r.measured_floor = b;
+    r.measured_floor_stderr = 0.0005;
+  }
+  const ErrorForecast f = forecast_error({readings[1], readings[2]}, ErrorDecay::sampled, 0, kScrambledNetRate);
+  EXPECT_DOUBLE_EQ(f.floor, b);
+  EXPECT_NEAR(f.rate, 0.5, 1e-9);
+  const double t = 4 * readings[2].seconds;
+  EXPECT_NEAR(f.error_at(t), std::sqrt(a / t + b * b), 1e-12);
+  // Before a second reading the rate is the method's assumed one over the measured floor.
+  const ErrorForecast one = forecast_error({readings[1]}, ErrorDecay::sampled, 0, kScrambledNetRate);
+  EXPECT_DOUBLE_EQ(one.floor, b);
+  EXPECT_DOUBLE_EQ(one.rate, kScrambledNetRate);
+  // A measured bias of nothing leaves no floor where the readings' fall would have read one, and
+  // the best case stands on the measured bias less two standard errors.
+  for (ErrorReading& r : readings) r.measured_floor = 0;
+  EXPECT_DOUBLE_EQ(forecast_error(readings, ErrorDecay::sampled, 0, kScrambledNetRate).floor, 0.0);
+  for (ErrorReading& r : readings) r.measured_floor = b;
+  EXPECT_NEAR(best_case_forecast(readings, ErrorDecay::sampled, 0, kScrambledNetRate).floor, b - 0.001, 1e-12);
+  // The part of the error the film's even and odd passes say is bias at least still counts where
+  // it is the higher.
+  readings.back().floor = 1.5 * b;
+  EXPECT_DOUBLE_EQ(forecast_error(readings, ErrorDecay::sampled, 0, kScrambledNetRate).floor, 1.5 * b);
+}
+
 TEST(MethodRaceForecast, TheBestCaseFallsAtTheFastestRateItsSamplesAllow) {
   // One reading, as after the race's first round: independent samples (the path tracer, photon
   // passes) at best 1/2, a scrambled net's passes at best 1, whatever the assumed rates.
