@@ -304,6 +304,8 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
       st.biased = r.renderer->method() && r.renderer->method()->may_be_biased();
       st.error = known ? r.entry.readings.back().error : -1;
       st.bias_at_most = known ? r.entry.readings.back().floor_upper : -1;
+      st.bias_in_forecast =
+          known && (r.decay() == ErrorDecay::measured || r.entry.readings.back().measured_floor >= 0);
       st.duel_rounds = r.duel_rounds;
     }
     const RoundCall call = call_round(standings, phase, {by_error, target, budget.seconds, elapsed, round});

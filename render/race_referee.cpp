@@ -38,7 +38,8 @@ RoundCall call_duel(const std::vector<RaceStanding>& s, double target) {
     return call;
   }
   const RaceStanding &leader = s[call.best], &other = s[challenger];
-  const bool trusted = !leader.biased || (leader.error >= 0 && leader.error <= kDuelProofRatio * target) ||
+  const bool trusted = !leader.biased || leader.bias_in_forecast ||
+                       (leader.error >= 0 && leader.error <= kDuelProofRatio * target) ||
                        (leader.bias_at_most >= 0 && leader.bias_at_most <= kTrustedBiasShare * target);
   const bool judged = other.measured && other.duel_rounds >= kDuelRoundsToJudge;
   if (std::isfinite(leader.value) && judged && (trusted || other.value > kDuelTimeRatio * leader.value)) {

@@ -134,7 +134,8 @@ TEST(MethodRace, TheFrameGoesToTheCandidateThatReachesTheTargetNotToTheFirstLead
   // with 4 rays a pass, its error falls fastest at first and stops at about 3.7 % (measured
   // 3.66 %). Asked for 1.5 %, the race chose it on its first readings (a power law through them)
   // and the frame ran 2946 passes, 50 s, until its estimate levelled off at 3.19 %. Now its
-  // forecast has the floor its readings show (render/error_forecast.h), and where that is not yet
+  // forecast has the floor its bias measured along the control's paths gives
+  // (render/error_forecast.h, bias_probe_test.cpp: about 3.1 % here), and where a floor is not yet
   // clear the duel (render/race_referee.h) keeps the path tracer rendering beside it.
   auto coarse = std::make_shared<RadiositySettings>();
   coarse->max_edge = 0.1f;
