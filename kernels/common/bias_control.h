@@ -41,31 +41,52 @@ PM_DEVICE int control_pixel(const LaunchParams* p, uint c, uint* pixel)
 }
 
 /* Work item = (control pixel c, lane l), item = c * control_lanes + l: the lane's share of the
-   launch's paths (samples l, l + lanes, ...), its sums into control_partials[item]. */
-PM_DEVICE void kernel_bias_control(const KernelGlobals* kg, const LaunchParams* p, uint item)
+   launch's paths, samples l, l + lanes, ... (its first and stride), at the pixel, and the
+   parameters its paths take (the control's stream). Returns 0 when the block lies outside the
+   image. */
+typedef struct ControlLane {
+  uint pixel, first, stride;
+} ControlLane;
+
+PM_DEVICE int control_lane(const LaunchParams* p, uint item, ControlLane* lane, LaunchParams* paths)
 {
   uint lanes = p->control_lanes > 0u ? p->control_lanes : 1u;
-  uint c = item / lanes, lane = item % lanes;
-  uint pixel;
-  if (!control_pixel(p, c, &pixel)) return;
-  LaunchParams q = *p;
-  q.seed = p->seed ^ PM_STREAM_CONTROL;
-  q.path_frame = p->frame;
+  if (!control_pixel(p, item / lanes, &lane->pixel)) return 0;
+  lane->first = item % lanes;
+  lane->stride = lanes;
+  *paths = *p;
+  paths->seed = p->seed ^ PM_STREAM_CONTROL;
+  paths->path_frame = p->frame;
+  return 1;
+}
+
+/* One path's value into a lane's sums: its rgb, and the square of its channel mean. */
+PM_DEVICE void control_add_path(Vec3 value, Vec3* sum, float* squares)
+{
+  if (!pm_isfinite(value.x + value.y + value.z)) return; /* counted, as zero: never poisons the sums */
+  *sum = vec3_add(*sum, value);
+  float mean = (value.x + value.y + value.z) * (1.0f / 3.0f);
+  *squares += mean * mean;
+}
+
+/* The lane's paths of the reference path tracer, their sums into control_partials[item]. */
+PM_DEVICE void kernel_bias_control(const KernelGlobals* kg, const LaunchParams* p, uint item)
+{
+  ControlLane lane;
+  LaunchParams q;
+  if (!control_lane(p, item, &lane, &q)) return;
   Vec3 sum = vec3_splat(0.0f);
   float squares = 0.0f;
-  for (uint s = lane; s < p->control_samples; s += lanes) {
+  for (uint s = lane.first; s < p->control_samples; s += lane.stride) {
     Vec3 path = vec3_splat(0.0f);
-    EyePath eye = eye_path_begin(pixel);
+    EyePath eye = eye_path_begin(lane.pixel);
     ShadingPoint sp;
     for (uint depth = 0; eye_path_next(kg, p, &eye, &sp); ++depth) {
-      Vec3 l = path_radiance(kg, &q, &sp.material, sp.position, sp.normal, sp.outgoing, pixel, depth,
+      Vec3 l = path_radiance(kg, &q, &sp.material, sp.position, sp.normal, sp.outgoing, lane.pixel, depth,
                              p->control_first_sample + s);
       path = vec3_add(path, vec3_mul(sp.weight, l));
     }
-    if (!pm_isfinite(path.x + path.y + path.z)) continue; /* counted, as zero: never poisons the sums */
-    sum = vec3_add(sum, path);
-    float mean = (path.x + path.y + path.z) * (1.0f / 3.0f);
-    squares += mean * mean;
+    control_add_path(path, &sum, &squares);
   }
   kg->control_partials[item] = vec3_to_float4(sum, squares);
 }

@@ -24,36 +24,29 @@
 
 PM_DEVICE void kernel_radiosity_bias_probe(const KernelGlobals* kg, const LaunchParams* p, uint item)
 {
-  uint lanes = p->control_lanes > 0u ? p->control_lanes : 1u;
-  uint c = item / lanes, lane = item % lanes;
-  uint pixel;
-  if (!control_pixel(p, c, &pixel)) return;
-  LaunchParams q = *p;
-  q.seed = p->seed ^ PM_STREAM_CONTROL;
-  q.path_frame = p->frame;
+  ControlLane lane;
+  LaunchParams q;
+  if (!control_lane(p, item, &lane, &q)) return;
   Vec3 sum = vec3_splat(0.0f);
   float squares = 0.0f;
-  for (uint s = lane; s < p->control_samples; s += lanes) {
+  for (uint s = lane.first; s < p->control_samples; s += lane.stride) {
     uint path = p->control_first_sample + s;
     Vec3 delta = vec3_splat(0.0f);
-    EyePath eye = eye_path_begin(pixel);
+    EyePath eye = eye_path_begin(lane.pixel);
     ShadingPoint sp;
     for (uint depth = 0; eye_path_next(kg, p, &eye, &sp); ++depth) {
       const Material* m = &sp.material;
       Vec3 dir;
-      Vec3 beta = path_first_direction(&q, m, sp.normal, sp.outgoing, pixel, depth, path, &dir);
+      Vec3 beta = path_first_direction(&q, m, sp.normal, sp.outgoing, lane.pixel, depth, path, &dir);
       if (vec3_max_component(beta) <= 0.0f) continue;
       Vec3 origin = offset_ray_origin(sp.position, sp.normal, ray_offset_distance(sp.position, 0.0f, p->ray_epsilon));
       uint accepted = 0;
-      Vec3 gathered = vec3_mul(beta, final_gather_ray(kg, &q, origin, dir, pixel, depth << 8, path, &accepted,
+      Vec3 gathered = vec3_mul(beta, final_gather_ray(kg, &q, origin, dir, lane.pixel, depth << 8, path, &accepted,
                                                       PM_FINAL_GATHER_RADIOSITY));
-      Vec3 traced = path_radiance(kg, &q, m, sp.position, sp.normal, sp.outgoing, pixel, depth, path);
+      Vec3 traced = path_radiance(kg, &q, m, sp.position, sp.normal, sp.outgoing, lane.pixel, depth, path);
       delta = vec3_add(delta, vec3_mul(sp.weight, vec3_sub(traced, gathered)));
     }
-    if (!pm_isfinite(delta.x + delta.y + delta.z)) continue; /* counted, as zero */
-    sum = vec3_add(sum, delta);
-    float mean = (delta.x + delta.y + delta.z) * (1.0f / 3.0f);
-    squares += mean * mean;
+    control_add_path(delta, &sum, &squares);
   }
   kg->control_partials[item] = vec3_to_float4(sum, squares);
 }

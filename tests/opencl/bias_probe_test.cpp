@@ -22,14 +22,11 @@ namespace {
 
 Device& device() { return test::shared_opencl_device(); }
 
-std::shared_ptr<const MethodSettings> gathered_over(float max_edge, bool coarse) {
+// Final gathering over the spot-lit box's solution at elements of max_edge, with the links'
+// defaults.
+std::shared_ptr<const MethodSettings> gathered_over(float max_edge) {
   auto r = std::make_shared<RadiositySettings>();
   r->max_edge = max_edge;
-  if (coarse) {
-    r->directions = 64;
-    r->light_samples = PM_RADIOSITY_LIGHT_VERTEX;
-    r->link_origins = PM_RADIOSITY_ORIGINS_VERTEX;
-  }
   r->bounces = 2;
   r->final_gather = 16;
   r->validate();
@@ -68,7 +65,7 @@ Measured measure(const std::shared_ptr<const MethodSettings>& method, uint32_t p
 }
 
 TEST(BiasProbe, MeasuresTheBiasFinalGatheringOverRadiosityLevelsAt) {
-  const Measured coarse = measure(gathered_over(0.1f, true), 128, 2048);
+  const Measured coarse = measure(test::coarse_spot_box_radiosity(16), 128, 2048);
   ASSERT_TRUE(coarse.film.known);
   ASSERT_TRUE(coarse.probe.known);
   // The signed bias: the film's, its noise averaged over the control pixels, against the probe's,
@@ -81,7 +78,7 @@ TEST(BiasProbe, MeasuresTheBiasFinalGatheringOverRadiosityLevelsAt) {
   EXPECT_GE(coarse.film.mean_abs_error, 0.85 * coarse.probe.mean_abs_error);
   EXPECT_LE(coarse.film.mean_abs_error, 1.3 * coarse.probe.mean_abs_error);
   // A finer solution, with the links' defaults: less bias one bounce away.
-  const Measured fine = measure(gathered_over(0.05f, false), 4, 2048);
+  const Measured fine = measure(gathered_over(0.05f), 4, 2048);
   EXPECT_LT(fine.probe.mean_abs_error, 0.5 * coarse.probe.mean_abs_error);
 }
 

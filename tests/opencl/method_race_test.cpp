@@ -137,14 +137,7 @@ TEST(MethodRace, TheFrameGoesToTheCandidateThatReachesTheTargetNotToTheFirstLead
   // forecast has the floor its bias measured along the control's paths gives
   // (render/error_forecast.h, bias_probe_test.cpp: about 3.1 % here), and where a floor is not yet
   // clear the duel (render/race_referee.h) keeps the path tracer rendering beside it.
-  auto coarse = std::make_shared<RadiositySettings>();
-  coarse->max_edge = 0.1f;
-  coarse->directions = 64;
-  coarse->light_samples = PM_RADIOSITY_LIGHT_VERTEX;
-  coarse->link_origins = PM_RADIOSITY_ORIGINS_VERTEX;
-  coarse->bounces = 2;
-  coarse->final_gather = 4;
-  coarse->validate();
+  const auto coarse = test::coarse_spot_box_radiosity(4);
   auto traced = std::make_shared<PathSettings>();
   traced->bounces = 2;
   traced->validate();
