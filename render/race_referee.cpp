@@ -28,6 +28,14 @@ int leader(const std::vector<RaceStanding>& s, bool by_error) {
   return best;
 }
 
+// Whether a leader's forecast can hide no floor under a target error (race_referee.h): unbiased,
+// or its bias carried in its forecast, or its reading near the target or bounding its bias well
+// under it.
+bool trusted(const RaceStanding& leader, double target) {
+  return !leader.biased || leader.bias_in_forecast || (leader.error >= 0 && leader.error <= kDuelProofRatio * target) ||
+         (leader.bias_at_most >= 0 && leader.bias_at_most <= kTrustedBiasShare * target);
+}
+
 RoundCall call_duel(const std::vector<RaceStanding>& s, double target) {
   RoundCall call;
   call.best = leader(s, true);
@@ -38,11 +46,8 @@ RoundCall call_duel(const std::vector<RaceStanding>& s, double target) {
     return call;
   }
   const RaceStanding &leader = s[call.best], &other = s[challenger];
-  const bool trusted = !leader.biased || leader.bias_in_forecast ||
-                       (leader.error >= 0 && leader.error <= kDuelProofRatio * target) ||
-                       (leader.bias_at_most >= 0 && leader.bias_at_most <= kTrustedBiasShare * target);
   const bool judged = other.measured && other.duel_rounds >= kDuelRoundsToJudge;
-  if (std::isfinite(leader.value) && judged && (trusted || other.value > kDuelTimeRatio * leader.value)) {
+  if (std::isfinite(leader.value) && judged && (trusted(leader, target) || other.value > kDuelTimeRatio * leader.value)) {
     call.dropped.push_back(size_t(challenger));
     call.phase = RacePhase::over;
   } else if (leader.duel_rounds >= kMaxDuelRounds) {
@@ -70,22 +75,29 @@ RoundCall call_round(const std::vector<RaceStanding>& s, RacePhase phase, const 
   }
   const RaceStanding& best = s[call.best];
   const bool known = std::isfinite(best.value);
+  const bool best_trusted = rules.by_error && trusted(best, rules.target);
   // Under a target error the runner-up is kept for the duel while it is within kDuelTimeRatio of
-  // the best: the race's readings are too short to tell such candidates apart.
+  // a best whose forecast may hide a floor (the race's readings are too short to tell such
+  // candidates apart), and while it is not behind (kDropTimeRatio) a trusted one.
   const int runner_up = rules.by_error ? lowest(s, call.best) : -1;
-  const bool duel_worthy = runner_up >= 0 && known && s[runner_up].value <= kDuelTimeRatio * best.value;
+  const double duel_ratio = best_trusted ? kDropTimeRatio : kDuelTimeRatio;
+  const bool duel_worthy = runner_up >= 0 && known && s[runner_up].value <= duel_ratio * best.value;
   const double ratio = rules.by_error ? kDropTimeRatio : kDropErrorRatio;
   size_t left = 0;
   bool only_the_kept_one_left = true;
   for (size_t i = 0; i < s.size(); ++i) {
     if (s[i].out || int(i) == call.best) continue;
-    // Behind on its forecast once its rate is measured; before that, a biased candidate only if
-    // behind even at the fastest rate its method allows (photon passes at 1/2: their next round
-    // would only measure what cannot bring them back). An unbiased one (the path tracer) reaches
-    // any target, so it waits for its measured rate: the best's forecast may still be hiding a
-    // floor (a coarse radiosity solution under final gathering, forecast 0.37 s to 1.5 % on its
-    // first reading, levels at 3.2-3.7 %; MethodRace.TheFrameGoesToTheCandidateThatReachesTheTarget...).
-    const double judged = s[i].measured ? s[i].value : (s[i].biased ? s[i].best_case : 0.0);
+    // Behind on its forecast once its rate is measured; before that, only if behind even at the
+    // fastest rate its method allows (photon passes at 1/2: their next round would only measure
+    // what cannot bring them back). An unbiased one (the path tracer) reaches any target, and
+    // waits for its measured rate behind a best whose forecast may still be hiding a floor (a
+    // coarse radiosity solution under final gathering, forecast 0.37 s to 1.5 % on its first
+    // reading, levels at 3.2-3.7 %; MethodRace.TheFrameGoesToTheCandidateThatReachesTheTarget...);
+    // behind a trusted best its fastest fall (1/sqrt(t): an unbiased estimate's mean absolute
+    // error falls no faster) is its forecast, and a second round would only confirm it (the
+    // path tracer, 12-54 s behind final gathering's 0.5-13 s on the benchmark scenes, docs/method-auto.md).
+    const double judged =
+        s[i].measured ? s[i].value : (s[i].biased || best_trusted ? s[i].best_case : 0.0);
     const bool behind = known && judged > ratio * best.value;
     if (behind && !(duel_worthy && int(i) == runner_up)) {
       call.dropped.push_back(i);

@@ -26,12 +26,44 @@ RaceStanding standing(double value, bool measured = true, double total = -1, int
 constexpr double kTarget = 0.01;
 RaceRules by_error(double elapsed, int round = 2) { return {true, kTarget, 0, elapsed, round}; }
 
-TEST(RaceReferee, ARunnerUpWithinFourTimesTheBestIsKeptForADuel) {
+// A biased leader whose forecast may hide a floor: its error far from the target, its bias unbounded.
+RaceStanding untrusted_leader(double value, double total = -1) {
+  RaceStanding s = standing(value, true, total);
+  s.biased = true;
+  s.error = 3 * kTarget;
+  return s;
+}
+
+TEST(RaceReferee, ARunnerUpWithinFourTimesAnUntrustedBestIsKeptForADuel) {
   // The leader needs 10 s more; the runner-up's 28 s would have dropped it (2x), the third's 50 s does.
-  const RoundCall call = call_round({standing(10), standing(28), standing(50)}, RacePhase::race, by_error(0.5));
+  const RoundCall call =
+      call_round({untrusted_leader(10), standing(28), standing(50)}, RacePhase::race, by_error(0.5));
   EXPECT_EQ(call.best, 0);
   EXPECT_EQ(call.dropped, std::vector<size_t>{2});
   EXPECT_EQ(call.phase, RacePhase::duel) << "only the kept runner-up is left: the duel begins";
+}
+
+TEST(RaceReferee, BehindATrustedBestARunnerUpIsKeptForADuelOnlyWithinTheDropRatio) {
+  // Sibenik at 2 %, after the race's second round: final gathering over radiosity, its bias measured,
+  // 0.54 s more; over photons 1.59 s (2.9 times): no duel, the race is over.
+  RaceStanding leader = standing(0.536, true, 0.71), photons = standing(1.59, true, 1.77);
+  leader.biased = photons.biased = true;
+  leader.error = 0.0452;
+  leader.bias_in_forecast = true;
+  const RaceRules two_percent{true, 0.02, 0, 0.84, 1};
+  RoundCall call = call_round({leader, photons}, RacePhase::race, two_percent);
+  EXPECT_EQ(call.dropped, std::vector<size_t>{1});
+  EXPECT_EQ(call.phase, RacePhase::over);
+  // Within twice its time the runner-up duels, as behind an untrusted leader within four times.
+  photons.value = 1.0;
+  call = call_round({leader, photons}, RacePhase::race, two_percent);
+  EXPECT_TRUE(call.dropped.empty());
+  EXPECT_EQ(call.phase, RacePhase::duel);
+  photons.value = 1.59;
+  leader.bias_in_forecast = false;
+  call = call_round({leader, photons}, RacePhase::race, two_percent);
+  EXPECT_TRUE(call.dropped.empty());
+  EXPECT_EQ(call.phase, RacePhase::duel);
 }
 
 TEST(RaceReferee, ABiasedCandidateBehindEvenAtItsFastestRateGoesBeforeItsRateIsMeasured) {
@@ -53,6 +85,16 @@ TEST(RaceReferee, ABiasedCandidateBehindEvenAtItsFastestRateGoesBeforeItsRateIsM
   path.measured = true;
   call = call_round({best, gather, path, photon}, RacePhase::race, by_error(0.7, 0));
   EXPECT_EQ(call.dropped, (std::vector<size_t>{2, 3}));
+  // Behind a best whose forecast carries its bias (final gathering over radiosity's measured along
+  // the control's paths) the path tracer's fastest fall is its forecast: it goes at once.
+  path.measured = false;
+  best.bias_in_forecast = true;
+  call = call_round({best, gather, path, photon}, RacePhase::race, by_error(0.7, 0));
+  EXPECT_EQ(call.dropped, (std::vector<size_t>{2, 3}));
+  path.best_case = 1.2;
+  EXPECT_EQ(call_round({best, gather, path, photon}, RacePhase::race, by_error(0.7, 0)).dropped,
+            std::vector<size_t>{3})
+      << "within the drop ratio at its fastest it stays";
   // Within the drop ratio at its fastest a biased candidate stays; without a best case (not known)
   // only a measured forecast drops it.
   photon.best_case = 1.4;
