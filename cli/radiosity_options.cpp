@@ -45,14 +45,17 @@ class RadiosityOptions final : public MethodOptions {
   // Radiosity as its options say, and beside it the same with final gathering over its solution
   // (or without, when --final-gather asked for it). 16 rays a pass: a pass over the solution
   // costs a few tens of milliseconds at 960 x 540 on the GPU (docs/final-gathering.md). Without
-  // --directions both trace the solution's own directions, so that one mesh and one set of links
-  // serve the two (the race copies them: VertexLinkRadiosity::adopt_setup) where final gathering
-  // alone would trace its fewer own.
+  // --directions both trace final gathering's directions (kFinalGatherDirections), so that one
+  // mesh and one set of links serve the two (the race copies them: VertexLinkRadiosity::adopt_setup)
+  // at the cost final gathering alone pays. Plain radiosity's own 256 would make its error 4.3-5.2 %
+  // where 64 make it 5.4-6.2 % (H200, 960 x 540), which final gathering over the same solution
+  // reaches within a few passes of 16 rays, and cost the race's first round 94-430 ms more on the
+  // benchmark scenes (docs/method-auto.md, "The race's first round").
   std::vector<RaceCandidate> candidates(const std::string& name) const override {
     auto given = std::static_pointer_cast<const RadiositySettings>(settings(true));
     if (directions == "auto") {
       auto shared = std::make_shared<RadiositySettings>(*given);
-      shared->directions = RadiositySettings::kDirections;
+      shared->directions = RadiositySettings::kFinalGatherDirections;
       given = shared;
     }
     return with_and_without_final_gather(name, given, kRacedFinalGatherRays);
