@@ -92,8 +92,9 @@ std::string round_text(int round, RacePhase phase, double elapsed, const std::ve
     const ErrorForecast& f = r.entry.forecast;
     const ErrorReading& last = r.entry.readings.back();
     std::string own_floor = last.floor >= 0 ? ", bias at least " + percent(last.floor) : "";
-    if (last.measured_floor >= 0) own_floor += ", bias measured " + percent(last.measured_floor);
-    char part[352];
+    if (last.measured_floor >= 0)
+      own_floor += ", bias measured " + percent(last.measured_floor) + " over " + std::to_string(r.probe.paths) + " paths";
+    char part[448];
     std::snprintf(part, sizeof(part), " %s %s, error %s (+-%.2f%s), rate %.2f%s%s%s, %s %s;", r.entry.label.c_str(),
                   seconds_text(r.own_seconds).c_str(), percent(last.error).c_str(), 100.0 * last.error_stderr,
                   own_floor.c_str(), f.rate,
@@ -141,6 +142,18 @@ void measure(Runner& r, const SharedControl& control) {
       reading.floor_upper = probed.mean_abs_error + probed.mean_abs_error_stderr;
     }
     if (i + 1 == r.films.size()) r.last_upper = e.known ? e.mean_abs_error_upper : -1;
+  }
+}
+
+// Doubles r's bias probe, ahead of the control, while the bias it reads (less a standard error,
+// as the forecast's floor) is kProbeResolveShare of the target or more, up to `most` paths per
+// control pixel.
+void resolve_probe(Runner& r, const SharedControl& control, double target, uint64_t most) {
+  const ControlGrid& grid = r.renderer->error_control_grid();
+  while (r.probes && r.probe.paths > 0 && r.probe.paths < most) {
+    const BiasEstimate b = paired_bias(r.probe, grid, control_level(control));
+    if (!b.known || b.mean_abs_error - b.mean_abs_error_stderr < kProbeResolveShare * target) return;
+    r.probes = r.renderer->grow_bias_probe(r.probe, uint32_t(std::min(r.probe.paths, most - r.probe.paths)));
   }
 }
 
@@ -262,9 +275,11 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
         break;
       }
     // The probes of the candidates that measure their own bias follow the control's paths.
-    for (Runner& r : runners)
-      if (!r.out && r.probes && r.decay() == ErrorDecay::sampled && r.probe.paths < control.paths)
-        r.probes = r.renderer->grow_bias_probe(r.probe, uint32_t(control.paths - r.probe.paths));
+    for (Runner& r : runners) {
+      if (r.out || !r.probes || r.decay() != ErrorDecay::sampled) continue;
+      if (r.probe.paths < control.paths) r.probes = r.renderer->grow_bias_probe(r.probe, uint32_t(control.paths - r.probe.paths));
+      if (by_error) resolve_probe(r, control, target, control_cap);
+    }
     for (size_t i = 0; i < runners.size(); ++i) {
       Runner& r = runners[i];
       if (r.out) continue;

@@ -50,6 +50,14 @@ struct MethodChoice {
 
 // The first round's time per candidate without a time budget (then it doubles each round).
 constexpr double kFirstRoundSeconds = 0.05;
+// Under a target error, a bias probe (final gathering over radiosity's, render/bias_control.h)
+// that reads a bias over this share of the target doubles its paths ahead of the control's, up to
+// the control's most: its first readings read high (a mean absolute error read through the
+// differences' own noise: 0.93 % at 1024 paths per control pixel on Conference, 0.67 % at 16384),
+// and near the target the forecast turns on it (at 0.85 % under a target of 1 % it forecast 8.2 s
+// where the method alone took 3.9 s; docs/method-auto.md, "The probe resolved near the target").
+// Below the share a bias lengthens the time to the target by at most a third.
+constexpr double kProbeResolveShare = 0.5;
 
 // Races candidates on `frame` under budget (seconds or target_error must be set) and returns the
 // winner's renderer, mid-frame. settings: the frame's settings but for the method (the
