@@ -22,6 +22,19 @@
 namespace pm {
 
 class IndirectMethod;
+class MethodSettings;
+
+// Host work a method can begin from the scene alone, before its renderer uploads the scene
+// (radiosity's refined mesh and elements), on a thread of its own: the renderer begins it first,
+// so that it runs beside the scene's BVH build and upload (447 ms for Conference on the H200's
+// host, about as long as the mesh), and hands it to the method it creates
+// (MethodSettings::begin_host_work). --method auto begins it once for the candidates it serves.
+class HostWorkAhead {
+ public:
+  virtual ~HostWorkAhead() = default;
+  // Whether this is the work `settings` would begin on the same scene.
+  virtual bool serves(const MethodSettings& settings, const SceneMeasures& measures) const = 0;
+};
 
 // What a method works with, for its whole life.
 struct MethodContext {
@@ -32,6 +45,7 @@ struct MethodContext {
   int width, height;        // the film
   uint32_t shading_points;  // camera-pass records: width * height * (mirror depth + 1)
   uint32_t planned_passes;  // passes per frame the renderer will ask for (RenderSettings::passes)
+  std::shared_ptr<const HostWorkAhead> host_work;  // begun for it (begin_host_work); may be null
 };
 
 // Named figures a method reports about the last frame: for logs, EXR headers (pmrender/NAME)
@@ -75,6 +89,13 @@ class MethodSettings {
   // Throws SettingError naming the setting that is out of range.
   virtual void validate() const = 0;
   virtual std::unique_ptr<IndirectMethod> create(const MethodContext& context) const = 0;
+  // Begins the host work its method's first frame needs that depends on the scene alone (see
+  // HostWorkAhead); null where there is none, or where the settings would be refused for the
+  // scene (create refuses them then).
+  virtual std::shared_ptr<const HostWorkAhead> begin_host_work(const Scene& /*scene*/,
+                                                               const SceneMeasures& /*measures*/) const {
+    return nullptr;
+  }
 };
 
 class IndirectMethod {
@@ -108,11 +129,6 @@ class IndirectMethod {
   virtual bool adopt_setup(const IndirectMethod& /*other*/) { return false; }
   // Whether adopt_setup(other) takes over other's setup once other has begun a frame.
   virtual bool shares_setup_with(const IndirectMethod& /*other*/) const { return false; }
-  // Starts the host work of the first begin_frame on a thread of its own, where the method has
-  // any (radiosity: the mesh refinement, its elements and their texture tints), so that it runs
-  // while the device renders something else; begin_frame then takes its result, the same as it
-  // would have computed. The race begins frames this way (render/method_race.h).
-  virtual void prepare_ahead() {}
 
   // Where the method can measure its own bias directly, a kernel that does along the error
   // control's paths (control: the frame's parameters with the control's fields set, as

@@ -192,6 +192,16 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
   MethodChoice choice;
   std::vector<Runner> runners(candidates.size());
   const Clock::time_point setup_begun = Clock::now();
+  // The candidates' host work that depends on the scene alone (radiosity's mesh) first, on
+  // threads of its own, once for the candidates one run serves: it runs beside the BVH build and
+  // the renderers' set-up, and on into the race's first round.
+  const SceneMeasures measures = measure_scene(scene);
+  std::vector<std::shared_ptr<const HostWorkAhead>> host_work(candidates.size());
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    for (size_t j = 0; j < i && !host_work[i]; ++j)
+      if (host_work[j] && host_work[j]->serves(*candidates[i].method, measures)) host_work[i] = host_work[j];
+    if (!host_work[i]) host_work[i] = candidates[i].method->begin_host_work(scene, measures);
+  }
   // One BVH, one set of packed textures for all the candidates' renderers.
   StepClock clock;
   std::vector<StartupStep> steps;
@@ -200,24 +210,13 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
     RenderSettings s = settings;
     s.method = candidates[i].method;
     runners[i].entry.label = candidates[i].label;
-    runners[i].renderer = std::make_unique<Renderer>(device, scene, s, upload);
+    runners[i].renderer = std::make_unique<Renderer>(device, scene, s, upload, host_work[i]);
     const uint32_t method_cap = runners[i].renderer->method()->max_passes();
     runners[i].cap = method_cap > 0 ? std::min(budget.max_passes, method_cap) : budget.max_passes;
   }
   device.synchronize();
   choice.setup_seconds = seconds_since(setup_begun);
   const Clock::time_point race_begun = Clock::now();
-  // The host work of beginning the frame (radiosity's mesh) starts at once on threads of its own,
-  // for each candidate that will not take an earlier one's, so that it runs while the candidates
-  // before it render their first round.
-  const auto shares_earlier_setup = [&](size_t i) {
-    const IndirectMethod* method = runners[i].renderer->method();
-    for (size_t j = 0; method && j < i; ++j)
-      if (runners[j].renderer->method() && method->shares_setup_with(*runners[j].renderer->method())) return true;
-    return false;
-  };
-  for (size_t i = 0; i < runners.size(); ++i)
-    if (runners[i].renderer->method() && !shares_earlier_setup(i)) runners[i].renderer->method()->prepare_ahead();
   // The frame begins on each just before its first round, timed as its own: a method may do much
   // of its work there (radiosity solves its links for the frame's lights before its one pass).
   // What an earlier candidate built and this one would build the same (radiosity's mesh and
@@ -262,6 +261,7 @@ MethodChoice race_methods(Device& device, const Scene& scene, const RenderSettin
       r.films.push_back(r.renderer->film_at_control());
       r.film_passes.push_back(r.renderer->film_passes_at_control());
     }
+    if (round == 0) host_work.clear();  // every candidate has begun its frame: the host meshes go with their methods
     // The control grows on any renderer still racing, while it has taken less time than the
     // candidates (its first paths always: without them nothing is measured).
     double racing_seconds = 0;

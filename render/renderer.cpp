@@ -93,7 +93,7 @@ std::vector<PointLight> to_device_lights(const std::vector<LightDesc>& scene_lig
 }
 
 Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& settings,
-                   std::shared_ptr<const SceneUpload> upload)
+                   std::shared_ptr<const SceneUpload> upload, std::shared_ptr<const HostWorkAhead> host_work)
     : device_(device), scene_(scene), settings_(settings), buffers_(device) {
   settings_.validate();
   width_ = settings.width > 0 ? settings.width : scene.camera.width;
@@ -102,6 +102,8 @@ Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& set
   StepClock clock;
   measures_ = measure_scene(scene);
   setup_steps_.push_back({"scene measures", clock.lap_ms(), "bounds, ray epsilon"});
+  // The method's host work first, on a thread of its own, so that it runs beside the BVH build.
+  if (!host_work && settings_.method) host_work = settings_.method->begin_host_work(scene, measures_);
   upload_scene(clock, std::move(upload));
   BufferExtents extents;
   extents.pixels = uint64_t(width_) * uint64_t(height_);
@@ -117,7 +119,7 @@ Renderer::Renderer(Device& device, const Scene& scene, const RenderSettings& set
   setup_steps_.push_back({"frame buffers", clock.lap_ms(), "film, shading points, error control"});
   if (settings_.method) {
     MethodContext context{device_,  scene_,  measures_, buffers_, width_, height_, uint32_t(extents.shading_points),
-                          settings_.passes};
+                          settings_.passes, std::move(host_work)};
     method_ = settings_.method->create(context);
     setup_steps_.push_back({"method setup", clock.lap_ms(), settings_.method->method_name()});
   }

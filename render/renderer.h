@@ -74,12 +74,16 @@ struct FilmSums {
 class Renderer {
  public:
   // upload: the scene's host-side upload when another renderer of the same scene prepared it
-  // (render/scene_upload.h); null: this renderer prepares its own.
+  // (render/scene_upload.h); null: this renderer prepares its own. host_work: the method's host
+  // work begun from the scene alone where the caller began it (--method auto, once for the
+  // candidates it serves); null: the renderer begins it (MethodSettings::begin_host_work) before
+  // it builds the scene's BVH and uploads the scene, which it then runs beside.
   Renderer(Device& device, const Scene& scene, const RenderSettings& settings,
-           std::shared_ptr<const SceneUpload> upload = nullptr);
+           std::shared_ptr<const SceneUpload> upload = nullptr, std::shared_ptr<const HostWorkAhead> host_work = nullptr);
   // The renderer keeps a reference to its scene: a temporary one would be gone by the first frame.
   Renderer(Device& device, const Scene&& scene, const RenderSettings& settings,
-           std::shared_ptr<const SceneUpload> upload = nullptr) = delete;
+           std::shared_ptr<const SceneUpload> upload = nullptr,
+           std::shared_ptr<const HostWorkAhead> host_work = nullptr) = delete;
   ~Renderer();
 
   // Renders the scene as it is at `frame` (its tracks evaluated at frame / frame_rate): the

@@ -67,12 +67,15 @@ uint32_t RadiositySettings::batch_elements(uint64_t elements) const {
   return uint32_t(std::max<uint64_t>(1, std::min(batch, std::max<uint64_t>(elements, 1))));
 }
 
+bool RadiositySettings::same_mesh_as(const RadiositySettings& o) const {
+  return max_edge == o.max_edge && feature_angle == o.feature_angle && sides == o.sides;
+}
+
 bool RadiositySettings::same_links_as(const RadiositySettings& o) const {
-  // The refinement (max_edge), the elements (feature_angle, sides) and the link rays (their
-  // directions, origins and the hidden origins' distance); the link rays' random numbers do not
-  // depend on the seed (radiosity_links.h), the batches do not change a link.
-  return max_edge == o.max_edge && feature_angle == o.feature_angle && sides == o.sides &&
-         resolved_directions() == o.resolved_directions() && link_origins == o.link_origins &&
+  // The mesh and the link rays (their directions, origins and the hidden origins' distance); the
+  // link rays' random numbers do not depend on the seed (radiosity_links.h), the batches do not
+  // change a link.
+  return same_mesh_as(o) && resolved_directions() == o.resolved_directions() && link_origins == o.link_origins &&
          hidden_origins == o.hidden_origins;
 }
 
@@ -90,6 +93,11 @@ std::string RadiositySettings::describe() const {
 
 std::unique_ptr<IndirectMethod> RadiositySettings::create(const MethodContext& context) const {
   return std::make_unique<VertexLinkRadiosity>(context, *this);
+}
+
+std::shared_ptr<const HostWorkAhead> RadiositySettings::begin_host_work(const Scene& scene,
+                                                                        const SceneMeasures& measures) const {
+  return begin_radiosity_host_mesh(scene, resolved(measures));
 }
 
 }  // namespace pm

@@ -47,6 +47,9 @@ class RadiositySettings final : public MethodSettings {
   const char* method_name() const override { return "radiosity"; }
   void validate() const override;
   std::unique_ptr<IndirectMethod> create(const MethodContext& context) const override;
+  // The refined mesh, its elements and texture tints (vertex_link_radiosity.cpp), begun on a
+  // thread of its own; none where the solution has no bounces or the mesh would be refused.
+  std::shared_ptr<const HostWorkAhead> begin_host_work(const Scene& scene, const SceneMeasures& measures) const override;
 
   // The defaults that depend on the scene (max_edge) or on other settings (directions) filled in.
   RadiositySettings resolved(const SceneMeasures& measures) const;
@@ -58,6 +61,9 @@ class RadiositySettings final : public MethodSettings {
   // Gathering bounces of the solution: bounces, or one fewer when final gathering reads it a
   // bounce away from the shading point.
   int solution_bounces() const { return final_gather > 0 ? bounces - 1 : bounces; }
+  // Whether the two (as resolved) refine the scene into the same elements: the refinement
+  // (max_edge) and the elements' settings (feature_angle, sides) agree.
+  bool same_mesh_as(const RadiositySettings& other) const;
   // Whether the two (as resolved) refine the scene into the same elements and trace the same
   // links: the settings of the mesh and of the link rays agree.
   bool same_links_as(const RadiositySettings& other) const;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 
 #include "kernels/common/pixel_order.h"
 #include "render/errors.h"
@@ -13,12 +14,62 @@
 
 namespace pm {
 
+// The first frame's host work: the refined mesh, its elements and, in a textured scene, the
+// elements' texture colours (sampled from the packed images the device has).
+struct RadiosityHostMesh {
+  RefinedMesh mesh;
+  RadiosityElements elements;
+  std::vector<float4> tints;
+};
+
+namespace {
+
+std::shared_ptr<const RadiosityHostMesh> build_host_mesh(const Scene& scene, RadiositySettings settings) {
+  auto built = std::make_shared<RadiosityHostMesh>();
+  built->mesh = refine_mesh(scene, settings.max_edge);
+  built->elements = build_radiosity_elements(scene, built->mesh, settings.feature_angle, settings.sides == 2);
+  if (scene.has_textures()) {
+    DeviceTextures textures;
+    pack_texture_images(scene, &textures);
+    built->tints = radiosity_texture_tints(scene, built->mesh, built->elements, textures);
+  }
+  return built;
+}
+
+}  // namespace
+
+// The host mesh on a thread of its own (the scene outlives it: renderers and the race keep a
+// reference to their scene), for the settings it was begun with.
+class RadiosityHostWork final : public HostWorkAhead {
+ public:
+  RadiosityHostWork(const Scene& scene, const RadiositySettings& resolved)
+      : settings_(resolved), mesh_(std::async(std::launch::async, build_host_mesh, std::cref(scene), resolved).share()) {}
+  bool serves(const MethodSettings& settings, const SceneMeasures& measures) const override {
+    const auto* radiosity = dynamic_cast<const RadiositySettings*>(&settings);
+    return radiosity && radiosity->resolved(measures).same_mesh_as(settings_);
+  }
+  bool serves(const RadiositySettings& resolved) const { return resolved.same_mesh_as(settings_); }
+  std::shared_ptr<const RadiosityHostMesh> mesh() const { return mesh_.get(); }
+
+ private:
+  RadiositySettings settings_;
+  std::shared_future<std::shared_ptr<const RadiosityHostMesh>> mesh_;
+};
+
+std::shared_ptr<const HostWorkAhead> begin_radiosity_host_mesh(const Scene& scene, const RadiositySettings& resolved) {
+  if (resolved.solution_bounces() == 0 || estimate_refined_triangles(scene, resolved.max_edge) > double(kMaxRefinedTriangles))
+    return nullptr;
+  return std::make_shared<RadiosityHostWork>(scene, resolved);
+}
+
 VertexLinkRadiosity::VertexLinkRadiosity(const MethodContext& context, const RadiositySettings& settings)
     : device_(context.device),
       buffers_(context.buffers),
       scene_(context.scene),
       settings_(settings.resolved(context.measures)) {
   settings_.validate();
+  const auto begun = std::dynamic_pointer_cast<const RadiosityHostWork>(context.host_work);
+  if (begun && begun->serves(settings_)) host_work_ = begun;
   pixels_ = uint32_t(context.width) * uint32_t(context.height);
   // Refused before any work: a max_edge that would refine the scene into too many triangles.
   const double estimate = estimate_refined_triangles(scene_, settings_.max_edge);
@@ -55,41 +106,13 @@ std::vector<StageInfo> VertexLinkRadiosity::stages(const FrameContext& frame) co
   };
 }
 
-// The first frame's host work: the refined mesh, its elements and, in a textured scene, the
-// elements' texture colours (sampled from the packed images the device has).
-struct RadiosityHostMesh {
-  RefinedMesh mesh;
-  RadiosityElements elements;
-  std::vector<float4> tints;
-};
-
-namespace {
-
-std::shared_ptr<const RadiosityHostMesh> build_host_mesh(const Scene& scene, const RadiositySettings& settings) {
-  auto built = std::make_shared<RadiosityHostMesh>();
-  built->mesh = refine_mesh(scene, settings.max_edge);
-  built->elements = build_radiosity_elements(scene, built->mesh, settings.feature_angle, settings.sides == 2);
-  if (scene.has_textures()) {
-    DeviceTextures textures;
-    pack_texture_images(scene, &textures);
-    built->tints = radiosity_texture_tints(scene, built->mesh, built->elements, textures);
-  }
-  return built;
-}
-
-}  // namespace
-
-void VertexLinkRadiosity::prepare_ahead() {
-  if (prepared_ || host_mesh_ahead_.valid() || settings_.solution_bounces() == 0) return;
-  host_mesh_ahead_ = std::async(std::launch::async, build_host_mesh, std::cref(scene_), settings_);
-}
-
 // Refinement, elements and their upload ("radiosity: refine", host work between two device
-// markers, so it is timed like a device stage; what prepare_ahead began is waited for there).
+// markers, so it is timed like a device stage; what was begun before the renderer's upload is
+// waited for there).
 void VertexLinkRadiosity::prepare(StageTimer* timer) {
   StageScope scope(timer, "radiosity: refine");
-  const std::shared_ptr<const RadiosityHostMesh> built =
-      host_mesh_ahead_.valid() ? host_mesh_ahead_.get() : build_host_mesh(scene_, settings_);
+  const std::shared_ptr<const RadiosityHostMesh> built = host_work_ ? host_work_->mesh() : build_host_mesh(scene_, settings_);
+  host_work_.reset();  // the mesh's host memory goes with the last holder
   const RefinedMesh& mesh = built->mesh;
   const RadiosityElements& elements = built->elements;
   element_count_ = uint32_t(elements.count());

@@ -12,7 +12,6 @@
 #pragma once
 
 #include <cstdint>
-#include <future>
 #include <memory>
 #include <string>
 #include <utility>
@@ -24,6 +23,11 @@
 namespace pm {
 
 struct RadiosityHostMesh;  // the first frame's host work (vertex_link_radiosity.cpp)
+class RadiosityHostWork;   // that work begun on a thread of its own (RadiositySettings::begin_host_work)
+
+// Begins the host mesh of `resolved` (settings resolved for the scene) on a thread of its own;
+// null where the solution has no bounces or the mesh would be refused (the method refuses it).
+std::shared_ptr<const HostWorkAhead> begin_radiosity_host_mesh(const Scene& scene, const RadiositySettings& resolved);
 
 class VertexLinkRadiosity final : public IndirectMethod {
  public:
@@ -36,7 +40,6 @@ class VertexLinkRadiosity final : public IndirectMethod {
   double noise_rate() const override { return settings_.final_gather > 0 ? kScrambledNetRate : kIndependentNoiseRate; }
   bool adopt_setup(const IndirectMethod& other) override;
   bool shares_setup_with(const IndirectMethod& other) const override;
-  void prepare_ahead() override;
   void begin_frame(const FrameContext& frame, const FrameChange& change) override;
   void run_pass(const FrameContext& frame, uint32_t pass) override;
   // Final gathering's bias along the control's paths (kernels/common/radiosity_bias_probe.h).
@@ -72,7 +75,7 @@ class VertexLinkRadiosity final : public IndirectMethod {
   int ray_frame_ = 0;               // the key of the gather rays of the frame begun last
 
   bool prepared_ = false;
-  std::future<std::shared_ptr<const RadiosityHostMesh>> host_mesh_ahead_;  // prepare_ahead's, until prepare takes it
+  std::shared_ptr<const RadiosityHostWork> host_work_;  // begun before the renderer's upload, until prepare takes it
   bool adopted_ = false;            // the mesh and links are copies of another renderer's (adopt_setup)
   bool solved_ = false;
   uint32_t element_count_ = 0;

@@ -172,15 +172,21 @@ TEST_F(Radiosity, AdoptedLinksRenderAsBuiltOnes) {
   EXPECT_FALSE(late.method()->adopt_setup(*unbegun.method())) << "a renderer that has not begun a frame has nothing to share";
 }
 
-// The race starts radiosity's host work (refinement, elements) on a thread of its own while other
-// candidates render (VertexLinkRadiosity::prepare_ahead); the frame begun after it is the frame
-// built in begin_frame, bit for bit, and a method that shares another's setup says so.
-TEST_F(Radiosity, AMeshPreparedAheadRendersAsOneBuiltInTheFrame) {
+// A renderer begins radiosity's host work (refinement, elements) on a thread of its own before it
+// builds the scene's BVH (RadiositySettings::begin_host_work); the frame begun after it is the
+// frame whose mesh is built in begin_frame, bit for bit. One run serves the renderers whose
+// settings refine the scene alike (--method auto's candidates), not others; and a method that
+// shares another's setup says so.
+TEST_F(Radiosity, AHostMeshBegunBeforeTheUploadRendersAsOneBuiltInTheFrame) {
   Scene scene = moving_room();
+  const SceneMeasures measures = measure_scene(scene);
   const RenderSettings plain = small_radiosity(24, 18, 16), gathered = small_final_gathering();
-  Renderer ahead(*device_, scene, plain), inline_built(*device_, scene, plain);
-  ahead.method()->prepare_ahead();
-  ahead.method()->prepare_ahead();  // once is enough: a second call starts nothing more
+  RadiositySettings coarser = static_cast<const RadiositySettings&>(*gathered.method);
+  coarser.max_edge = 1.0f;
+  const std::shared_ptr<const HostWorkAhead> coarse_mesh = coarser.begin_host_work(scene, measures);
+  ASSERT_TRUE(coarse_mesh);
+  // Its own, begun in its constructor; and another mesh's, which it cannot take: built in the frame.
+  Renderer ahead(*device_, scene, plain), inline_built(*device_, scene, plain, nullptr, coarse_mesh);
   FrameStats stats;
   const FrameImage from_ahead = ahead.render_frame(0, &stats);
   EXPECT_EQ(stat(stats, "links_built"), 1);
@@ -190,11 +196,18 @@ TEST_F(Radiosity, AMeshPreparedAheadRendersAsOneBuiltInTheFrame) {
     EXPECT_TRUE(from_ahead.find(layer)->rgb == built.find(layer)->rgb) << "layer '" << layer << "'";
   EXPECT_EQ(ahead.method()->stats().get("elements"), inline_built.method()->stats().get("elements"));
 
+  const std::shared_ptr<const HostWorkAhead> shared = plain.method->begin_host_work(scene, measures);
+  ASSERT_TRUE(shared);
+  EXPECT_TRUE(shared->serves(*plain.method, measures));
+  EXPECT_TRUE(shared->serves(*gathered.method, measures)) << "final gathering over the same mesh";
+  EXPECT_FALSE(shared->serves(coarser, measures));
+  EXPECT_FALSE(shared->serves(PhotonSettings{}, measures));
+  Renderer served(*device_, scene, gathered, nullptr, shared), own(*device_, scene, gathered);
+  EXPECT_TRUE(served.render_frame(0).find("indirect")->rgb == own.render_frame(0).find("indirect")->rgb);
+
   Renderer same_links(*device_, scene, plain);
   EXPECT_TRUE(same_links.method()->shares_setup_with(*ahead.method()));
   EXPECT_FALSE(ahead.method()->shares_setup_with(*ahead.method())) << "not with itself";
-  RadiositySettings coarser = static_cast<const RadiositySettings&>(*gathered.method);
-  coarser.max_edge = 1.0f;
   RenderSettings other = gathered;
   other.method = std::make_shared<RadiositySettings>(coarser);
   Renderer elsewhere(*device_, scene, other);
