@@ -150,14 +150,16 @@ void measure(Runner& r, const SharedControl& control) {
 // control pixel.
 void resolve_probe(Runner& r, const SharedControl& control, double target, uint64_t most) {
   const ControlGrid& grid = r.renderer->error_control_grid();
-  while (r.probes && r.probe.paths > 0 && r.probe.paths < most) {
-    const BiasEstimate b = paired_bias(r.probe, grid, control_level(control));
-    if (!b.known || b.mean_abs_error - b.mean_abs_error_stderr < kProbeResolveShare * target) return;
+  while (r.probes && r.probe.paths > 0 && r.probe.paths < most &&
+         probe_reads_near_target(paired_bias(r.probe, grid, control_level(control)), target))
     r.probes = r.renderer->grow_bias_probe(r.probe, uint32_t(std::min(r.probe.paths, most - r.probe.paths)));
-  }
 }
 
 }  // namespace
+
+bool probe_reads_near_target(const BiasEstimate& probe, double target) {
+  return probe.known && probe.mean_abs_error - probe.mean_abs_error_stderr >= kProbeResolveShare * target;
+}
 
 std::string MethodChoice::summary() const {
   std::string text;

@@ -58,6 +58,9 @@ constexpr double kFirstRoundSeconds = 0.05;
 // where the method alone took 3.9 s; docs/method-auto.md, "The probe resolved near the target").
 // Below the share a bias lengthens the time to the target by at most a third.
 constexpr double kProbeResolveShare = 0.5;
+// Whether a probe's reading (paired_bias) calls for more paths under `target`: the bias it reads,
+// less a standard error (the forecast's floor), is kProbeResolveShare of the target or more.
+bool probe_reads_near_target(const BiasEstimate& probe, double target);
 
 // Races candidates on `frame` under budget (seconds or target_error must be set) and returns the
 // winner's renderer, mid-frame. settings: the frame's settings but for the method (the
