@@ -59,7 +59,7 @@ ProgressiveResult render_progressive(Renderer& renderer, int frame, const PassBu
     // control, topped up as the frame's final estimate tops it up, agrees: an estimate read
     // through a control noisier than the film can dip under the target and rise over it again
     // when the control sharpens (Conference at 1 % after a short race: 1.17 %, true 1.19 %, where
-    // the pass's reading had let it stop; docs/method-auto.md, "The race's first round").
+    // the pass's reading had let it stop; docs/progressive.md, `--target-error`).
     if (budget.target_error > 0 && report.passes >= kMinPassesForError && report.error >= 0 &&
         renderer.last_error_upper() <= budget.target_error) {
       report.error = renderer.estimate_error(true);

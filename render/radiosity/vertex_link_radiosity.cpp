@@ -48,7 +48,6 @@ class RadiosityHostWork final : public HostWorkAhead {
     const auto* radiosity = dynamic_cast<const RadiositySettings*>(&settings);
     return radiosity && radiosity->resolved(measures).same_mesh_as(settings_);
   }
-  bool serves(const RadiositySettings& resolved) const { return resolved.same_mesh_as(settings_); }
   std::shared_ptr<const RadiosityHostMesh> mesh() const { return mesh_.get(); }
 
  private:
@@ -69,7 +68,7 @@ VertexLinkRadiosity::VertexLinkRadiosity(const MethodContext& context, const Rad
       settings_(settings.resolved(context.measures)) {
   settings_.validate();
   const auto begun = std::dynamic_pointer_cast<const RadiosityHostWork>(context.host_work);
-  if (begun && begun->serves(settings_)) host_work_ = begun;
+  if (begun && begun->serves(settings, context.measures)) host_work_ = begun;
   pixels_ = uint32_t(context.width) * uint32_t(context.height);
   // Refused before any work: a max_edge that would refine the scene into too many triangles.
   const double estimate = estimate_refined_triangles(scene_, settings_.max_edge);
