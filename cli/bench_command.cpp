@@ -201,10 +201,11 @@ int run_bench(const BenchOptions& o) {
   }
 
   const uint32_t passes = base.stats.back().passes;
-  std::pair<std::string, double> work{"", 0};
+  MethodWork work;
   if (renderer->method()) {
-    work = renderer->method()->work_per_pass();
-    std::printf("passes per frame: %u, %.0f %ss per pass\n", passes, work.second, work.first.c_str());
+    work = renderer->method()->work(passes);
+    std::printf("passes per frame: %u, %.0f %ss per frame, at most %.0f a pass\n", passes, work.total,
+                work.unit.c_str(), work.largest_pass);
     std::printf("method statistics, median over the measured frames (min-max):\n");
     for (const MethodStats::Entry& e : base.stats.back().method.entries) {
       const Spread s = base.stat(e.name);
@@ -216,11 +217,11 @@ int run_bench(const BenchOptions& o) {
   } else {
     std::printf("no indirect-light method (direct light only)\n");
   }
-  const double work_per_frame = work.second * passes;
   std::printf("peak device memory: %.1f MiB", double(peak) / (1024.0 * 1024.0));
-  if (work.second > 0)
-    std::printf(", %.0f bytes per %s (%.0f %ss per pass)", double(peak) / work.second, work.first.c_str(), work.second,
-                work.first.c_str());
+  // Per unit of the largest pass: the memory is sized by one pass, never by the frame's.
+  if (work.largest_pass > 0)
+    std::printf(", %.0f bytes per %s (%.0f %ss in the largest pass)", double(peak) / work.largest_pass,
+                work.unit.c_str(), work.largest_pass, work.unit.c_str());
   std::printf("\n");
 
   Json histogram, leaf;
@@ -270,7 +271,7 @@ int run_bench(const BenchOptions& o) {
     j["frame_ms"] = {{"sum_of_stages", spread_json(total)}, {"host_wall", spread_json(wall)}};
     j["fps"] = {{"host_wall", base.fps()}, {"sum_of_stages", base.fps_stages()}};
     j["startup"] = startup_json(startup_report);
-    j["work"] = {{"unit", work.first}, {"per_pass", work.second}, {"passes", passes}, {"per_frame", work_per_frame}};
+    j["work"] = {{"unit", work.unit}, {"per_pass", work.largest_pass}, {"passes", passes}, {"per_frame", work.total}};
     Json method_stats = Json::object();
     for (const MethodStats::Entry& e : base.stats.back().method.entries) method_stats[e.name] = spread_json(base.stat(e.name));
     j["method_stats"] = method_stats;
@@ -279,8 +280,8 @@ int run_bench(const BenchOptions& o) {
     j["counted"] = {{"frame", base.frames.back()}, {"stats", counted_stats}};
     j["memory"] = {{"peak_bytes", peak},
                    {"texture_bytes", texture_bytes},
-                   {"unit", work.first},
-                   {"bytes_per_unit", work.second > 0 ? Json(double(peak) / work.second) : Json(nullptr)}};
+                   {"unit", work.unit},
+                   {"bytes_per_unit", work.largest_pass > 0 ? Json(double(peak) / work.largest_pass) : Json(nullptr)}};
     Json per_frame = Json::array();
     for (size_t i = 0; i < base.frames.size(); ++i) {
       Json stage_ms = Json::object();

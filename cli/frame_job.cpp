@@ -79,8 +79,8 @@ std::vector<std::pair<std::string, std::string>> FrameJob::attributes(int frame,
   for (auto& layer_attribute : film_layer_attributes(renderer_.layers(), scene_, options_.full_float))
     a.push_back(std::move(layer_attribute));
   if (const IndirectMethod* method = renderer_.method()) {
-    const auto [unit, per_pass] = method->work_per_pass();
-    a.push_back({"pmrender/" + unit + "s_total", number_text(per_pass * report.passes)});
+    const MethodWork work = method->work(report.passes);
+    a.push_back({"pmrender/" + work.unit + "s_total", number_text(work.total)});
     for (const MethodStats::Entry& e : method->stats().entries) a.push_back({"pmrender/" + e.name, number_text(e.value)});
   }
   return a;
@@ -107,9 +107,7 @@ RenderedFrame FrameJob::render(int frame, const std::string& path, const std::st
   const uint32_t cap = options_.budget.max_passes;
   const IndirectMethod* method = renderer_.method();
   // Plain variables, not a structured binding: C++17 lambdas cannot capture bindings.
-  const std::pair<std::string, double> work = method ? method->work_per_pass() : std::pair<std::string, double>{"", 0.0};
-  const std::string& unit = work.first;
-  const double per_pass = work.second;
+  const std::string unit = method ? method->work(1).unit : "";
   auto last_draw = std::chrono::steady_clock::time_point{};
   ProgressiveCallbacks callbacks;
   // --verbose under a target error: the control's reading each time the passes double (and the
@@ -143,7 +141,7 @@ RenderedFrame FrameJob::render(int frame, const std::string& path, const std::st
     if (options_.budget.seconds > 0) eta = std::min(eta, std::max(0.0, options_.budget.seconds - r.seconds));
     char text[256];
     std::snprintf(text, sizeof(text), "frame %d  pass %u%s  %.3g %ss  error %s  ETA %s", frame, r.passes,
-                  options_.budget.open_ended() ? "" : ("/" + std::to_string(cap)).c_str(), per_pass * r.passes,
+                  options_.budget.open_ended() ? "" : ("/" + std::to_string(cap)).c_str(), method ? method->work(r.passes).total : 0.0,
                   unit.c_str(), percent_text(r.error).c_str(), seconds_text(eta).c_str());
     std::lock_guard<std::mutex> lock(*pass_progress_);
     progress.show(text);

@@ -65,6 +65,7 @@ class PhotonOptions final : public MethodOptions {
   std::string overlap = "auto";
   std::string alpha = "auto";
   std::string tile_gather = "auto";
+  std::string photons_max = "auto";
 
   std::shared_ptr<const MethodSettings> settings(bool budgeted) const override {
     auto s = std::make_shared<PhotonSettings>(settings_);
@@ -89,6 +90,9 @@ class PhotonOptions final : public MethodOptions {
       return v;
     }));
     s->tile_gather = tile_gather_reach(tile_gather);
+    s->photons_max = uint64_t(auto_or("photons-max", photons_max, "a whole number of photons", [](const std::string& text) {
+      return double(parse_unsigned("", text, 1, uint64_t(1) << 40));
+    }));
     s->leaf_threshold = int(auto_or("leaf", leaf, "a positive integer", [](const std::string& text) {
       return double(parse_unsigned("", text, 1, uint64_t(std::numeric_limits<int>::max())));
     }));
@@ -116,6 +120,12 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
   PhotonSettings& ph = o->settings_;
   const std::string group = "Photon mapping (--method photon)";
   cmd->add_option("--photons", ph.photons, "Photons emitted per pass (0: direct light only)")->transform(any_unsigned64())
+      ->capture_default_str()->group(group);
+  cmd->add_option("--photons-max", o->photons_max,
+                  "The most photons a pass of final gathering grows to: its passes double --photons at pass " +
+                      std::to_string(kPhotonGrowthStart) +
+                      " and each time the passes quadruple after it (auto: 4 x --photons, at most 1048576; "
+                      "--photons: every pass the same; docs/final-gathering.md)")
       ->capture_default_str()->group(group);
   cmd->add_option("--bounces", ph.bounces, "Diffuse bounces of indirect light (also --method path)")->capture_default_str()->transform(any_int32())->group(group);
   cmd->add_option("--estimator", o->estimator, "pd (photon differentials), knn or radius")

@@ -50,6 +50,13 @@ struct MethodContext {
 
 // Named figures a method reports about the last frame: for logs, EXR headers (pmrender/NAME)
 // and benchmarks.
+// A frame's work in the method's own unit (IndirectMethod::work).
+struct MethodWork {
+  std::string unit;         // "photon", "path", "element"
+  double total = 0;         // over the passes asked for
+  double largest_pass = 0;  // the most one of those passes did
+};
+
 struct MethodStats {
   struct Entry {
     std::string name;
@@ -151,8 +158,10 @@ class IndirectMethod {
   virtual MethodStats stats() const = 0;
   // The method's stages in the order they run, with their work per frame for throughput.
   virtual std::vector<StageInfo> stages(const FrameContext& frame) const = 0;
-  // The unit of a pass's work and how many per pass ("photon", 262144), for bytes per unit.
-  virtual std::pair<std::string, double> work_per_pass() const = 0;
+  // The unit of the method's work and how much of it a frame's first `passes` passes do
+  // ("photon": 262144 a pass, more in final gathering's later passes), with its largest pass
+  // among them, for bytes per unit.
+  virtual MethodWork work(uint32_t passes) const = 0;
 };
 
 }  // namespace pm

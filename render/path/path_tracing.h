@@ -26,7 +26,7 @@ class PathTracing final : public IndirectMethod {
   void run_pass(const FrameContext& frame, uint32_t pass) override;
   MethodStats stats() const override { return stats_; }
   std::vector<StageInfo> stages(const FrameContext& frame) const override;
-  std::pair<std::string, double> work_per_pass() const override { return {"path", paths_per_pass()}; }
+  MethodWork work(uint32_t passes) const override { return {"path", paths_per_pass() * passes, paths_per_pass()}; }
 
  private:
   // Paths per pass over all shading points of a primary pixel (mirror depth 0).

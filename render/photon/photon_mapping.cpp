@@ -71,7 +71,8 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
       growth_promise_(context.device) {
   settings_.validate();
   scene_area_ = context.measures.surface_area;
-  photons_per_pass_ = uint32_t(settings_.photons);
+  photons_first_ = uint32_t(settings_.photons_in_pass(0));
+  photons_most_ = uint32_t(settings_.photons_max_or_default());
   slots_per_photon_ = settings_.hit_slots_per_photon(context.scene.has_mirrors());
   shading_points_ = context.shading_points;
   extents_.hit_slots = hit_slots();
@@ -91,15 +92,16 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
   // records, not at a guess above them. The map is allocated by the first pass, for the hits it
   // records (reserve_map). Until they grow, the memory checks count both at the room of 5/4 of
   // the photons' hits.
-  extents_.hit_records = std::min<uint64_t>(uint64_t(photons_per_pass_) / 2, hit_slots());
+  extents_.hit_records = std::min<uint64_t>(uint64_t(photons_first_) / 2, hit_slots());
   resize_growing_buffers();
   area_power_ = build_scene_emitters(context.scene).power_rgb_sum;
   environment_power_ = environment_power_rgb_sum(context.scene.environment, context.measures);
-  share_photons(context.scene.lights);
+  share_photons(context.scene.lights, photons_first_);
 }
 
-void PhotonMapping::share_photons(const std::vector<LightDesc>& lights) {
-  const std::vector<uint32_t> counts = share_photons_by_power(lights, photons_per_pass_, area_power_, environment_power_);
+void PhotonMapping::share_photons(const std::vector<LightDesc>& lights, uint32_t photons) {
+  photons_shared_ = photons;
+  const std::vector<uint32_t> counts = share_photons_by_power(lights, photons, area_power_, environment_power_);
   std::vector<uint4> emitters(std::max<size_t>(counts.size(), 1), uint4{0, 0, 0, 0});
   uint32_t first = 0;
   for (size_t i = 0; i < counts.size(); ++i) {
@@ -111,7 +113,9 @@ void PhotonMapping::share_photons(const std::vector<LightDesc>& lights) {
 }
 
 std::vector<StageInfo> PhotonMapping::stages(const FrameContext& frame) const {
-  const double photons = double(photons_per_pass_);
+  // A frame's first passes': bench frames run few passes (final gathering's grow from pass
+  // kPhotonGrowthStart on).
+  const double photons = double(photons_first_);
   const char* emitted = "photons emitted per pass";
   std::vector<StageInfo> list;
   for (const char* stage : {"photon trace", "map: morton", "map: sort", "footprints", "map: tree"})
@@ -124,9 +128,10 @@ std::vector<StageInfo> PhotonMapping::stages(const FrameContext& frame) const {
 
 LaunchParams PhotonMapping::pass_params(const FrameContext& frame, uint32_t pass) const {
   LaunchParams params = frame.params;
-  // Photon i of pass k is photon k N + i of the frame: its random stream (a 64-bit index).
-  const uint64_t first = uint64_t(pass) * photons_per_pass_;
-  params.photon_count = photons_per_pass_;
+  // Photon i of pass k is photon (the photons of passes 0..k-1) + i of the frame: its random
+  // stream (a 64-bit index).
+  const uint64_t first = settings_.photons_before_pass(pass);
+  params.photon_count = uint32_t(settings_.photons_in_pass(pass));
   params.photon_offset = uint32_t(first);
   params.photon_offset_hi = uint32_t(first >> 32);
   params.footprint_scale = float(settings_.footprint_scale(pass));
@@ -154,7 +159,7 @@ LaunchParams PhotonMapping::pass_params(const FrameContext& frame, uint32_t pass
 void PhotonMapping::begin_frame(const FrameContext& frame, const FrameChange& change) {
   if (change.lights) {
     map_intact_ = false;
-    share_photons(*frame.lights);
+    share_photons(*frame.lights, photons_first_);
   }
   // Camera-only frames reuse the photons of their run's first frame; Halton photons do not
   // depend on the frame at all (types.h).
@@ -163,18 +168,20 @@ void PhotonMapping::begin_frame(const FrameContext& frame, const FrameChange& ch
   stats_ = MethodStats{};
   stats_.set("photon_frame", photon_frame_);
   stats_.set("photons_reused", 0);
-  stats_.set("photons_per_pass", photons_per_pass_);
+  stats_.set("photons_per_pass", photons_first_);
   stats_.set("hits", 0);
   // The tiles' boxes of this frame's shading points, for every pass's gather.
-  if (tile_gather_ > 0 && photons_per_pass_ > 0) {
+  if (tile_gather_ > 0 && photons_first_ > 0) {
     StageScope scope(frame.timer, "gather");
     device_.launch(KernelId::gather_tile_bounds, gather_tiles_, frame.params);
   }
 }
 
 void PhotonMapping::run_pass(const FrameContext& frame, uint32_t pass) {
-  if (photons_per_pass_ == 0) return;
+  if (photons_first_ == 0) return;
   LaunchParams params = pass_params(frame, pass);
+  // Final gathering's passes grow (PhotonSettings::photons_in_pass): the lights' shares follow.
+  if (params.photon_count != photons_shared_) share_photons(*frame.lights, params.photon_count);
   const bool reuse = frame.reuse_lighting && map_intact_ && map_photon_frame_ == photon_frame_ && map_pass_ == pass;
   uint32_t* counters = nullptr;
   uint32_t counts[3] = {0, 0, 0};
@@ -201,6 +208,7 @@ void PhotonMapping::run_pass(const FrameContext& frame, uint32_t pass) {
     map_pass_ = pass;
   }
   stats_.set("hits", stats_.get("hits") + map_params_.hit_count);
+  stats_.set("photons_per_pass", params.photon_count);
   stats_.set("footprint_area", map_footprint_area_);
   stats_.set("leaf_threshold", map_params_.leaf_threshold);
   stats_.set("smoothing", map_smoothing_);
@@ -238,7 +246,12 @@ uint64_t PhotonMapping::growing_bytes(uint64_t map_hits, uint64_t hit_records) c
 }
 
 uint32_t PhotonMapping::expected_most_hits() const {
-  return uint32_t(std::min<uint64_t>(uint64_t(photons_per_pass_) * 5 / 4, hit_slots()));
+  return uint32_t(std::min<uint64_t>(uint64_t(photons_most_) * 5 / 4, hit_slots()));
+}
+
+MethodWork PhotonMapping::work(uint32_t passes) const {
+  const double largest = passes > 0 ? double(settings_.photons_in_pass(passes - 1)) : 0.0;
+  return {"photon", double(settings_.photons_before_pass(passes)), largest};
 }
 
 uint64_t hit_room(uint64_t hits, bool changing) {
@@ -299,18 +312,21 @@ void PhotonMapping::build_vvh_map(const LaunchParams& params) {
 
 // S1-S4 for one pass: leaves the photon map and its parameters in map_params_.
 void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
-  const uint32_t slots = hit_slots();
-  const uint32_t tiles = photon_map_bounds_tile_count(slots);
+  const uint32_t tiles = photon_map_bounds_tile_count(params.photon_count * slots_per_photon_);
   std::vector<float4> partials(2 * size_t(tiles));
   PhotonMapBounds bounds;
   const LaunchParams traced = params;
+  // A pass with more photons than the last: records in proportion to what those took.
+  if (last_traced_photons_ > 0 && params.photon_count > last_traced_photons_)
+    reserve_hit_records(uint32_t(std::min<uint64_t>(
+        uint64_t(last_records_) * params.photon_count / last_traced_photons_, hit_slots())));
   for (;;) {
     // The records' counter and room (photon_trace.h), then the trace.
     const uint32_t counter[2] = {0, uint32_t(extents_.hit_records)};
     device_.upload(buffers_[BufferSlot::hit_record_count], counter, sizeof(counter));
     {
       StageScope scope(timer, "photon trace");
-      device_.launch(KernelId::photon_trace, photons_per_pass_, traced);
+      device_.launch(KernelId::photon_trace, traced.photon_count, traced);
     }
     if (!(settings_.smoothing > 0)) {
       StageScope scope(timer, "footprints");
@@ -327,6 +343,8 @@ void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
       device_.download(buffers_[BufferSlot::hit_record_count], records, sizeof(records));
       bounds = photon_map_combine_partials(partials.data(), tiles);
     }
+    last_records_ = records[0];
+    last_traced_photons_ = traced.photon_count;
     if (records[0] <= extents_.hit_records) break;
     // More hits than the records had room for: the same photons again, with room for them.
     reserve_hit_records(records[0]);

@@ -39,7 +39,7 @@ class PhotonMapping final : public IndirectMethod {
   void run_pass(const FrameContext& frame, uint32_t pass) override;
   MethodStats stats() const override { return stats_; }
   std::vector<StageInfo> stages(const FrameContext& frame) const override;
-  std::pair<std::string, double> work_per_pass() const override { return {"photon", double(photons_per_pass_)}; }
+  MethodWork work(uint32_t passes) const override;
 
   // The settings as resolved for the scene (rmax and radius defaults filled in).
   const PhotonSettings& settings() const { return settings_; }
@@ -47,12 +47,14 @@ class PhotonMapping final : public IndirectMethod {
   uint32_t last_hit_count() const { return map_params_.hit_count; }
   // The parameters the last pass's gather ran with.
   const LaunchParams& last_gather_params() const { return map_params_; }
-  // Hit records of one pass (photons per pass * records per photon).
-  uint32_t hit_slots() const { return photons_per_pass_ * slots_per_photon_; }
+  // Hit records of the largest pass (its photons * records per photon).
+  uint32_t hit_slots() const { return photons_most_ * slots_per_photon_; }
 
  private:
   LaunchParams pass_params(const FrameContext& frame, uint32_t pass) const;
-  void share_photons(const std::vector<LightDesc>& lights);
+  // The lights' shares of `photons` (share_photons_by_power) into photon_emitters; kept until
+  // the lights or the pass's count change.
+  void share_photons(const std::vector<LightDesc>& lights, uint32_t photons);
   double area_power_ = 0;  // the area lights' summed RGB power (render/scene_emitters.h), fixed per scene
   double environment_power_ = 0;  // the environment's (render/scene_environment.h), fixed per scene
   void trace_and_build(LaunchParams params, StageTimer* timer);
@@ -79,7 +81,13 @@ class PhotonMapping final : public IndirectMethod {
   BufferTable& buffers_;
   PhotonSettings settings_;
   double scene_area_ = 0;
-  uint32_t photons_per_pass_ = 0;
+  uint32_t photons_first_ = 0;   // a frame's first pass's (PhotonSettings::photons_in_pass)
+  uint32_t photons_most_ = 0;    // the largest pass's: the buffers' photon extents
+  uint32_t photons_shared_ = 0;  // the count photon_emitters holds the lights' shares of
+  // Hit records the last trace took, of how many photons: a pass with more photons reserves
+  // the records in proportion before it traces, instead of tracing twice.
+  uint32_t last_records_ = 0;
+  uint32_t last_traced_photons_ = 0;
   uint32_t slots_per_photon_ = 0;  // hit records per photon, for this scene's materials
   uint32_t shading_points_ = 0;
   BufferExtents extents_;  // the photon group's sizes; map_hits and hit_records grow with the hits

@@ -1,6 +1,7 @@
 // Photon-mapping settings: name tables, validation, scene-dependent defaults and description.
 #include "render/photon/photon_settings.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -58,6 +59,45 @@ void PhotonSettings::validate() const {
   if (photons * hit_slots_per_photon() > kMaxHitSlots)
     throw SettingError("photons", std::to_string(photons) + " photons per pass need more than 2^29 hit records; "
                                   "use fewer photons per pass and more passes");
+  if (photons_max > 0 && photons_max < photons)
+    throw SettingError("photons-max", "expected at least --photons (" + std::to_string(photons) + "), got " +
+                                          std::to_string(photons_max));
+  if (photons_max > photons && sequence == PM_PHOTON_SEQUENCE_HALTON)
+    throw SettingError("photons-max", "needs --photon-sequence random (Halton photons are the same count every pass)");
+  if (photons_max * hit_slots_per_photon() > kMaxHitSlots)
+    throw SettingError("photons-max", std::to_string(photons_max) + " photons per pass need more than 2^29 hit "
+                                      "records; use fewer");
+}
+
+uint64_t PhotonSettings::photons_max_or_default() const {
+  if (photons_max > 0) return photons_max;
+  if (final_gather == 0 || sequence == PM_PHOTON_SEQUENCE_HALTON) return photons;
+  return std::max(photons, std::min(kPhotonGrowthFactor * photons, kPhotonGrowthMost));
+}
+
+// Pass k's doublings: none before kPhotonGrowthStart, then one more each time k quadruples.
+static uint32_t photon_doublings(uint32_t pass) {
+  uint32_t doublings = 0;
+  for (uint64_t step = kPhotonGrowthStart; pass >= step; step *= 4) ++doublings;
+  return doublings;
+}
+
+uint64_t PhotonSettings::photons_in_pass(uint32_t pass) const {
+  // At most 13 doublings in 2^32 passes, on at most 2^29 photons: no overflow.
+  return std::min(photons_max_or_default(), photons << photon_doublings(pass));
+}
+
+uint64_t PhotonSettings::photons_before_pass(uint32_t pass) const {
+  // Summed by runs of passes of one count: [0, start), [start, 4 start), [4 start, 16 start), ...
+  uint64_t sum = 0;
+  uint64_t run_begin = 0, run_end = kPhotonGrowthStart;
+  while (run_begin < pass) {
+    const uint64_t end = std::min<uint64_t>(run_end, pass);
+    sum += (end - run_begin) * photons_in_pass(uint32_t(run_begin));
+    run_begin = run_end;
+    run_end *= 4;
+  }
+  return sum;
 }
 
 PhotonSettings PhotonSettings::resolved(const SceneMeasures& measures) const {
@@ -77,7 +117,9 @@ PhotonSettings PhotonSettings::resolved(const SceneMeasures& measures) const {
 
 std::string PhotonSettings::describe() const {
   std::ostringstream s;
-  s << "photons=" << photons << " bounces=" << bounces << " estimator=" << name_of(kEstimatorNames, estimator)
+  s << "photons=" << photons;
+  if (photons_max_or_default() > photons) s << " photons_max=" << photons_max_or_default();
+  s << " bounces=" << bounces << " estimator=" << name_of(kEstimatorNames, estimator)
     << " kernel=" << name_of(kKernelShapeNames, kernel_shape) << " smoothing=";
   if (smoothing > 0) s << smoothing;
   else s << "auto overlap=" << overlap_or_default();

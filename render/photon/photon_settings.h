@@ -46,10 +46,22 @@ constexpr double kFinalGatherOverlap = 3.0;
 // its lanes walk the photon map together (docs/benchmarks.md, "Pixel tiles walk the photon map
 // together").
 constexpr float kTileGatherReach = 4.5f;
+// Final gathering's photons a pass grow with the frame (PhotonSettings::photons_in_pass): a pass's
+// map is traced anew, so the map's noise at the rays' hits falls as 1 / sqrt(passes) where the
+// rays', points of scrambled nets, falls faster, and the longer a frame the larger the map's share
+// of its error. The count doubles at pass kPhotonGrowthStart and again each time the passes
+// quadruple, up to photons_max; by default up to kPhotonGrowthFactor times --photons, at most
+// kPhotonGrowthMost (docs/final-gathering.md, "Photons a pass that grow with the frame").
+constexpr uint32_t kPhotonGrowthStart = 128;
+constexpr uint64_t kPhotonGrowthFactor = 4;
+constexpr uint64_t kPhotonGrowthMost = 1048576;
 
 class PhotonSettings final : public MethodSettings {
  public:
   uint64_t photons = 262144;  // emitted per pass, all lights together; 0: no indirect light
+  // The most a pass of final gathering grows to (photons_in_pass); 0: by the mode
+  // (photons_max_or_default). Equal to photons: every pass the same.
+  uint64_t photons_max = 0;
   int bounces = 2;            // diffuse bounces of indirect light
   float smoothing = 0.0f;     // s of section 4.3, diffusely reflected photons; 0: automatic per pass
   // The automatic s: footprints per surface point (render/footprint_scale.h); 0: by the mode
@@ -116,6 +128,15 @@ class PhotonSettings final : public MethodSettings {
     if (shrinking_pd()) return kShrinkStartOverlap;
     return final_gather > 0 ? kFinalGatherOverlap : kAutoSmoothingOverlap;
   }
+  // photons_max as given, or its default: for final gathering with random photons
+  // kPhotonGrowthFactor times photons up to kPhotonGrowthMost (never below photons); photons
+  // otherwise (Halton photons number a light's photons by pass, the same count every pass).
+  uint64_t photons_max_or_default() const;
+  // Photons emitted in pass `pass` (0, 1, ...): photons, doubled at pass kPhotonGrowthStart and
+  // at each fourfold pass count after it, at most photons_max_or_default().
+  uint64_t photons_in_pass(uint32_t pass) const;
+  // Photons emitted in the passes before `pass`: the first photon's index of that pass.
+  uint64_t photons_before_pass(uint32_t pass) const;
   // The defaults that depend on the scene (rmax, radius) or on the mode (overlap, alpha, facet
   // weighting) filled in.
   PhotonSettings resolved(const SceneMeasures& measures) const;

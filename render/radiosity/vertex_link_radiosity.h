@@ -47,7 +47,9 @@ class VertexLinkRadiosity final : public IndirectMethod {
   void launch_bias_probe(const FrameContext& frame, const LaunchParams& control, uint64_t work_items) override;
   MethodStats stats() const override { return stats_; }
   std::vector<StageInfo> stages(const FrameContext& frame) const override;
-  std::pair<std::string, double> work_per_pass() const override { return {"element", double(element_count_)}; }
+  MethodWork work(uint32_t passes) const override {
+    return {"element", double(element_count_) * passes, double(element_count_)};
+  }
 
   // The settings as resolved for the scene (max_edge filled in).
   const RadiositySettings& settings() const { return settings_; }

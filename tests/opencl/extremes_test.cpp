@@ -343,7 +343,8 @@ TEST(Extremes, FourBillionPhotonsRenderInBoundedMemory) {
   {
     Renderer renderer(device(), s, settings);
     ASSERT_NE(renderer.method(), nullptr);
-    EXPECT_EQ(renderer.method()->work_per_pass().second, 65536.0);
+    EXPECT_EQ(renderer.method()->work(61035).largest_pass, 65536.0);
+    EXPECT_EQ(renderer.method()->work(61035).total, 65536.0 * 61035);
     EXPECT_LT(device().peak_allocated_bytes() - before, 256ull << 20);
   }
 }

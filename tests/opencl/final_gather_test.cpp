@@ -176,6 +176,44 @@ TEST_F(FinalGather, ItsPixelsErrorFallsFasterThanWithIndependentRays) {
   EXPECT_GT(at8 / at128, 5.0);
 }
 
+TEST_F(FinalGather, ItsGrownPassesCarryTheSameLightInTwiceThePhotons) {
+  // From pass kPhotonGrowthStart on a pass traces twice the photons (PhotonSettings::photons_in_pass):
+  // each carries half the flux, so the pass's light is the same, its hits twice as many, and its
+  // photons none of the earlier passes'. Six passes on each side of the step, one frame each.
+  auto method = blurry_map(2, 16);
+  method->photons = 8192;
+  RenderSettings settings;
+  settings.width = settings.height = 16;
+  settings.control_paths = 0;
+  settings.method = method;
+  Renderer renderer(*device_, scene_, settings);
+  auto passes_from = [&](uint32_t first, double* hits, double* photons) {
+    double light = 0;
+    *hits = 0;
+    for (uint32_t pass = first; pass < first + 6; ++pass) {
+      renderer.begin_frame(0);
+      renderer.run_pass(pass);
+      renderer.wait();
+      const FrameImage image = renderer.read_image();
+      EXPECT_TRUE(test::all_finite(image.find("")->rgb));
+      light += test::mean(image.find("indirect")->rgb) + test::mean(image.find("caustic")->rgb);
+      *hits += renderer.method()->stats().get("hits");
+      *photons = renderer.method()->stats().get("photons_per_pass");
+    }
+    return light;
+  };
+  double hits_before = 0, hits_grown = 0, photons_before = 0, photons_grown = 0;
+  const double before = passes_from(0, &hits_before, &photons_before);
+  const double grown = passes_from(kPhotonGrowthStart, &hits_grown, &photons_grown);
+  std::printf("spot-lit box, final gather: passes 0-5 %.5f (%.0f hits), passes %u-%u %.5f (%.0f hits)\n", before,
+              hits_before, kPhotonGrowthStart, kPhotonGrowthStart + 5, grown, hits_grown);
+  EXPECT_EQ(photons_before, 8192.0);
+  EXPECT_EQ(photons_grown, 16384.0);
+  EXPECT_NEAR(hits_grown / hits_before, 2.0, 0.1);
+  // One pass's map moves the mean by about a percent (the first test); six passes each side.
+  EXPECT_NEAR(grown / before, 1.0, 0.03) << "a grown pass's photons carry its light between them";
+}
+
 TEST_F(FinalGather, OverACoarseSolutionATargetBelowItsBiasStopsLevelled) {
   // The coarse solution's bias (-6 % through the rays, above) is what its passes cannot remove: asked
   // for 1 %, the frame would run to its cap; it stops once its estimate stops falling
