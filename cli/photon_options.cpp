@@ -122,10 +122,10 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
   cmd->add_option("--photons", ph.photons, "Photons emitted per pass (0: direct light only)")->transform(any_unsigned64())
       ->capture_default_str()->group(group);
   cmd->add_option("--photons-max", o->photons_max,
-                  "The most photons a pass of final gathering grows to: its passes double --photons at pass " +
+                  "The most photons a pass grows to: passes double --photons at pass " +
                       std::to_string(kPhotonGrowthStart) +
-                      " and each time the passes quadruple after it (auto: 4 x --photons, at most 1048576; "
-                      "--photons: every pass the same; docs/final-gathering.md)")
+                      " and each time the passes quadruple after it (auto: under --final-gather 4 x --photons, at "
+                      "most 1048576, else --photons; --photons: every pass the same; docs/final-gathering.md)")
       ->capture_default_str()->group(group);
   cmd->add_option("--bounces", ph.bounces, "Diffuse bounces of indirect light (also --method path)")->capture_default_str()->transform(any_int32())->group(group);
   cmd->add_option("--estimator", o->estimator, "pd (photon differentials), knn or radius")

@@ -47,6 +47,10 @@ TEST_F(OptionMessages, UnsignedOptionsRefuseSignsHexOctalJunkAndOutOfRange) {
   expect_refused("render --device -1", "--device: expected a whole number");
   expect_refused("render --frame -2", "--frame: expected a whole number from 0 to 999999999");
   expect_refused("render --leaf 0x10", "--leaf: expected auto or a positive integer, got '0x10'");
+  expect_refused("render --photons-max 0x10", "--photons-max: expected auto or a whole number of photons, got '0x10'");
+  expect_refused("render --photons-max 1000", "--photons-max: expected at least --photons (262144), got 1000");
+  expect_refused("render --final-gather 4 --photons-max 524288 --photon-sequence halton",
+                 "--photons-max: needs --photon-sequence random");
   expect_refused("render --resolution +64x64", "--resolution");
   expect_refused("render --resolution 0x40x40", "--resolution");
 }
