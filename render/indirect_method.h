@@ -48,8 +48,6 @@ struct MethodContext {
   std::shared_ptr<const HostWorkAhead> host_work;  // begun for it (begin_host_work); may be null
 };
 
-// Named figures a method reports about the last frame: for logs, EXR headers (pmrender/NAME)
-// and benchmarks.
 // A frame's work in the method's own unit (IndirectMethod::work).
 struct MethodWork {
   std::string unit;         // "photon", "path", "element"
@@ -57,6 +55,8 @@ struct MethodWork {
   double largest_pass = 0;  // the most one of those passes did
 };
 
+// Named figures a method reports about the last frame: for logs, EXR headers (pmrender/NAME)
+// and benchmarks.
 struct MethodStats {
   struct Entry {
     std::string name;

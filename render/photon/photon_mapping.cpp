@@ -75,6 +75,7 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
   photons_most_ = uint32_t(settings_.photons_max_or_default());
   slots_per_photon_ = settings_.hit_slots_per_photon(context.scene.has_mirrors());
   shading_points_ = context.shading_points;
+  planned_passes_ = std::max(context.planned_passes, 1u);
   extents_.hit_slots = hit_slots();
   extents_.bounds_tiles = (extents_.hit_slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE;
   // Tiles walk the map together where lanes run in lockstep (kernels/common/gather_tiles.h); the
@@ -113,16 +114,15 @@ void PhotonMapping::share_photons(const std::vector<LightDesc>& lights, uint32_t
 }
 
 std::vector<StageInfo> PhotonMapping::stages(const FrameContext& frame) const {
-  // A frame's first passes': bench frames run few passes (final gathering's grow from pass
-  // kPhotonGrowthStart on).
-  const double photons = double(photons_first_);
-  const char* emitted = "photons emitted per pass";
+  // Per frame, as the stage timer sums a frame's passes: the photons of its planned passes.
+  const double photons = double(settings_.photons_before_pass(planned_passes_));
+  const char* emitted = "photons emitted per frame";
   std::vector<StageInfo> list;
   for (const char* stage : {"photon trace", "map: morton", "map: sort", "footprints", "map: tree"})
     list.push_back({stage, photons, "photons/s", emitted});
   list.push_back({settings_.final_gather > 0 ? "final gather" : "gather",
-                  stats_.get("shading_points", double(shading_points_)), "shading points/s",
-                  "shading points gathered per pass"});
+                  stats_.get("shading_points", double(shading_points_)) * planned_passes_, "shading points/s",
+                  "shading points gathered per frame, every pass"});
   return list;
 }
 

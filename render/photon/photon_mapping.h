@@ -90,6 +90,7 @@ class PhotonMapping final : public IndirectMethod {
   uint32_t last_traced_photons_ = 0;
   uint32_t slots_per_photon_ = 0;  // hit records per photon, for this scene's materials
   uint32_t shading_points_ = 0;
+  uint32_t planned_passes_ = 1;  // a frame's passes as the renderer plans them: the stages' work per frame
   BufferExtents extents_;  // the photon group's sizes; map_hits and hit_records grow with the hits
   // The map and the records at the most hits a pass is expected to record, less what they hold.
   DeviceMemoryPromise growth_promise_;

@@ -70,6 +70,7 @@ VertexLinkRadiosity::VertexLinkRadiosity(const MethodContext& context, const Rad
   const auto begun = std::dynamic_pointer_cast<const RadiosityHostWork>(context.host_work);
   if (begun && begun->serves(settings, context.measures)) host_work_ = begun;
   pixels_ = uint32_t(context.width) * uint32_t(context.height);
+  planned_passes_ = std::max(context.planned_passes, 1u);
   // Refused before any work: a max_edge that would refine the scene into too many triangles.
   const double estimate = estimate_refined_triangles(scene_, settings_.max_edge);
   if (estimate > double(kMaxRefinedTriangles))
@@ -99,8 +100,8 @@ std::vector<StageInfo> VertexLinkRadiosity::stages(const FrameContext& frame) co
       {"radiosity: gather", double(links_) * settings_.solution_bounces(), "links/s", "links read, all bounces"},
       {"radiosity: smooth", elements * settings_.smooth_passes, "elements/s", "elements smoothed, all passes"},
       settings_.final_gather > 0
-          ? StageInfo{"radiosity: final gather", double(pixels_) * settings_.final_gather, "rays/s",
-                      "gather rays, per pass"}
+          ? StageInfo{"radiosity: final gather", double(pixels_) * settings_.final_gather * planned_passes_,
+                      "rays/s", "gather rays per frame, every pass"}
           : StageInfo{"radiosity: interpolate", double(pixels_), "pixels/s", "pixels interpolated (every frame)"},
   };
 }

@@ -74,6 +74,7 @@ class VertexLinkRadiosity final : public IndirectMethod {
   const Scene& scene_;
   RadiositySettings settings_;
   uint32_t pixels_ = 0;
+  uint32_t planned_passes_ = 1;  // a frame's passes as the renderer plans them: the stages' work per frame
   int ray_frame_ = 0;               // the key of the gather rays of the frame begun last
 
   bool prepared_ = false;

@@ -107,6 +107,23 @@ TEST_F(BenchCli, CornellBoxPrintsEveryStageAndWritesJson) {
   EXPECT_EQ(j.at("per_frame").size(), 2u);
 }
 
+TEST_F(BenchCli, ThroughputCountsEveryPassOfTheFrame) {
+  // The stage timer sums a frame's passes, so a stage's work per frame is its passes' together.
+  const fs::path json = dir_ / "bench.json";
+  BenchResult r = pmrender("bench --backend opencl --resolution 32x32 --photons 5000 --passes 3 --warmup 0 --repeat 1 "
+                           "--json " + json.string());
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const nlohmann::json j = nlohmann::json::parse(read_text(json));
+  EXPECT_EQ(j.at("work").at("per_frame"), 15000);
+  EXPECT_EQ(j.at("work").at("per_pass"), 5000);
+  for (const nlohmann::json& row : j.at("stages")) {
+    if (row.at("stage") == "photon trace") EXPECT_EQ(row.at("throughput").at("per_frame"), 15000) << row;
+    if (row.at("stage") == "gather")  // the shading points of a pass that found a surface, every pass
+      EXPECT_EQ(row.at("throughput").at("per_frame"), 3 * j.at("counted").at("stats").at("shading_points").get<double>())
+          << row;
+  }
+}
+
 TEST_F(BenchCli, LeafSweepAndRadiusHistogram) {
   const fs::path json = dir_ / "sweep.json";
   BenchResult r = pmrender("bench --backend opencl --resolution 16x16 --photons 2000 --warmup 0 --repeat 1 "
