@@ -59,8 +59,8 @@ constexpr uint64_t kPhotonGrowthMost = 1048576;
 class PhotonSettings final : public MethodSettings {
  public:
   uint64_t photons = 262144;  // emitted per pass, all lights together; 0: no indirect light
-  // The most a pass of final gathering grows to (photons_in_pass); 0: by the mode
-  // (photons_max_or_default). Equal to photons: every pass the same.
+  // The most photons a pass grows to (photons_in_pass), in any mode when given; 0: by the mode
+  // (photons_max_or_default: growth for final gathering only). Equal to photons: every pass the same.
   uint64_t photons_max = 0;
   int bounces = 2;            // diffuse bounces of indirect light
   float smoothing = 0.0f;     // s of section 4.3, diffusely reflected photons; 0: automatic per pass
