@@ -244,9 +244,9 @@ TEST(LowDiscrepancy, ATilesKeyIsTheKeyOfTheWarpThatShadesIt)
 TEST(LowDiscrepancy, ATilesPixelsShareNoErrorOnceAReplicateFillsTheSharedCells)
 {
   // Two pixels of a tile integrate the disc (an edge, as visibility makes). Over 4000 tiles their
-  // errors after one pass of 16 rays are correlated (they lie in the same cells: 0.66; the test
+  // errors after one pass of 16 rays are correlated (they lie in the same cells: 0.63; the test
   // can tell); after 16 passes of one replicate (256 points, every 2^-4 x 2^-4 cell once) they are
-  // not (0.02; four passes: 0.36).
+  // not (0.02; four passes: 0.38).
   std::mt19937 rng(29);
   const double area = M_PI * 0.2025;
   const int trials = 4000;
