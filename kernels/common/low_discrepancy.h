@@ -1,10 +1,11 @@
-/* Low-discrepancy points for the first bounce's directions (final_gather.h, path_trace.h): the
-   first two dimensions of Sobol's sequence, randomised by Owen's nested uniform scrambling.
+/* Low-discrepancy points for final gathering's first bounce (final_gather.h): the first two
+   dimensions of Sobol's sequence, randomised by Owen's nested uniform scrambling. (The path
+   tracer and the error control keep independent numbers: docs/final-gathering.md.)
 
-   Why: a pixel's final-gathered light (and the path tracer's first bounce) is an integral over
-   the shading point's hemisphere, two numbers a ray. Independent rays lower its error as
-   n^-1/2; the points of a scrambled (0,2)-sequence lower it as about n^-3/4 where the integrand
-   is smooth but for edges (visibility, shadow boundaries), n^-1 where it is smooth (Owen 1997,
+   Why: a pixel's final-gathered light is an integral over the shading point's hemisphere, two
+   numbers a ray. Independent rays lower its error as n^-1/2; the points of a scrambled
+   (0,2)-sequence lower it as about n^-3/4 where the integrand is smooth but for edges
+   (visibility, shadow boundaries), n^-1 where it is smooth (Owen 1997,
    "Scrambled net variance for integrals of smooth functions"), and never worse than independent
    rays by more than a constant (Owen 1997, "Monte Carlo variance of scrambled net quadrature":
    the variance of a scrambled (0,m,2)-net in base 2 is at most twice independent points').
