@@ -1,50 +1,41 @@
 // `pmrender render [SCENE]`: loads the scene (or the built-in Cornell box), selects frames
-// (--frames, --frame, or the scene's whole sequence), opens the devices once (frame_devices.h) and
-// renders the frames with one Renderer per device (scene BVH built once, photons reused over
-// camera-only motion), writing each as OpenEXR (temporary name, then rename) on a writing thread
-// while the device renders the next frame. --resume skips frames whose file is complete. Each
-// frame is claimed first (render/frame_claim.h): a frame another live process is rendering is
-// skipped, or waited for with --wait-for-claimed-frames. A frame that fails is reported and the
-// others still render; the exit code is then 1 (docs/animation.md, "Batch rendering"). Output
-// paths and memory are checked before the device opens (output_checks.h, memory.h); SIGINT and
-// SIGTERM stop between frames (signals.h).
-#include <algorithm>
-#include <chrono>
-#include <cmath>
+// (--frames, --frame, or the scene's whole sequence) and checks everything the run needs before
+// any device work: the output and preview paths (output_checks.h), the camera at every frame and
+// the host memory of a frame (memory.h). --resume skips frames whose file is complete. It then
+// opens the devices once (frame_devices.h), makes one frame job per device group (one Renderer:
+// scene BVH built once, photons reused over camera-only motion; under --method auto the race's
+// winner, render/method_race.h), hands the frames to the frame loop (frame_loop.h: claims,
+// rendering, writing, failures, signals) and prints the run's summary. A frame that fails is
+// reported and the others still render; the exit code is then 1 (docs/animation.md, "Batch
+// rendering").
 #include <cstdio>
-#include <functional>
 #include <memory>
-#include <optional>
-#include <mutex>
-#include <thread>
+#include <string>
+#include <vector>
 
 #include "cli/commands.h"
 #include "cli/concurrent_writers.h"
 #include "cli/frame_devices.h"
 #include "cli/frame_job.h"
-#include "cli/frame_warnings.h"
+#include "cli/frame_loop.h"
 #include "cli/memory.h"
 #include "cli/number_parsing.h"
 #include "cli/output_checks.h"
 #include "cli/progress_line.h"
-#include "cli/signals.h"
 #include "cli/render_options.h"
 #include "cli/scene_beside_driver.h"
+#include "cli/signals.h"
 #include "cli/startup_report.h"
-#include "render/background_writer.h"
 #include "render/device.h"
 #include "render/errors.h"
 #include "render/exr_io.h"
 #include "render/frame_claim.h"
-#include "render/frame_runs.h"
 #include "render/interruption.h"
 #include "render/method_race.h"
 #include "render/output_pattern.h"
 #include "render/preview_exposure.h"
-#include "render/preview_png.h"
 #include "render/renderer.h"
 #include "render/scene_frame.h"
-#include "scene_io/cornell_box.h"
 #include "scene_io/frame_spec.h"
 #include "scene_io/scene_file.h"
 
@@ -56,8 +47,6 @@ namespace {
 const int kMaxFrameNumber = 999999999;
 // The pass cap of a --time or --target-error budget given without --passes.
 const uint32_t kBudgetPassCap = 1000000;
-// How often --wait-for-claimed-frames looks at the claims of other processes again.
-const double kClaimPollSeconds = 1.0;
 
 struct RenderCommandOptions {
   RenderOptions render;
@@ -96,12 +85,6 @@ CLI::Validator film_layer_list() {
       "", "film_layer_list");
 }
 
-std::string frame_list(const std::vector<int>& frames) {
-  std::string list;
-  for (int f : frames) list += (list.empty() ? "" : ", ") + std::to_string(f);
-  return list;
-}
-
 // The frames to render: --frames, --frame, or else the scene's sequence (frame 0 of a still
 // scene). A still scene accepts any frame number (the scene is the same, the random numbers
 // differ); a sequence only its own frames.
@@ -123,18 +106,10 @@ std::vector<int> select_frames(const RenderCommandOptions& o, const Scene& scene
   return frames;
 }
 
-int run_render(const RenderCommandOptions& o) {
-  StartupSteps startup;
-  if (o.exposure_option->count() > 0 && o.preview.empty())
-    throw InputError("--exposure: sets the exposure of the --preview PNG; give --preview NAME.png too");
-  startup.mark("options");
-  SceneLoadReport report;
-  Scene scene = load_scene_beside_driver(o.render, o.devices.empty() ? o.render.device : -1, &report, &startup);
-  RenderSettings settings = render_settings(o.render, o.seconds > 0 || o.target_error > 0);
-  settings.layers = parse_film_layers(o.layers);
-  const std::string pattern = o.output.empty() ? default_output_pattern(scene.name) : o.output;
-
-  const std::vector<int> frames = select_frames(o, scene);
+// The output pattern and the preview's name each frame for themselves, and the camera is usable
+// at every frame.
+void check_frames(const RenderCommandOptions& o, const Scene& scene, const std::string& pattern,
+                  const std::vector<int>& frames) {
   if (frames.size() > 1 && !pattern_has_frame_field(pattern))
     throw InputError("-o: '" + pattern + "' has no # for the frame number, but " + std::to_string(frames.size()) +
                      " frames are selected");
@@ -145,6 +120,72 @@ int run_render(const RenderCommandOptions& o) {
     const std::string problem = camera_problem(camera_at_frame(scene, f));
     if (!problem.empty()) throw InputError(scene.source + ": camera at frame " + std::to_string(f) + ": " + problem);
   }
+}
+
+FrameJobOptions frame_job_options(const RenderCommandOptions& o, const RenderSettings& settings) {
+  FrameJobOptions job_options;
+  job_options.budget.max_passes = settings.passes;
+  job_options.budget.seconds = o.seconds;
+  job_options.budget.target_error = o.target_error;
+  job_options.budget.checkpoint_every = o.checkpoint_every;
+  // A budget with no --passes of its own runs until the budget stops it.
+  if (job_options.budget.open_ended() && o.render.passes_option->count() == 0) job_options.budget.max_passes = kBudgetPassCap;
+  job_options.full_float = o.full_float;
+  job_options.resume = o.resume;
+  job_options.quiet = o.quiet;
+  job_options.verbose = o.verbose && !o.quiet;
+  if (o.exposure_option->count() > 0) job_options.preview_exposure_ev = o.exposure_ev;
+  return job_options;
+}
+
+// --method auto: the methods race on the first frame; the winner renders every frame, the first
+// going on from its passes in the race (render/method_race.h).
+void race_and_make_jobs(const RenderCommandOptions& o, const Scene& scene, RenderSettings& settings,
+                        const FrameJobOptions& job_options, const std::vector<int>& todo, int width, int height,
+                        FrameDevices& opened) {
+  const std::vector<RaceCandidate> candidates = method_candidates(o.render);
+  MethodChoice race = race_methods(*opened.devices.front(), scene, settings, candidates, todo.front(), job_options.budget);
+  settings.method = candidates[race.winner].method;
+  make_frame_jobs(opened, todo.size() > 1, scene, settings, job_options, width, height, std::move(race.renderer));
+  opened.jobs.front()->continue_from(todo.front(), std::move(race.sums), race.race_seconds);
+  for (auto& job : opened.jobs)
+    job->add_attributes({{"pmrender/method_choice", candidates[race.winner].label}, {"pmrender/method_race", race.summary()}});
+  if (o.quiet) return;
+  if (o.verbose)
+    for (const std::string& line : race.rounds) std::printf("method auto: %s\n", line.c_str());
+  std::printf("method auto: %s, raced on frame %d in %s (%s)\n", candidates[race.winner].label.c_str(), todo.front(),
+              seconds_text(race.race_seconds).c_str(), race.summary().c_str());
+  std::fflush(stdout);
+}
+
+// A sequence's summary line: "rendered 21 of 24 frames in 9.1 s (434 ms/frame), ...".
+void print_sequence_summary(const FrameTallies& t, size_t selected, size_t todo, size_t skipped, size_t jobs,
+                            double seconds) {
+  std::printf("rendered %zu of %zu frames in %s", t.rendered, selected, seconds_text(seconds).c_str());
+  if (t.rendered > 0) std::printf(" (%s/frame)", seconds_text(seconds / double(todo)).c_str());
+  if (t.reused > 0) std::printf(", photons reused in %zu", t.reused);
+  if (skipped > 0 || t.finished_elsewhere > 0) std::printf(", %zu already complete", skipped + t.finished_elsewhere);
+  if (!t.held_elsewhere.empty()) std::printf(", %zu being rendered by other processes", t.held_elsewhere.size());
+  if (!t.failed.empty()) std::printf(", %zu failed", t.failed.size());
+  if (jobs > 1) {
+    std::printf(", frames per device:");
+    for (size_t j = 0; j < jobs; ++j) std::printf("%s %zu", j ? "," : "", t.frames_per_job[j]);
+  }
+  std::printf("\n");
+}
+
+int run_render(const RenderCommandOptions& o) {
+  StartupSteps startup;
+  if (o.exposure_option->count() > 0 && o.preview.empty())
+    throw InputError("--exposure: sets the exposure of the --preview PNG; give --preview NAME.png too");
+  startup.mark("options");
+  SceneLoadReport report;
+  Scene scene = load_scene_beside_driver(o.render, o.devices.empty() ? o.render.device : -1, &report, &startup);
+  RenderSettings settings = render_settings(o.render, o.seconds > 0 || o.target_error > 0);
+  settings.layers = parse_film_layers(o.layers);
+  const std::string pattern = o.output.empty() ? default_output_pattern(scene.name) : o.output;
+  const std::vector<int> frames = select_frames(o, scene);
+  check_frames(o, scene, pattern, frames);
 
   std::vector<int> todo, skipped;
   for (int f : frames) {
@@ -166,19 +207,7 @@ int run_render(const RenderCommandOptions& o) {
   const int width = settings.width > 0 ? settings.width : scene.camera.width;
   const int height = settings.height > 0 ? settings.height : scene.camera.height;
   if (!todo.empty()) check_host_memory_for_frame(width, height, !settings.layers.empty());
-
-  FrameJobOptions job_options;
-  job_options.budget.max_passes = settings.passes;
-  job_options.budget.seconds = o.seconds;
-  job_options.budget.target_error = o.target_error;
-  job_options.budget.checkpoint_every = o.checkpoint_every;
-  // A budget with no --passes of its own runs until the budget stops it.
-  if (job_options.budget.open_ended() && o.render.passes_option->count() == 0) job_options.budget.max_passes = kBudgetPassCap;
-  job_options.full_float = o.full_float;
-  job_options.resume = o.resume;
-  job_options.quiet = o.quiet;
-  job_options.verbose = o.verbose && !o.quiet;
-  if (o.exposure_option->count() > 0) job_options.preview_exposure_ev = o.exposure_ev;
+  const FrameJobOptions job_options = frame_job_options(o, settings);
 
   // Devices, their renderers and the frame jobs (frame_devices.h), once the input is known good.
   const std::vector<int> device_list = parse_device_list(o.devices);
@@ -189,249 +218,42 @@ int run_render(const RenderCommandOptions& o) {
     opened = open_devices(choice, todo.size() > 1, o.checkpoint_every);
     print_device_startup_messages(device_pointers(opened), o.verbose, o.quiet);
     remove_stale_temporaries(targets, o.verbose);
-    if (o.render.method == kAutoMethod) {
-      // The methods race on the first frame; the winner renders every frame, the first going on
-      // from its passes in the race (render/method_race.h).
-      const std::vector<RaceCandidate> candidates = method_candidates(o.render);
-      MethodChoice race =
-          race_methods(*opened.devices.front(), scene, settings, candidates, todo.front(), job_options.budget);
-      settings.method = candidates[race.winner].method;
-      make_frame_jobs(opened, todo.size() > 1, scene, settings, job_options, width, height, std::move(race.renderer));
-      opened.jobs.front()->continue_from(todo.front(), std::move(race.sums), race.race_seconds);
-      for (auto& job : opened.jobs)
-        job->add_attributes({{"pmrender/method_choice", candidates[race.winner].label},
-                             {"pmrender/method_race", race.summary()}});
-      if (!o.quiet) {
-        if (o.verbose)
-          for (const std::string& line : race.rounds) std::printf("method auto: %s\n", line.c_str());
-        std::printf("method auto: %s, raced on frame %d in %s (%s)\n", candidates[race.winner].label.c_str(),
-                    todo.front(), seconds_text(race.race_seconds).c_str(), race.summary().c_str());
-        std::fflush(stdout);
-      }
-    } else {
-      make_frame_jobs(opened, todo.size() > 1, scene, settings, job_options, width, height);
-    }
+    if (o.render.method == kAutoMethod) race_and_make_jobs(o, scene, settings, job_options, todo, width, height, opened);
+    else make_frame_jobs(opened, todo.size() > 1, scene, settings, job_options, width, height);
   }
-  std::vector<std::unique_ptr<Device>>& devices = opened.devices;
-  double first_frame_ms = -1;
-  std::vector<std::unique_ptr<FrameJob>>& jobs = opened.jobs;
   remove_stale_claims_of_complete_frames(pattern, skipped, o.claims, o.verbose);
   // Input is valid from here on: say what loading tolerated, then render.
   if (!o.quiet)
     for (const std::string& warning : report.warnings) std::fprintf(stderr, "pmrender: warning: %s\n", warning.c_str());
 
-  const bool sequence = frames.size() > 1;
-  ProgressLine progress(!o.quiet);
-  std::mutex output;  // progress, messages and the counts below, across device threads
-  FrameWarnings warnings(o.full_float);
-  for (auto& job : jobs)
-    job->set_image_check([&](int f, const FrameImage& image, int repaired) {
-      const HalfRangeLoss loss = warnings.measure(image);  // before the lock: devices write frames at once
-      std::lock_guard<std::mutex> lock(output);
-      progress.clear();
-      warnings.report(f, loss, repaired);
-    });
-  MemorySnapshot first_frame_memory;
-  std::vector<int> failed, held_elsewhere;  // held: another live process has claimed the frame
-  size_t rendered = 0, reused = 0, done = 0, finished_elsewhere = 0;
-  const auto start = std::chrono::steady_clock::now();
-  install_interrupt_handlers();
-  ClaimRefresher claim_refresher;
-  // The "wrote" line of a frame this process rendered; called with output locked.
-  std::vector<size_t> frames_per_job(jobs.size(), 0);
-  auto report_written = [&](const FrameJob& job, int f, const std::string& path, const FrameOutcome& outcome) {
-    if (++rendered == 1) {
-      first_frame_memory = {host_rss_bytes(), devices.front()->allocated_bytes()};
-      first_frame_ms = outcome.render_ms;
-    }
-    for (size_t j = 0; j < jobs.size(); ++j) frames_per_job[j] += jobs[j].get() == &job ? 1 : 0;
-    reused += outcome.photons_reused ? 1 : 0;
-    if (!o.quiet) {
-      std::printf("wrote %s (frame %d, %dx%d, %s, %.2f ms", path.c_str(), f, job.width(), job.height(),
-                  job.devices().c_str(), outcome.render_ms);
-      if (outcome.result.passes > 1 || job_options.budget.open_ended())
-        std::printf(", %u passes (%s)", outcome.result.passes, outcome.result.stopped_by.c_str());
-      if (outcome.result.error >= 0) std::printf(", error ~%.2f%%", 100.0 * outcome.result.error);
-      if (outcome.resumed) std::printf(", continued from its checkpoint");
-      if (outcome.photons_reused) std::printf(", photons reused");
-      std::printf(")\n");
-      std::fflush(stdout);
-    }
-    if (outcome.result.stopped_by == "levelled")
-      std::fprintf(stderr,
-                   "pmrender: warning: frame %d: the error estimate levelled off at %.2f%%, above the target %.2f%%: "
-                   "more passes of this method do not lower it (docs/progressive.md)\n",
-                   f, 100.0 * outcome.result.error, 100.0 * job_options.budget.target_error);
-  };
-  // A frame this process claimed and rendered, waiting for its file.
-  struct PendingFrame {
-    FrameJob* job = nullptr;
-    RenderedFrame rendered;
-    FrameClaim claim;
-  };
-  auto count_done = [&](int f) {
-    std::lock_guard<std::mutex> lock(output);
-    progress.show_count("frame " + std::to_string(f), ++done, todo.size(),
-                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), "frame");
-  };
-  // Whether a failure of frame f is reported here (the others go on) or thrown to main().
-  auto report_failure = [&](int f, const std::exception& e) {
-    if (todo.size() == 1 && frames.size() == 1) throw;  // a single frame: main() reports it as before
-    std::lock_guard<std::mutex> lock(output);
-    progress.clear();
-    std::fprintf(stderr, "pmrender: frame %d: %s\n", f, e.what());
-    failed.push_back(f);
-  };
-  // Claims frame f and renders it; returns the frame to write, or nothing where it was not rendered
-  // here. waited: f was held by another process before (and said so), so a complete file now is
-  // that process's work, with or without --resume.
-  auto render_frame = [&](FrameJob& job, int f, bool waited) -> std::shared_ptr<PendingFrame> {
-    const std::string path = expand_output_pattern(pattern, f);
-    try {
-      ClaimAttempt attempt = claim_frame(path, o.claims);
-      std::unique_lock<std::mutex> lock(output);
-      progress.clear();
-      if (!attempt.claim.held()) {
-        held_elsewhere.push_back(f);
-        if (!waited && !o.quiet)
-          std::printf("skipped %s (being rendered by %s)\n", path.c_str(), claim_holder_text(*attempt.other).c_str());
-        std::fflush(stdout);
-        return nullptr;  // counted once it is done, here or there
-      }
-      if (attempt.other && !o.quiet)
-        std::printf("took over the stale claim %s: %s\n", attempt.other->path.c_str(), attempt.other->why_stale.c_str());
-      std::fflush(stdout);
-      lock.unlock();
-      // Another process may have finished the frame since the --resume scan, or while this one waited.
-      if ((o.resume || waited) && exr_is_complete(path)) {
-        lock.lock();
-        ++finished_elsewhere;
-        if (o.verbose) std::printf("skipped %s (complete)\n", path.c_str());
-      } else {
-        auto pending = std::make_shared<PendingFrame>();
-        pending->job = &job;
-        pending->rendered = job.render(f, path, o.preview.empty() ? "" : expand_output_pattern(o.preview, f), progress);
-        pending->claim = std::move(attempt.claim);
-        return pending;
-      }
-    } catch (const Interrupted&) {
-      return nullptr;  // the frame in progress is abandoned (its checkpoint, if any, stays)
-    } catch (const std::bad_alloc&) {
-      throw;  // not this frame's fault: main() reports it and the run ends
-    } catch (const std::exception& e) {
-      report_failure(f, e);
-    }
-    count_done(f);
-    return nullptr;
-  };
-  // Writes a rendered frame's file, then releases its claim (the file is in place).
-  auto write_frame = [&](PendingFrame& pending) {
-    const int f = pending.rendered.frame;
-    try {
-      pending.job->write(pending.rendered);
-      pending.claim.release();
-      std::lock_guard<std::mutex> lock(output);
-      progress.clear();
-      report_written(*pending.job, f, pending.rendered.path, pending.rendered.outcome);
-    } catch (const Interrupted&) {
-      return;  // no partial file is left (atomic_file.h); the claim goes with `pending`
-    } catch (const std::bad_alloc&) {
-      throw;
-    } catch (const std::exception& e) {
-      report_failure(f, e);
-    }
-    count_done(f);
-  };
-  // The frames next_frame() hands out, on one job: each frame's file is written on the job's writing
-  // thread while the job's devices render the next frame (at most one frame waits per job). A
-  // single frame is written at once.
-  auto render_frames = [&](FrameJob& job, const std::function<std::optional<int>()>& next_frame) {
-    BackgroundWriter writer;
-    while (interruption_signal() == 0) {
-      const std::optional<int> f = next_frame();
-      if (!f) break;
-      std::shared_ptr<PendingFrame> pending = render_frame(job, *f, false);
-      writer.wait();
-      if (!pending) continue;
-      if (todo.size() == 1) write_frame(*pending);
-      else writer.submit([&write_frame, pending] { write_frame(*pending); });
-    }
-    writer.wait();
-  };
-  if (jobs.size() <= 1) {
-    if (!jobs.empty()) {
-      jobs.front()->set_pass_progress(&output);  // one frame at a time: its passes may show
-      size_t i = 0;
-      render_frames(*jobs.front(), [&]() -> std::optional<int> {
-        if (i < todo.size()) return todo[i++];
-        return std::nullopt;
-      });
-    }
-  } else {
-    // One thread per device, each on its own contiguous run of frames, taking over half of the
-    // longest run left when its own is done (render/frame_runs.h).
-    FrameRuns runs(todo.size(), jobs.size());
-    std::vector<std::thread> threads;
-    std::exception_ptr failure;
-    for (size_t d = 0; d < jobs.size(); ++d)
-      threads.emplace_back([&, d] {
-        try {
-          render_frames(*jobs[d], [&]() -> std::optional<int> {
-            if (std::optional<size_t> i = runs.next(d)) return todo[*i];
-            return std::nullopt;
-          });
-        } catch (...) {
-          std::lock_guard<std::mutex> lock(output);
-          if (!failure) failure = std::current_exception();
-        }
-      });
-    for (std::thread& t : threads) t.join();
-    if (failure) std::rethrow_exception(failure);
-    std::sort(failed.begin(), failed.end());
-  }
-  // --wait-for-claimed-frames: the frames other processes held, until each is complete, here (its
-  // claim was released without a file, or went stale) or there.
-  if (o.wait_for_claimed && !held_elsewhere.empty() && !o.quiet) {
-    progress.clear();
-    std::printf("waiting for %zu frame%s other processes are rendering: %s\n", held_elsewhere.size(),
-                held_elsewhere.size() == 1 ? "" : "s", frame_list(held_elsewhere).c_str());
-    std::fflush(stdout);
-  }
-  while (o.wait_for_claimed && !held_elsewhere.empty() && interruption_signal() == 0) {
-    sleep_unless_interrupted(kClaimPollSeconds);
-    std::vector<int> waiting;
-    waiting.swap(held_elsewhere);
-    std::sort(waiting.begin(), waiting.end());
-    for (size_t i = 0; i < waiting.size() && interruption_signal() == 0; ++i)
-      if (std::shared_ptr<PendingFrame> pending = render_frame(*jobs.front(), waiting[i], true)) write_frame(*pending);
-  }
-  progress.clear();
-  if (interruption_signal() != 0) return report_interruption(rendered, todo.size());
-  const double total_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  FrameLoopOptions loop_options;
+  loop_options.pattern = pattern;
+  loop_options.preview = o.preview;
+  loop_options.claims = o.claims;
+  loop_options.budget = job_options.budget;
+  loop_options.selected_frames = frames.size();
+  loop_options.resume = o.resume;
+  loop_options.wait_for_claimed = o.wait_for_claimed;
+  loop_options.full_float = o.full_float;
+  loop_options.quiet = o.quiet;
+  loop_options.verbose = o.verbose;
+  FrameLoop loop(loop_options, opened.jobs, opened.devices.empty() ? nullptr : opened.devices.front().get());
+  loop.run(todo);
+  loop.clear_progress();
+  const FrameTallies& tallies = loop.tallies();
+  if (interruption_signal() != 0) return report_interruption(tallies.rendered, todo.size());
 
-  if (sequence && !o.quiet) {
-    std::printf("rendered %zu of %zu frames in %s", rendered, frames.size(), seconds_text(total_seconds).c_str());
-    if (rendered > 0) std::printf(" (%s/frame)", seconds_text(total_seconds / double(todo.size())).c_str());
-    if (reused > 0) std::printf(", photons reused in %zu", reused);
-    if (!skipped.empty() || finished_elsewhere > 0)
-      std::printf(", %zu already complete", skipped.size() + finished_elsewhere);
-    if (!held_elsewhere.empty()) std::printf(", %zu being rendered by other processes", held_elsewhere.size());
-    if (!failed.empty()) std::printf(", %zu failed", failed.size());
-    if (jobs.size() > 1) {
-      std::printf(", frames per device:");
-      for (size_t j = 0; j < jobs.size(); ++j) std::printf("%s %zu", j ? "," : "", frames_per_job[j]);
-    }
-    std::printf("\n");
-  }
-  if (o.verbose && !devices.empty()) {
+  if (frames.size() > 1 && !o.quiet)
+    print_sequence_summary(tallies, frames.size(), todo.size(), skipped.size(), opened.jobs.size(), loop.seconds());
+  if (o.verbose && !opened.devices.empty()) {
     StartupReport startup_report = make_startup_report(startup, device_pointers(opened), renderer_pointers(opened));
-    startup_report.first_frame_wall_ms = first_frame_ms;
+    startup_report.first_frame_wall_ms = tallies.first_frame_ms;
     print_startup_report(stdout, startup_report, -1, "");
-    print_memory_summary(first_frame_memory, *devices.front());
+    print_memory_summary(tallies.first_frame_memory, *opened.devices.front());
   }
-  if (!failed.empty()) {
-    std::fprintf(stderr, "pmrender: %zu of %zu frames failed: %s\n", failed.size(), frames.size(),
-                 frame_list(failed).c_str());
+  if (!tallies.failed.empty()) {
+    std::fprintf(stderr, "pmrender: %zu of %zu frames failed: %s\n", tallies.failed.size(), frames.size(),
+                 frame_list(tallies.failed).c_str());
     return 1;
   }
   return 0;
