@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "render/scene_frame.h"
+#include "scene_io/lights_camera_json.h"
 #include "scene_io/load_error.h"
 
 namespace pm {
@@ -56,15 +57,9 @@ Track<N> read_track(const JsonField& field, const std::function<std::array<float
 
 std::array<float, 3> as_array(const Float3& v) { return {v.x, v.y, v.z}; }
 
+// A key's position in metres, bounded as the scene's static positions are (lights_camera_json.h).
 std::array<float, 3> read_position(const JsonField& value, double meters_per_unit) {
-  const Float3 units = value.float3();
-  std::array<float, 3> metres{};
-  const float in[3] = {units.x, units.y, units.z};
-  for (int c = 0; c < 3; ++c) {
-    metres[c] = static_cast<float>(in[c] * meters_per_unit);
-    if (!std::isfinite(metres[c])) value.fail("beyond float range once converted to metres");
-  }
-  return metres;
+  return as_array(read_position_in_metres(value, meters_per_unit));
 }
 
 std::array<float, 3> read_direction(const JsonField& value) {

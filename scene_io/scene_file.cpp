@@ -1,8 +1,8 @@
 // Owns loading a pmrender JSON scene (format version 1, docs/scene-format.md) into pm::Scene:
-// the top-level keys, JSON materials, meshes (through obj_mesh), lights, the environment
-// (through environment_json), camera, unit conversion
-// to metres and the usemtl name -> material resolution (JSON materials first, then MTL); the
-// optional "animation" object goes through animation_json. Files ending in .gltf or .glb go to
+// the top-level keys, JSON materials, meshes (through obj_mesh) with their vertices in metres, and
+// the usemtl name -> material resolution (JSON materials first, then MTL); the lights and camera go
+// through lights_camera_json, the environment through environment_json and the optional
+// "animation" object through animation_json. Files ending in .gltf or .glb go to
 // the glTF loader (gltf_scene.h) instead.
 #include "scene_io/scene_file.h"
 
@@ -23,6 +23,7 @@
 #include "scene_io/environment_json.h"
 #include "scene_io/gltf_scene.h"
 #include "scene_io/json_reader.h"
+#include "scene_io/lights_camera_json.h"
 #include "scene_io/load_error.h"
 #include "scene_io/obj_mesh.h"
 #include "scene_io/texture_files.h"
@@ -33,23 +34,11 @@ namespace {
 namespace fs = std::filesystem;
 
 const char kFormatName[] = "pmrender-scene";
-const int kMaxResolution = 16384;
 const char* const kChannelNames[3] = {"red", "green", "blue"};
 // Values are stored as floats, so 0.6 + 0.4 sums to 1.00000003; that must still count as 1.
 constexpr double kReflectanceSumTolerance = 1e-6;
 
 float component(const Float3& v, int i) { return i == 0 ? v.x : (i == 1 ? v.y : v.z); }
-
-// Converts a position from scene units to metres; fails on the field beyond what single-precision
-// geometry can render (the same bound as OBJ vertex coordinates, now in metres).
-Float3 to_metres(const Float3& units, double meters_per_unit, const JsonField& field) {
-  const double m[3] = {units.x * meters_per_unit, units.y * meters_per_unit, units.z * meters_per_unit};
-  for (double v : m) {
-    if (!(std::fabs(v) <= kMaxObjCoordinate))
-      field.fail("a position is " + describe_json_value(v) + " m from the origin once converted to metres; at most 1e15 m renders");
-  }
-  return Float3{static_cast<float>(m[0]), static_cast<float>(m[1]), static_cast<float>(m[2])};
-}
 
 // --- materials -------------------------------------------------------------------------------
 
@@ -250,7 +239,7 @@ void append_mesh(const JsonField& field, LoadContext& ctx, MaterialTable& table,
     field.fail("too many vertices in the scene for 32-bit indices");
   const JsonField file_field = field.member("file");
   for (const Float3& p : mesh.positions)
-    scene.positions.push_back(to_metres(p, ctx.meters_per_unit, file_field));
+    scene.positions.push_back(position_in_metres(p, ctx.meters_per_unit, file_field));
   // Texture coordinates line up with the triangles: earlier meshes' come first.
   scene.triangle_uvs.resize(3 * scene.triangle_count());
   scene.triangle_uvs.insert(scene.triangle_uvs.end(), mesh.triangle_uvs.begin(), mesh.triangle_uvs.end());
@@ -268,107 +257,6 @@ void append_mesh(const JsonField& field, LoadContext& ctx, MaterialTable& table,
                                                " degenerate triangles dropped"));
   }
 }
-
-// --- lights and camera -----------------------------------------------------------------------
-
-float length(const Float3& v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
-
-// A spot light's cone angle in degrees, as radians: in [0, 90] degrees.
-float read_cone_angle(const JsonField& field) {
-  const double degrees = field.finite_number();
-  if (!(degrees >= 0 && degrees <= 90)) field.fail("must be in [0, 90] degrees, got " + describe_json_value(field.value()));
-  return static_cast<float>(degrees * M_PI / 180.0);
-}
-
-LightDesc read_light(const JsonField& field, size_t index, double meters_per_unit) {
-  field.expect_object_with_keys({"name", "type", "position", "power", "direction", "inner_cone_angle", "outer_cone_angle"});
-  LightDesc light;
-  light.name = field.has("name") ? field.member("name").non_empty_string() : "light" + std::to_string(index);
-  if (field.has("type")) {
-    const JsonField type = field.member("type");
-    const std::string name = type.non_empty_string();
-    if (name == "spot") light.type = LightType::spot;
-    else if (name != "point") type.fail("expected \"point\" or \"spot\", got '" + name + "'");
-  }
-  const JsonField position = field.member("position");
-  light.position = to_metres(position.float3(), meters_per_unit, position);
-  const JsonField power = field.member("power");
-  light.power = power.float3();
-  for (size_t c = 0; c < 3; ++c)
-    if (component(light.power, static_cast<int>(c)) < 0)
-      power.element(c).fail("must be >= 0 W, got " + describe_json_value(power.element(c).value()));
-  if (light.type != LightType::spot) {
-    for (const char* key : {"direction", "inner_cone_angle", "outer_cone_angle"})
-      if (field.has(key)) field.member(key).fail("only a spot light has this key (\"type\": \"spot\")");
-    return light;
-  }
-  const JsonField direction = field.member("direction");
-  light.direction = direction.float3();
-  if (!(length(light.direction) > 0)) direction.fail("must not be zero");
-  light.outer_cone = field.has("outer_cone_angle") ? read_cone_angle(field.member("outer_cone_angle")) : float(M_PI / 4);
-  light.inner_cone = field.has("inner_cone_angle") ? read_cone_angle(field.member("inner_cone_angle")) : 0.0f;
-  if (!(light.inner_cone < light.outer_cone)) {
-    const JsonField where = field.has("inner_cone_angle") ? field.member("inner_cone_angle") : field.member("outer_cone_angle");
-    where.fail("the inner cone angle must be below the outer one (" + std::to_string(light.inner_cone * 180.0 / M_PI) +
-               " >= " + std::to_string(light.outer_cone * 180.0 / M_PI) + " degrees)");
-  }
-  return light;
-}
-
-// Lights are optional: a scene may be lit by emitting materials alone; load_scene_file checks
-// that some light, of either kind, is there.
-std::vector<LightDesc> read_lights(const JsonField& root, double meters_per_unit) {
-  std::vector<LightDesc> result;
-  if (!root.has("lights")) return result;
-  const JsonField lights = root.member("lights");
-  const size_t count = lights.expect_array();
-  for (size_t i = 0; i < count; ++i) result.push_back(read_light(lights.element(i), i, meters_per_unit));
-  return result;
-}
-
-
-CameraDesc read_camera(const JsonField& root, double meters_per_unit) {
-  const JsonField field = root.member("camera");
-  field.expect_object_with_keys({"position", "look_at", "up", "vertical_fov", "resolution"});
-  CameraDesc camera;  // defaults: up +y, 45 degrees, 512 x 512
-  const JsonField position = field.member("position");
-  camera.position = to_metres(position.float3(), meters_per_unit, position);
-  const JsonField look_at = field.member("look_at");
-  camera.look_at = to_metres(look_at.float3(), meters_per_unit, look_at);
-  const Float3 view{camera.look_at.x - camera.position.x, camera.look_at.y - camera.position.y,
-                    camera.look_at.z - camera.position.z};
-  const float view_length = length(view);
-  if (!(view_length > 0)) look_at.fail("equals camera.position (no view direction)");
-
-  // up is a direction, so it is not scaled. It must leave a "right" axis: |view x up| is
-  // |sin| of their angle times both lengths, and near zero means (anti)parallel.
-  const bool up_given = field.has("up");
-  if (up_given) camera.up = field.member("up").float3();
-  const float up_length = length(camera.up);
-  const Float3 cross{view.y * camera.up.z - view.z * camera.up.y, view.z * camera.up.x - view.x * camera.up.z,
-                     view.x * camera.up.y - view.y * camera.up.x};
-  if (up_given && !(up_length > 0)) field.member("up").fail("must not be the zero vector");
-  if (!(length(cross) > 1e-6f * view_length * up_length)) {
-    if (up_given) field.member("up").fail("is parallel to the view direction (look_at - position)");
-    field.fail("the default up [0, 1, 0] is parallel to the view direction; set camera.up");
-  }
-
-  if (field.has("vertical_fov")) {
-    const JsonField fov = field.member("vertical_fov");
-    const double degrees = fov.finite_number();
-    if (!(degrees > 0 && degrees < 180))
-      fov.fail("must be in (0, 180) degrees, got " + describe_json_value(fov.value()));
-    camera.vertical_fov_degrees = static_cast<float>(degrees);
-  }
-  if (field.has("resolution")) {
-    const JsonField resolution = field.member("resolution");
-    resolution.expect_array(2);
-    camera.width = static_cast<int>(resolution.element(0).integer_in(1, kMaxResolution));
-    camera.height = static_cast<int>(resolution.element(1).integer_in(1, kMaxResolution));
-  }
-  return camera;
-}
-
 
 bool has_extension(const std::string& path, const std::string& extension) {
   std::string ext = fs::path(path).extension().string();

@@ -212,6 +212,15 @@ TEST_F(AnimationJson, ErrorsNameTheField) {
   s = animated_scene();
   s["animation"]["camera"]["position"]["keys"][0]["value"][0] = nullptr;
   expect_error(s, "animation.camera.position.keys[0].value[0]: expected a finite number, got null");
+  // A key's position is bounded as a static one is (1e15 m, meters_per_unit 0.5 here): a light
+  // key at 4e15 units, 2e15 m, is refused where it was once read as long as it stayed finite.
+  s = animated_scene();
+  s["animation"]["lights"]["key"]["position"]["keys"][1]["value"][2] = 4e15;
+  expect_error(s, "animation.lights.key.position.keys[1].value: a position is 1.99");
+  expect_error(s, "e+15 m from the origin once converted to metres; at most 1e15 m renders");
+  s = animated_scene();
+  s["lights"][0]["position"][2] = 4e15;
+  expect_error(s, "lights[0].position: a position is 1.99");
 }
 
 TEST_F(AnimationJson, TheCameraIsCheckedAtEveryFrame) {
