@@ -73,9 +73,11 @@ PM_DEVICE uint sobol_dimension1_bits(uint i)
 /* Digits of each coordinate scrambled under the tile's key rather than the pixel's own (above). */
 #define PM_TILE_SHARED_DIGITS 4u
 
-/* Owen's nested uniform scrambling of mirrored digits (digit k at bit k) under `key`: each step
-   keeps bit k a function of bits 0..k, so digit k is flipped by a function of the key and the
-   digits before it (above). */
+/* Owen's nested scrambling of mirrored digits (digit k at bit k) under `key`: each step keeps
+   bit k a function of bits 0..k, so digit k is flipped by a function of the key and the digits
+   before it (above). The flips come from one hash rather than from an independent random bit for
+   every node of the digit tree; the points integrate as well (docs/final-gathering.md, "One hash
+   a coordinate"). */
 PM_DEVICE uint owen_scramble_mirrored(uint x, uint key)
 {
   x ^= x * 0x3d20adeau;
