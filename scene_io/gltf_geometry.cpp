@@ -18,6 +18,7 @@
 #include "scene_io/json_reader.h"
 #include "scene_io/load_error.h"
 #include "scene_io/obj_mesh.h"
+#include "scene_io/obj_text_check.h"
 
 namespace pm::gltf {
 
@@ -166,10 +167,13 @@ void GltfLoader::append_primitive(const tinygltf::Primitive& primitive, const st
   if (base + vertex_count > UINT32_MAX) fail(where, "too many vertices in the scene for 32-bit indices");
   for (size_t v = 0; v < vertex_count; ++v) {
     const Vec3d p = gltf::transform_point(world, {local[3 * v], local[3 * v + 1], local[3 * v + 2]});
-    const Float3 f{float(p[0]), float(p[1]), float(p[2])};
-    if (!std::isfinite(f.x) || !std::isfinite(f.y) || !std::isfinite(f.z))
-      fail(where + ".attributes.POSITION", "vertex " + std::to_string(v) + " is beyond float range after its node transform");
-    scene.positions.push_back(f);
+    // The bound of OBJ vertices and JSON scenes' positions (obj_text_check.h): beyond it
+    // single-precision ray-triangle products overflow and surfaces vanish.
+    for (double c : p)
+      if (!(std::fabs(c) <= kMaxObjCoordinate))
+        fail(where + ".attributes.POSITION", "vertex " + std::to_string(v) + " is " + describe_json_value(c) +
+                                                 " m from the origin after its node transform; at most 1e15 m renders");
+    scene.positions.push_back(Float3{float(p[0]), float(p[1]), float(p[2])});
   }
   // A node transform of negative determinant turns glTF's counter-clockwise front faces
   // clockwise: swapping two corners keeps the geometric normal on the front (the side emitters

@@ -318,6 +318,15 @@ TEST_F(Gltf, ErrorsNameTheFileAndThePlace) {
     b.doc()["extensionsUsed"].push_back("KHR_draco_mesh_compression");
     expect_error(b, "extensionsRequired: extension 'KHR_draco_mesh_compression' is required by the file but not supported");
   }
+  {
+    // A vertex 2e15 m out once its node is scaled: refused as OBJ and JSON positions are, where it
+    // was once kept as long as it stayed within float range.
+    GltfBuilder b;
+    b.node({{"mesh", b.triangle_mesh()}, {"scale", {2e15, 2e15, 2e15}}});
+    b.add_camera_and_light();
+    expect_error(b, "meshes[0].primitives[0].attributes.POSITION: vertex 1 is 2e+15 m from the origin after its node "
+                    "transform; at most 1e15 m renders");
+  }
 }
 
 }  // namespace
