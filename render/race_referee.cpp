@@ -78,9 +78,9 @@ RoundCall call_round(const std::vector<RaceStanding>& s, RacePhase phase, const 
   const bool best_trusted = rules.by_error && trusted(best, rules.target);
   // Under a target error the runner-up is kept for the duel while it is within kDuelTimeRatio of
   // a best whose forecast may hide a floor (the race's readings are too short to tell such
-  // candidates apart), and while it is not behind (kDropTimeRatio) a trusted one.
+  // candidates apart), and within kTrustedDuelTimeRatio of a trusted one.
   const int runner_up = rules.by_error ? lowest(s, call.best) : -1;
-  const double duel_ratio = best_trusted ? kDropTimeRatio : kDuelTimeRatio;
+  const double duel_ratio = best_trusted ? kTrustedDuelTimeRatio : kDuelTimeRatio;
   const bool duel_worthy = runner_up >= 0 && known && s[runner_up].value <= duel_ratio * best.value;
   const double ratio = rules.by_error ? kDropTimeRatio : kDropErrorRatio;
   size_t left = 0;
