@@ -119,8 +119,8 @@ RenderSettings render_settings(const RenderOptions& o, bool budgeted) {
   if (!o.resolution.empty()) parse_resolution(o.resolution, &settings.width, &settings.height);
   if (o.method == kAutoMethod) {
     if (!budgeted)
-      throw SettingError("method", "auto races the methods under a budget of pmrender render: give --time SECONDS or "
-                                   "--target-error E");
+      throw SettingError("method", "auto races the methods under a budget, which only pmrender render takes: "
+                                   "--time SECONDS or --target-error E");
     if (o.control_paths == 0)
       throw SettingError("control-paths", "0 leaves --method auto nothing to measure the methods with; give it paths");
     settings.method = method_candidates(o).front().method;  // the race's winner replaces it (render/method_race.h)
