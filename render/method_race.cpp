@@ -68,11 +68,13 @@ struct Runner {
   }
 };
 
-// The candidate's passes for one round: at least one, then until the round's time is spent.
+// The candidate's passes for one round: at least one, then while the next is forecast to end
+// within the round's time (another_pass_fits).
 void run_round(Runner& r, double slice) {
   const Clock::time_point begun = Clock::now();
-  const uint32_t least = r.renderer->passes_done() + 1;
-  while (r.renderer->passes_done() < r.cap && (r.renderer->passes_done() < least || seconds_since(begun) < slice)) {
+  const uint32_t first = r.renderer->passes_done();
+  while (r.renderer->passes_done() < r.cap &&
+         another_pass_fits(seconds_since(begun), r.renderer->passes_done() - first, slice)) {
     throw_if_interrupted();
     r.renderer->run_pass();
     r.renderer->wait();

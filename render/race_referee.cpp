@@ -133,4 +133,9 @@ RoundCall call_round(const std::vector<RaceStanding>& s, RacePhase phase, const 
   return call;
 }
 
+bool another_pass_fits(double round_seconds, unsigned passes_this_round, double slice) {
+  if (passes_this_round == 0) return true;
+  return round_seconds + round_seconds / passes_this_round <= slice;
+}
+
 }  // namespace pm

@@ -272,5 +272,27 @@ TEST(RaceReferee, UnderATimeBudgetTheRaceIsAsBeforeWithoutADuel) {
   EXPECT_EQ(call.phase, RacePhase::over);
 }
 
+// Passes of the round's mean length, begun while another fits: how many a round holds.
+unsigned passes_in_round(double pass_seconds, double slice) {
+  unsigned passes = 0;
+  while (another_pass_fits(passes * pass_seconds, passes, slice)) ++passes;
+  return passes;
+}
+
+TEST(RaceReferee, ARoundBeginsAPassOnlyWhereItIsForecastToEndWithinTheRound) {
+  // The path tracer at 960 x 540 (31 ms a pass) in a first round of 0.05 s: one pass, not two.
+  EXPECT_EQ(passes_in_round(0.031, 0.05), 1u);
+  // Photon passes of 8.8 ms: five (44 ms), where the sixth would end at 52.8 ms.
+  EXPECT_EQ(passes_in_round(0.0088, 0.05), 5u);
+  // A pass longer than the round still runs once: without it nothing is read.
+  EXPECT_EQ(passes_in_round(0.2, 0.05), 1u);
+  EXPECT_TRUE(another_pass_fits(0.3, 0, 0.05));
+  // Exactly filling the round is within it.
+  EXPECT_EQ(passes_in_round(0.25, 1.0), 4u);
+  // The forecast is the mean of the round's passes: a slow first pass holds the rest back.
+  EXPECT_FALSE(another_pass_fits(0.04 + 0.01, 2, 0.07));  // mean 25 ms: 75 ms would pass 70
+  EXPECT_TRUE(another_pass_fits(0.02 + 0.01, 2, 0.05));   // mean 15 ms: 45 ms
+}
+
 }  // namespace
 }  // namespace pm
