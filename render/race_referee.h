@@ -1,7 +1,7 @@
 // --method auto's decisions after each round of the race (method_race.h), from the candidates'
 // forecasts alone: which candidate leads, which are dropped, and when the race narrows to a duel
-// or ends. Kept apart from the rendering so that the rules are tested on their own
-// (tests/unit/race_referee_test.cpp).
+// or ends; and within a round, whether a candidate begins another pass. Kept apart from the
+// rendering so that the rules are tested on their own (tests/unit/race_referee_test.cpp).
 //
 // Under a target error the race's forecasts rest on well under a second of readings, and two
 // kinds of candidate fool them (docs/method-auto.md, "The duel"): final gathering over a radiosity
