@@ -37,7 +37,6 @@ box(-1, 1, 3, 4, 0, 0.6)  # the lintel over the doorway (2 m wide, 3 m high)
 quad((-8, 0, 4), (8, 0, 4), (8, 6, 4), (-8, 6, 4))  # the back wall
 
 
-
 def write(name):
     with open(os.path.join(HERE, name), "w") as f:
         f.write("# bench/testbeds/make_arch.py writes this file\no arch\nusemtl grey\n")
