@@ -63,6 +63,7 @@ PM_DEVICE uint32_t pm_min_u(uint32_t a, uint32_t b) { return a < b ? a : b; }
 /* Host tests run single-threaded, so plain read-modify-write is an exact atomic. */
 PM_DEVICE uint32_t pm_atomic_add_u32(uint32_t* p, uint32_t v) { uint32_t old = *p; *p = old + v; return old; }
 PM_DEVICE int32_t pm_atomic_add_i32(int32_t* p, int32_t v) { int32_t old = *p; *p = old + v; return old; }
+PM_DEVICE uint32_t pm_atomic_or_u32(uint32_t* p, uint32_t v) { uint32_t old = *p; *p = old | v; return old; }
 
 /* Read-only loads: plain loads on the host. */
 /* Orders a work item's global writes before its later atomics (photon map bottom-up pass). */

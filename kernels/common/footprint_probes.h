@@ -27,10 +27,11 @@
      map_lo: (the unit normal, the pattern's turn);
      map_power: (the flux, the scene BVH node under which the probes' triangles lie);
      map_incident: as stored for the gather;  map_hi: launch 3's sums.
-   The probes' values, PM_FOOTPRINT_PROBES floats per hit at 16 k, and after them the list of
-   footprints at edges live in the hit records, which launch 1 has read for the last time (80
-   bytes a record, at least one record per valid hit); the list's length is counted in
-   hit_record_count[0], which the host has read and set to 0. */
+   The probes' values, PM_FOOTPRINT_PROBES floats per hit at 16 k, after them the list of
+   footprints at edges, and after that two words per hit, the second pattern's covered probes as
+   bits (for the rim's line, footprint_rim.h), live in the hit records, which launch 1 has read
+   for the last time (80 bytes a record, at least one record per valid hit: 19 of the 20 words);
+   the list's length is counted in hit_record_count[0], which the host has read and set to 0. */
 #ifndef PM_FOOTPRINT_PROBES_H
 #define PM_FOOTPRINT_PROBES_H
 
@@ -45,6 +46,11 @@
 
 /* The list of footprints at edges, after the probes' values of hit_count hits. */
 #define PM_FOOTPRINT_EDGE_LIST(kg, p) ((PM_GLOBAL uint*)(kg)->hit_records + PM_FOOTPRINT_PROBES * (p)->hit_count)
+
+/* The bits of hit k's second-pattern probes that found a surface (bit q % 32 of word q / 32), after
+   the list. */
+#define PM_FOOTPRINT_EDGE_MASK(kg, p, k) \
+  ((PM_GLOBAL uint*)(kg)->hit_records + (PM_FOOTPRINT_PROBES + 1u) * (p)->hit_count + 2u * (k))
 
 /* The probe after probe q of the second pattern in the order of their angles about the centre
    (golden angle * q, turned alike for every probe). By the three-distance theorem the angles of
@@ -138,6 +144,11 @@ PM_DEVICE uint footprint_first_pattern_sums(const KernelGlobals* kg, const Launc
   }
   uint at_edge = (uint)footprint_pattern_at_edge(kept, covered);
   kg->map_hi[k] = PM_MAKE_FLOAT4(kept, covered, PM_UINT_AS_FLOAT(kept_probes), PM_UINT_AS_FLOAT(at_edge));
+  if (at_edge) {
+    PM_GLOBAL uint* mask = PM_FOOTPRINT_EDGE_MASK(kg, p, k);
+    mask[0] = 0u;
+    mask[1] = 0u;
+  }
   return at_edge;
 }
 
@@ -150,7 +161,8 @@ PM_DEVICE void kernel_photon_footprint_pattern(const KernelGlobals* kg, const La
 }
 
 /* The weighted covered sum of lane j's second-pattern probes for the footprint at k: those of
-   rank j + PM_FOOTPRINT_PROBES r, r < PM_FOOTPRINT_EDGE_ROUNDS, in the order of their angles. */
+   rank j + PM_FOOTPRINT_PROBES r, r < PM_FOOTPRINT_EDGE_ROUNDS, in the order of their angles. The
+   probes that find a surface set their bits in the footprint's mask. */
 PM_DEVICE float footprint_edge_lane_sum(const KernelGlobals* kg, const LaunchParams* p, uint k, uint j)
 {
   Footprint f = footprint_stashed(kg, k);
@@ -162,6 +174,7 @@ PM_DEVICE float footprint_edge_lane_sum(const KernelGlobals* kg, const LaunchPar
     float w;
     float c = footprint_stashed_probe(kg, p, &f, &cut, k, q, PM_FOOTPRINT_EDGE_PROBES, &w);
     covered += w * c; /* a dropped probe adds 0 */
+    if (c > 0.0f) pm_atomic_or_u32(PM_FOOTPRINT_EDGE_MASK(kg, p, k) + (q >> 5), 1u << (q & 31u));
     for (uint step = 0; step < PM_FOOTPRINT_PROBES; ++step) q = footprint_edge_probe_next(q);
   }
   return covered;

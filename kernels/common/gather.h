@@ -38,7 +38,7 @@ PM_DEVICE void gather_within(const KernelGlobals* kg, const LaunchParams* p, con
     Vec3 wi = vec3_from_float4(PM_LOAD(&kg->map_incident[k]));
     if (vec3_dot(wi, n) <= 0.0f) continue; /* arrived on the other side of this surface */
     Vec3 f = brdf_eval(m, n, wi, wo);
-    float weight = gather_kernel_weight(p->kernel_shape, r2) / footprint_kept_about(kg, k, c, at_u, at_v, p->kernel_shape);
+    float weight = footprint_gather_weight(kg, k, c, r2, at_u, at_v, p->kernel_shape);
     if (facet_weighting) weight *= gather_tilt_gain(PM_LOAD(&kg->map_row_n[k]), wi, n);
     Vec3 contribution = vec3_scale(vec3_mul(f, vec3_from_float4(PM_LOAD(&kg->map_power[k]))), weight);
     if (PM_AS_UINT(c.w) & PM_HIT_CAUSTIC) *caustic = vec3_add(*caustic, contribution);

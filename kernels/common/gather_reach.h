@@ -55,7 +55,7 @@ PM_DEVICE float gather_kernel_weight(uint shape, float r2)
    facets of a tessellated curved surface, and around a convex edge onto the other side of the
    adjoining face (a camera inside a closed box would see the light of the photons on its outside
    along its edges); the normal test keeps the first and stops the second. Writes the squared
-   ellipsoid radius to *r2. */
+   ellipsoid radius to *r2 and the disc coordinates of x to *at_u, *at_v. */
 PM_DEVICE int footprint_reaches_at(const KernelGlobals* kg, uint k, float4 c, Vec3 x, Vec3 n, float* r2, float* at_u,
                                    float* at_v)
 {
@@ -108,6 +108,31 @@ PM_DEVICE float footprint_kept_about(const KernelGlobals* kg, uint k, float4 c, 
                : !(t[0] < 1.0f) ? footprint_kept_one_cut(t[1], shape)
                                 : footprint_kept_fraction(mu, mv, t, PM_FOOTPRINT_CUTS, shape);
   return pm_fmaxf(kept, PM_GATHER_MIN_KEPT);
+}
+
+/* The squared ellipsoid radius of the mirror image across the rim m . q = t of the shading point
+   at disc coordinates (at_u, at_v) and squared radius r2: q' = q - 2 s m with s = m . q - t, so
+   |q'|^2 = |q|^2 - 4 s t (the normal coordinate unchanged). The gather weighs a folded footprint
+   by K(r2) + K(this) (footprint_gather_weight). */
+PM_DEVICE float footprint_rim_mirror_r2(float mu, float mv, float t, float at_u, float at_v, float r2)
+{
+  float s = mu * at_u + mv * at_v - t;
+  return r2 - 4.0f * s * t;
+}
+
+/* The gather's weight of photon k's footprint at a shading point where footprint_reaches_at
+   found it (squared radius r2, disc coordinates at_u, at_v): the kernel there (plus, for a
+   footprint folded at its rim, at the point's mirror image across the rim: footprint_rim.h),
+   divided by the kernel mass its cuts keep about the point. */
+PM_DEVICE float footprint_gather_weight(const KernelGlobals* kg, uint k, float4 c, float r2, float at_u, float at_v,
+                                        uint shape)
+{
+  float weight = gather_kernel_weight(shape, r2);
+  if (PM_AS_UINT(c.w) & PM_HIT_RIM) {
+    float4 rim = PM_LOAD(&kg->map_cut[k]);
+    weight += gather_kernel_weight(shape, footprint_rim_mirror_r2(rim.x, rim.y, rim.z, at_u, at_v, r2));
+  }
+  return weight / footprint_kept_about(kg, k, c, at_u, at_v, shape);
 }
 
 #endif

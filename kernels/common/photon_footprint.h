@@ -12,6 +12,7 @@
 #include "footprint_clip.h"
 #include "footprint_coverage.h"
 #include "footprint_probes.h"
+#include "footprint_rim.h"
 #include "kernel_globals.h"
 #include "photon_map.h"
 #include "photon_trace.h"
@@ -106,14 +107,19 @@ PM_DEVICE void kernel_photon_footprint_store(const KernelGlobals* kg, const Laun
   Footprint f = footprint_stashed(kg, k);
   Vec3 center = vec3_from_float4(kg->map_center[k]);
   float kept = kg->map_cut[k].w;
-  float coverage = p->footprint_coverage && p->estimator != PM_ESTIMATOR_KNN ? footprint_stashed_share(kg, p, k) : 1.0f;
+  int probed = p->footprint_coverage && p->estimator != PM_ESTIMATOR_KNN;
+  float coverage = probed ? footprint_stashed_share(kg, p, k) : 1.0f;
+  /* A footprint over a straight rim folds at it (footprint_rim.h): its flux is spread over the
+     whole ellipse, the overhang folded back onto the surface by the gather. */
+  float rim_mu, rim_mv, rim_t = -1.0f;
+  if (!(probed && footprint_stashed_rim(kg, p, k, coverage, &rim_mu, &rim_mv, &rim_t))) rim_t = -1.0f;
   Vec3 lo, hi;
   footprint_bounds(f, center, &lo, &hi);
   /* The footprint's area on the surface (T_auto, the histogram); the flux is divided by the
      ellipse's area times its coverage only: the gather divides by the kept mass about each
      shading point (footprint_kept_about, gather_reach.h). */
   float area = footprint_area(f) * kept * coverage;
-  float spread = footprint_area(f) * coverage;
+  float spread = footprint_area(f) * (rim_t >= 0.0f ? 1.0f : coverage);
 
   /* Inverse of the basis (a_u, a_v, a_n): its rows are the reciprocal basis vectors. */
   Vec3 c_vn = vec3_cross(f.axis_v, f.axis_n), c_nu = vec3_cross(f.axis_n, f.axis_u), c_uv = vec3_cross(f.axis_u, f.axis_v);
@@ -136,7 +142,13 @@ PM_DEVICE void kernel_photon_footprint_store(const KernelGlobals* kg, const Laun
   kg->map_row_u[k] = vec3_to_float4(vec3_scale(c_vn, inv_det), kg->map_row_u[k].w);
   kg->map_row_v[k] = vec3_to_float4(vec3_scale(c_nu, inv_det), kg->map_row_v[k].w);
   kg->map_row_n[k] = vec3_to_float4(vec3_scale(c_uv, inv_det), kg->map_row_n[k].w);
-  kg->map_cut[k].w = 0.0f;
+  if (rim_t >= 0.0f) {
+    /* The rim in the second slot, which footprint_stashed_rim found free (footprint_rim.h). */
+    kg->map_cut[k] = PM_MAKE_FLOAT4(rim_mu, rim_mv, rim_t, 0.0f);
+    kg->map_center[k].w = PM_UINT_AS_FLOAT(PM_AS_UINT(kg->map_center[k].w) | PM_HIT_RIM);
+  } else {
+    kg->map_cut[k].w = 0.0f;
+  }
   kg->map_power[k] = vec3_to_float4(power, 0.0f);
 }
 

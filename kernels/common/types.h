@@ -75,6 +75,7 @@ typedef struct CameraParams {
 #define PM_HIT_SLOT_FLAGS 3u /* the flags a hit slot carries */
 #define PM_HIT_RECORD_SHIFT 2u
 #define PM_HIT_SECOND_CUT 4u /* footprint data: the footprint has a second cut (footprint_clip.h) */
+#define PM_HIT_RIM 8u /* footprint data: the second cut slot (map_cut) holds a rim it folds at (footprint_rim.h) */
 
 /* A hit record (photon_trace.h): five float4 side by side in hit_records, at PM_RECORD_FLOAT4S *
    record; the photon map's inner nodes take the same memory, four float4 each (buffers.h). */

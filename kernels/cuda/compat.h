@@ -51,6 +51,7 @@ typedef unsigned int uint;
 
 #define pm_atomic_add_u32(p, v) atomicAdd((unsigned*)(p), (unsigned)(v))
 #define pm_atomic_add_i32(p, v) atomicAdd((int*)(p), (int)(v))
+#define pm_atomic_or_u32(p, v) atomicOr((unsigned*)(p), (unsigned)(v))
 
 /* Read-only data goes through the non-coherent cache. */
 /* Orders a work item's global writes before its later atomics (photon map bottom-up pass). */

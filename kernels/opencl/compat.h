@@ -75,6 +75,7 @@ static inline float pm_mul_rn(float a, float b)
 
 #define pm_atomic_add_u32(p, v) atomic_add((volatile __global uint*)(p), (uint)(v))
 #define pm_atomic_add_i32(p, v) atomic_add((volatile __global int*)(p), (int)(v))
+#define pm_atomic_or_u32(p, v) atomic_or((volatile __global uint*)(p), (uint)(v))
 
 /* Orders a work item's global writes before its later atomics (photon map bottom-up pass), for
    every work item of the launch: the sibling that reads them may run on another multiprocessor.

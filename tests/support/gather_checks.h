@@ -135,7 +135,17 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
           continue;
         }
         if (!reaches || vec3_dot(v3(incident[k]), nrm) <= 0.0f) continue;
-        double w = used.kernel_shape == PM_KERNEL_EPANECHNIKOV ? 2.0 * (1.0 - r2) : 1.0;
+        auto kernel = [&](double q2) {
+          return q2 > 1.0 ? 0.0 : used.kernel_shape == PM_KERNEL_EPANECHNIKOV ? 2.0 * (1.0 - q2) : 1.0;
+        };
+        double w = kernel(r2);
+        if (PM_AS_UINT(center[k].w) & PM_HIT_RIM) {
+          // Folded at its rim m . q = t (map_cut, footprint_rim.h): the kernel at x's mirror image
+          // q' = q - 2 (m . q - t) m across the rim as well, the normal coordinate unchanged.
+          double s = cut[k].x * lu + cut[k].y * lv - cut[k].z;
+          double qu = lu - 2.0 * s * cut[k].x, qv = lv - 2.0 * s * cut[k].y;
+          w += kernel(qu * qu + qv * qv + ln * ln);
+        }
         // Divided by the kept kernel mass of the footprint moved to the shading point: each cut
         // line m . q <= t is t - m . (lu, lv) from it (gather_reach.h), floored as the gather floors it.
         float mu[2] = {row_u[k].w, second ? cut[k].x : 0.0f}, mv[2] = {row_v[k].w, second ? cut[k].y : 0.0f};

@@ -137,6 +137,24 @@ void run_probes(const KernelGlobals* kg, LaunchParams p, uint hits) {
   }
 }
 
+// The gather data of every footprint stashed in a and in b (footprint_probes.h's launches run on
+// each), stored as launch 5 stores it: the same rims (footprint_rim.h: the flag, and the rim in
+// the second slot). Returns how many folded.
+int expect_same_rims(Stash& a, Stash& b, LaunchParams p) {
+  p.footprint_coverage = 1u;
+  int folded = 0;
+  for (uint k = 0; k < p.hit_count; ++k) {
+    kernel_photon_footprint_store(&a.kg, &p, k);
+    kernel_photon_footprint_store(&b.kg, &p, k);
+    EXPECT_EQ(PM_AS_UINT(a.center[k].w), PM_AS_UINT(b.center[k].w)) << "footprint " << k;
+    EXPECT_EQ(a.cut[k].x, b.cut[k].x) << "footprint " << k;
+    EXPECT_EQ(a.cut[k].y, b.cut[k].y) << "footprint " << k;
+    EXPECT_EQ(a.cut[k].z, b.cut[k].z) << "footprint " << k;
+    folded += (PM_AS_UINT(a.center[k].w) & PM_HIT_RIM) != 0u;
+  }
+  return folded;
+}
+
 void expect_shares_match(uint shape, int facet_weighting) {
   const test::HostScene scene(ledge_and_bend());
   const std::vector<Case> all = cases();
@@ -168,6 +186,7 @@ void expect_shares_match(uint shape, int facet_weighting) {
     (PM_AS_UINT(s.hi[k].w) ? at_edge : whole)++;
   }
   EXPECT_EQ(s.counter[0], uint(at_edge));  // each footprint at an edge listed once
+  expect_same_rims(s, one_item, p);
   // The line crosses the shelf's rim, the bend and the floor: both kinds of footprint are there.
   EXPECT_GE(at_edge, 3);
   EXPECT_GE(whole, 3);
@@ -225,49 +244,57 @@ double gathered_weight(const Stash& s, size_t count, Vec3 x, Vec3 n) {
     const float4 c = s.center[k];
     float r2, at_u, at_v;
     if (!footprint_reaches_at(&s.kg, k, c, x, n, &r2, &at_u, &at_v)) continue;
-    sum += s.power[k].x * kernel_constant(r2) / footprint_kept_about(&s.kg, k, c, at_u, at_v, PM_KERNEL_CONSTANT);
+    sum += s.power[k].x * footprint_gather_weight(&s.kg, k, c, r2, at_u, at_v, PM_KERNEL_CONSTANT);
   }
   return sum;
 }
 
-// A ledge: the floor y = 0 over x > 0, ending in the air at x = 0.
-Scene ledge() {
+// A ledge: the floor y = 0 over x > 0, ending in the air at x = 0; with `wall`, a wall across the
+// rim in the plane z = 0, standing on the ledge and reaching below it.
+Scene ledge(bool wall = false) {
   Scene s;
   s.name = "ledge";
   s.materials = {MaterialDesc{}};
   test::add_quad(s, {0, 0, -4}, {0, 0, 4}, {6, 0, 4}, {6, 0, -4});
+  if (wall) test::add_quad(s, {-2, -1, 0}, {6, -1, 0}, {6, 1, 0}, {-2, 1, 0});
   return s;
 }
 
-// Uniform photons on the ledge (a grid, flux 1 per cell of the grid), each a unit disc, their
-// footprints probed and stored as the photon map's stage does it (launches 2 to 5 of
-// footprint_probes.h), and the density the gather reads (gather_within's weights) at distance e
-// from the rim, in radii.
+// Uniform photons on the ledge (a grid, flux 1 per cell of the grid, z < 0 beside the wall), each a
+// unit disc clipped at the geometry around it, their footprints probed and stored as the photon
+// map's stage does it (launches 2 to 5 of footprint_probes.h), and the density the gather reads
+// (gather_within's weights) at distance e from the rim, in radii, and `beside` from the wall.
 struct LedgeDensity {
-  test::HostScene scene{ledge()};
+  test::HostScene scene;
   Stash s;
   std::vector<Case> photons;
+  int folded = 0, folded_at_walls = 0;
   static constexpr float kSpacing = 0.05f;
 
-  explicit LedgeDensity(uint coverage) {
+  LedgeDensity(uint coverage, bool wall = false) : scene(ledge(wall)) {
     for (float x = kSpacing / 2; x < 4.0f; x += kSpacing)
-      for (float z = -1.25f; z < 1.25f; z += kSpacing) {
+      for (float z = wall ? -3.0f : -1.25f; z < (wall ? 0.0f : 1.25f); z += kSpacing) {
         Case c;
         c.normal = vec3(0, 1, 0);
         c.center = vec3(x, 0, z);
         c.f.axis_u = vec3(1, 0, 0);
         c.f.axis_v = vec3(0, 0, 1);
         c.f.axis_n = vec3(0, PM_FOOTPRINT_NORMAL_RATIO, 0);
-        c.cut = footprint_uncut();
+        c.cut = footprint_clip(&scene.kg, &c.f, c.center, c.normal, kRayEpsilon, PM_KERNEL_CONSTANT);
         c.turn = 0.37f * float(photons.size());
         c.wi = vec3(0, 1, 0);
         photons.push_back(c);
       }
     store_footprints(s, scene.kg, photons, coverage);
+    for (size_t k = 0; k < photons.size(); ++k)
+      if (PM_AS_UINT(s.center[k].w) & PM_HIT_RIM) {
+        ++folded;
+        if (photons[k].cut.t[0] < 1.0f) ++folded_at_walls;
+      }
   }
 
-  double at(float e) const {
-    return gathered_weight(s, photons.size(), vec3(e, 0, 0), vec3(0, 1, 0)) * kSpacing * kSpacing;
+  double at(float e, float beside = 0.0f) const {
+    return gathered_weight(s, photons.size(), vec3(e, 0, -beside), vec3(0, 1, 0)) * kSpacing * kSpacing;
   }
 
   // The density integrated over the first `length` radii from the rim (midpoint rule).
@@ -279,25 +306,79 @@ struct LedgeDensity {
   }
 };
 
-TEST(FootprintProbes, UniformPhotonsOnALedgeKeepTheirFlux) {
-  // Footprints hanging over the rim spread their flux over the part of them on the surface, so the
-  // light the gather reads within 2.5 radii of the rim is what the photons there brought: 2.5 (one
-  // per radius). Spread over the whole disc instead (--footprint-coverage off) the overhang's share
-  // is lost (2.28). The density itself is not uniform near the rim: each footprint is normalised by
-  // its own covered share, not about the shading point as a wall's cut is (gather_reach.h), so it
-  // reads 0.69 at the rim and 1.12 a radius inland (docs/accuracy.md, "Edges normalised at the
-  // shading point").
+TEST(FootprintProbes, UniformPhotonsOnALedgeKeepTheirFluxAndTheirDensityUpToTheRim) {
+  // Footprints hanging over the rim fold the overhang back onto the surface (footprint_rim.h), so
+  // the light the gather reads within 2.5 radii of the rim is what the photons there brought: 2.5
+  // (one per radius). Spread over the whole disc instead (--footprint-coverage off) the overhang's
+  // share is lost (2.28). Folded, the density stays uniform up to the rim; each footprint divided
+  // by its own covered share instead read 0.69 at the rim and 1.12 a radius inland
+  // (docs/accuracy.md, "Footprints folded at their rim"). At the rim itself the photons nearly a
+  // radius inland count once where they should count twice: their first pattern of probes misses
+  // the sliver they hang over, so they do not fold.
   const LedgeDensity covered(1u), whole(0u);
   for (float e : {0.001f, 0.25f, 0.5f, 0.75f, 1.0f, 1.5f, 2.0f})
     std::printf("uniform density %.3f radii from the rim: %.4f (without coverage %.4f)\n", e, covered.at(e),
                 whole.at(e));
   const double flux = covered.flux_within(2.5f), lost = whole.flux_within(2.5f);
-  std::printf("light within 2.5 radii of the rim: %.4f (without coverage %.4f)\n", flux, lost);
-  // Measured: 2.4895 and 2.2810, the density far from the rim 0.9963 (the grid's photons).
+  std::printf("light within 2.5 radii of the rim: %.4f (without coverage %.4f); %d footprints folded\n", flux, lost,
+              covered.folded);
+  // Measured: 2.4928 and 2.2810, the density far from the rim 0.9963 (the grid's photons), 0.948 at
+  // the rim and 0.992-1.001 from a quarter of a radius in.
   const double far = covered.at(2.0f);
   EXPECT_NEAR(far, 1.0, 0.01) << "a uniform density away from the rim";
   EXPECT_NEAR(flux / far, 2.5, 0.0125) << "each footprint's flux kept on the surface";
   EXPECT_LT(lost / far, 2.4) << "the overhang's share lost without coverage";
+  EXPECT_GT(covered.at(0.001f) / far, 0.93) << "at the rim";
+  for (float e : {0.25f, 0.5f, 0.75f, 1.0f, 1.5f}) EXPECT_NEAR(covered.at(e) / far, 1.0, 0.015) << e << " radii in";
+}
+
+TEST(FootprintProbes, AWorkItemPerProbeFoldsTheRimsOfOneItemPerFootprint) {
+  // The second pattern's covered probes reach the rim's fit as bits that the probe launch's lanes
+  // set together (an atomic or); a work item per footprint sets them one after another.
+  const test::HostScene scene(ledge(true));
+  std::vector<Case> photons;
+  for (float x = 0.05f; x < 1.2f; x += 0.1f)
+    for (float z = -1.5f; z < 0.0f; z += 0.1f) {
+      Case c;
+      c.normal = vec3(0, 1, 0);
+      c.center = vec3(x, 0, z);
+      c.f.axis_u = vec3(0.8f, 0, 0.3f);
+      c.f.axis_v = vec3(0, 0, 0.7f);
+      c.f.axis_n = vec3(0, 0.35f, 0);
+      c.cut = footprint_clip(&scene.kg, &c.f, c.center, c.normal, kRayEpsilon, PM_KERNEL_CONSTANT);
+      c.turn = 0.37f * float(photons.size());
+      c.wi = vec3(0, 1, 0);
+      photons.push_back(c);
+    }
+  Stash split, one_item;
+  split.kg = one_item.kg = scene.kg;
+  stash(split, photons);
+  stash(one_item, photons);
+  LaunchParams p{};
+  p.ray_epsilon = kRayEpsilon;
+  p.hit_count = uint(photons.size());
+  run_probes(&split.kg, p, p.hit_count);
+  shuffled(p.hit_count, 13u, [&](uint k) { kernel_photon_footprint_coverage(&one_item.kg, &p, k); });
+  const int folded = expect_same_rims(split, one_item, p);
+  std::printf("%d of %zu footprints folded\n", folded, photons.size());
+  EXPECT_GT(folded, int(photons.size()) / 2);
+}
+
+TEST(FootprintProbes, FootprintsCutByAWallFoldAtTheRimToo) {
+  // A wall stands across the ledge's rim: the footprints beside it are cut at the wall and fold at
+  // the rim, the wall's cut normalised about the shading point (footprint_kept_about) and the rim
+  // folded, so the density along the rim next to the wall is what it is along the open rim.
+  const LedgeDensity walled(1u, true), open(1u);
+  std::printf("%d footprints folded, %d of them cut by the wall\n", walled.folded, walled.folded_at_walls);
+  EXPECT_GT(walled.folded_at_walls, 100);
+  for (float beside : {0.25f, 0.5f, 1.0f}) {
+    const double rim = walled.at(0.05f, beside), in = walled.at(0.5f, beside), far = walled.at(2.0f, beside);
+    std::printf("%.2f radii from the wall: density %.4f at the rim, %.4f half a radius in, %.4f far in "
+                "(open ledge %.4f, %.4f)\n",
+                beside, rim, in, far, open.at(0.05f), open.at(0.5f));
+    EXPECT_NEAR(rim / far, open.at(0.05f) / open.at(2.0f), 0.03) << beside << " radii from the wall, at the rim";
+    EXPECT_NEAR(in / far, 1.0, 0.03) << beside << " radii from the wall, half a radius in";
+  }
 }
 
 // Uniform photons over the inside of a tessellated cylinder of radius 2 m (an arch's soffit) with
