@@ -155,21 +155,27 @@ int expect_same_rims(Stash& a, Stash& b, LaunchParams p) {
   return folded;
 }
 
+// `all` stashed twice in `scene` and probed both ways: launches 2 to 4 with a work item per probe
+// (split), and a work item per footprint, as devices without lockstep lanes measure them.
+void probe_both_ways(const KernelGlobals& scene, const std::vector<Case>& all, const LaunchParams& p, Stash& split,
+                     Stash& one_item) {
+  split.kg = one_item.kg = scene;
+  stash(split, all);
+  stash(one_item, all);
+  run_probes(&split.kg, p, p.hit_count);
+  shuffled(p.hit_count, 13u, [&](uint k) { kernel_photon_footprint_coverage(&one_item.kg, &p, k); });
+}
+
 void expect_shares_match(uint shape, int facet_weighting) {
   const test::HostScene scene(ledge_and_bend());
   const std::vector<Case> all = cases();
-  Stash s, one_item;
-  s.kg = one_item.kg = scene.kg;
-  stash(s, all);
-  stash(one_item, all);
   LaunchParams p{};
   p.kernel_shape = shape;
   p.facet_weighting = uint(facet_weighting);
   p.ray_epsilon = kRayEpsilon;
   p.hit_count = uint(all.size());
-  run_probes(&s.kg, p, uint(all.size()));
-  // The same footprints a work item each, as devices without lockstep lanes measure them.
-  shuffled(uint(all.size()), 13u, [&](uint k) { kernel_photon_footprint_coverage(&one_item.kg, &p, k); });
+  Stash s, one_item;
+  probe_both_ways(scene.kg, all, p, s, one_item);
   int at_edge = 0, whole = 0;
   for (size_t k = 0; k < all.size(); ++k) {
     const Case& c = all[k];
@@ -350,15 +356,11 @@ TEST(FootprintProbes, AWorkItemPerProbeFoldsTheRimsOfOneItemPerFootprint) {
       c.wi = vec3(0, 1, 0);
       photons.push_back(c);
     }
-  Stash split, one_item;
-  split.kg = one_item.kg = scene.kg;
-  stash(split, photons);
-  stash(one_item, photons);
   LaunchParams p{};
   p.ray_epsilon = kRayEpsilon;
   p.hit_count = uint(photons.size());
-  run_probes(&split.kg, p, p.hit_count);
-  shuffled(p.hit_count, 13u, [&](uint k) { kernel_photon_footprint_coverage(&one_item.kg, &p, k); });
+  Stash split, one_item;
+  probe_both_ways(scene.kg, photons, p, split, one_item);
   const int folded = expect_same_rims(split, one_item, p);
   std::printf("%d of %zu footprints folded\n", folded, photons.size());
   EXPECT_GT(folded, int(photons.size()) / 2);
