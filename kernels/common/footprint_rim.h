@@ -11,10 +11,12 @@
    The boundary kernel of density estimation by reflection: the part of the kernel beyond the rim
    is folded back across the rim line, a photon at q counting K(q) + K(q') at a shading point q
    whose mirror image across the line is q'. A photon's flux then lands on the surface whole
-   (what hangs over is folded onto it), and a uniform density reads exactly uniform up to the rim:
-   the photons within a radius of a shading point and the mirror images of those beyond the rim
-   tile the disc about it. A footprint that does not cross the rim folds nothing, so only the
-   footprints that cross it need to know its line.
+   (what hangs over is folded onto it), and a uniform density reads uniform up to the rim (exactly
+   so for the exact line): the photons within a radius of a shading point and the mirror images of
+   those beyond the rim tile the disc about it. A footprint that does not cross the rim folds
+   nothing, so only the footprints that cross it need to know its line (those that cross it by a
+   sliver that their first 16 probes miss do not fold: 0.95 at the rim on a ledge of uniform
+   photons, tests/unit/footprint_probes_test.cpp).
 
    The line comes from the second pattern of coverage probes (64, footprint_probes.h), which every
    footprint at an edge traces: of the lines that separate its covered probes from the uncovered
@@ -22,8 +24,9 @@
    centre of the straight cut that keeps the measured covered share of the kernel's mass. It is
    accepted only where such a line exists and every covered probe lies on a surface of the
    footprint's own plane; a corner, a strip, a hole or a tilted face keeps the covered share, as do
-   footprints with wall cuts. The gather's side: footprint_rim_mirror_r2 and
-   footprint_gather_weight (gather_reach.h). */
+   footprints that two walls cut (the rim takes the second cut slot; one wall's cut stays in the
+   first, normalised about the shading point as before). The gather's side:
+   footprint_rim_mirror_r2 and footprint_gather_weight (gather_reach.h). */
 #ifndef PM_FOOTPRINT_RIM_H
 #define PM_FOOTPRINT_RIM_H
 
