@@ -111,7 +111,7 @@ PM_DEVICE void kernel_photon_footprint_store(const KernelGlobals* kg, const Laun
   float coverage = probed ? footprint_stashed_share(kg, p, k) : 1.0f;
   /* A footprint over a straight rim folds at it (footprint_rim.h): its flux is spread over the
      whole ellipse, the overhang folded back onto the surface by the gather. */
-  float rim_mu, rim_mv, rim_t = -1.0f;
+  float rim_mu = 0.0f, rim_mv = 0.0f, rim_t = -1.0f;
   if (!(probed && footprint_stashed_rim(kg, p, k, coverage, &rim_mu, &rim_mv, &rim_t))) rim_t = -1.0f;
   Vec3 lo, hi;
   footprint_bounds(f, center, &lo, &hi);
