@@ -206,6 +206,10 @@ PM_DEVICE void kernel_photon_footprint_coverage(const KernelGlobals* kg, const L
     for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) values[j] = footprint_edge_lane_sum(kg, p, k, j);
 }
 
+/* Whether launch 3 found the footprint at k partly covered (and launch 4 traced its second
+   pattern). */
+PM_DEVICE int footprint_stashed_at_edge(const KernelGlobals* kg, uint k) { return PM_AS_UINT(kg->map_hi[k].w) != 0u; }
+
 /* The covered share of the footprint at k from launches 3 and 4 (footprint_covered_share's
    answer; at an edge the second pattern's weights are summed per lane, then over the lanes). */
 PM_DEVICE float footprint_stashed_share(const KernelGlobals* kg, const LaunchParams* p, uint k)
@@ -213,7 +217,7 @@ PM_DEVICE float footprint_stashed_share(const KernelGlobals* kg, const LaunchPar
   float4 first = kg->map_hi[k];
   float kept = first.x, covered = first.y;
   uint kept_probes = PM_AS_UINT(first.z);
-  if (PM_AS_UINT(first.w) != 0u) {
+  if (footprint_stashed_at_edge(kg, k)) {
     FootprintCut cut = footprint_stashed_cut(kg, k);
     float turn = kg->map_lo[k].w;
     PM_GLOBAL const float* values = PM_FOOTPRINT_PROBE_VALUES(kg, k);

@@ -126,7 +126,7 @@ PM_DEVICE float footprint_rim_offset(const FootprintCut* cut, float mu, float mv
 PM_DEVICE int footprint_stashed_rim(const KernelGlobals* kg, const LaunchParams* p, uint k, float share, float* mu,
                                     float* mv, float* t)
 {
-  if (PM_AS_UINT(kg->map_hi[k].w) == 0u) return 0; /* not at an edge: no second pattern */
+  if (!footprint_stashed_at_edge(kg, k)) return 0; /* no second pattern */
   FootprintCut cut = footprint_stashed_cut(kg, k);
   if (cut.t[1] < 1.0f || !(share > 0.0f) || !(share < 1.0f)) return 0;
   PM_GLOBAL const uint* mask = PM_FOOTPRINT_EDGE_MASK(kg, p, k);

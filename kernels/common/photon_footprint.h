@@ -111,15 +111,15 @@ PM_DEVICE void kernel_photon_footprint_store(const KernelGlobals* kg, const Laun
   float coverage = probed ? footprint_stashed_share(kg, p, k) : 1.0f;
   /* A footprint over a straight rim folds at it (footprint_rim.h): its flux is spread over the
      whole ellipse, the overhang folded back onto the surface by the gather. */
-  float rim_mu = 0.0f, rim_mv = 0.0f, rim_t = -1.0f;
-  if (!(probed && footprint_stashed_rim(kg, p, k, coverage, &rim_mu, &rim_mv, &rim_t))) rim_t = -1.0f;
+  float rim_mu = 0.0f, rim_mv = 0.0f, rim_t = 0.0f;
+  int folded = probed && footprint_stashed_rim(kg, p, k, coverage, &rim_mu, &rim_mv, &rim_t);
   Vec3 lo, hi;
   footprint_bounds(f, center, &lo, &hi);
   /* The footprint's area on the surface (T_auto, the histogram); the flux is divided by the
-     ellipse's area times its coverage only: the gather divides by the kept mass about each
-     shading point (footprint_kept_about, gather_reach.h). */
+     ellipse's area times its coverage only (folded, by the whole ellipse's): the gather divides by
+     the kept mass about each shading point (footprint_kept_about, gather_reach.h). */
   float area = footprint_area(f) * kept * coverage;
-  float spread = footprint_area(f) * (rim_t >= 0.0f ? 1.0f : coverage);
+  float spread = footprint_area(f) * (folded ? 1.0f : coverage);
 
   /* Inverse of the basis (a_u, a_v, a_n): its rows are the reciprocal basis vectors. */
   Vec3 c_vn = vec3_cross(f.axis_v, f.axis_n), c_nu = vec3_cross(f.axis_n, f.axis_u), c_uv = vec3_cross(f.axis_u, f.axis_v);
@@ -142,7 +142,7 @@ PM_DEVICE void kernel_photon_footprint_store(const KernelGlobals* kg, const Laun
   kg->map_row_u[k] = vec3_to_float4(vec3_scale(c_vn, inv_det), kg->map_row_u[k].w);
   kg->map_row_v[k] = vec3_to_float4(vec3_scale(c_nu, inv_det), kg->map_row_v[k].w);
   kg->map_row_n[k] = vec3_to_float4(vec3_scale(c_uv, inv_det), kg->map_row_n[k].w);
-  if (rim_t >= 0.0f) {
+  if (folded) {
     /* The rim in the second slot, which footprint_stashed_rim found free (footprint_rim.h). */
     kg->map_cut[k] = PM_MAKE_FLOAT4(rim_mu, rim_mv, rim_t, 0.0f);
     kg->map_center[k].w = PM_UINT_AS_FLOAT(PM_AS_UINT(kg->map_center[k].w) | PM_HIT_RIM);
