@@ -20,13 +20,13 @@
 
    The line comes from the second pattern of coverage probes (64, footprint_probes.h), which every
    footprint at an edge traces: of the lines that separate its covered probes from the uncovered
-   ones, the one with the widest gap between them, and within that gap the distance from the
-   centre of the straight cut that keeps the measured covered share of the kernel's mass. It is
+   ones, the one with the widest gap between them, placed halfway across that gap. It is
    accepted only where such a line exists and every covered probe lies on a surface of the
-   footprint's own plane; a corner, a strip, a hole or a tilted face keeps the covered share, as do
-   footprints that two walls cut (the rim takes the second cut slot; one wall's cut stays in the
+   footprint's own plane; a strip between two parallel rims folds at both (footprint_probed_strip
+   below); a corner, a hole or a tilted face keeps the covered share, as do footprints that two
+   walls cut (the rim takes the second cut slot; one wall's cut stays in the
    first, normalised about the shading point as before). The gather's side:
-   footprint_rim_mirror_r2 and footprint_gather_weight (gather_reach.h). */
+   footprint_fold_weight and footprint_gather_weight (gather_reach.h). */
 #ifndef PM_FOOTPRINT_RIM_H
 #define PM_FOOTPRINT_RIM_H
 
@@ -85,46 +85,114 @@ PM_DEVICE float footprint_rim_widest(const float* x, const float* y, uint kept_l
   return best;
 }
 
-/* The kernel mass that the rim m . q <= t keeps of what the cut's first slot keeps (a wall, or
-   nothing: footprint_clip.h), a fraction that grows with t. */
-PM_DEVICE float footprint_rim_kept(const FootprintCut* cut, float mu, float mv, float t, uint shape)
-{
-  if (!(cut->t[0] < 1.0f)) return footprint_kept_one_cut(t, shape);
-  float m_u[2], m_v[2], d[2];
-  m_u[0] = cut->mu[0];
-  m_v[0] = cut->mv[0];
-  d[0] = cut->t[0];
-  m_u[1] = mu;
-  m_v[1] = mv;
-  d[1] = t;
-  return footprint_kept_fraction(m_u, m_v, d, 2, shape) / pm_fmaxf(cut->kept, 1.0e-6f);
-}
+/* A strip: the surface between two parallel rims, both across the disc (a lintel's face, an
+   arch's soffit, a moulding, a beam a footprint wide). Folding at both rims is reflecting across
+   two parallel lines, whose images of a point repeat with a period of twice the strip's width: the
+   shading point's images along the rims' normal m are 2 t - s + 2 j w and s + 2 j w (j != 0) for s
+   = m . q, the near rim at t and the strip w wide. The gather sums the kernel over those within
+   the unit disc (footprint_fold_weight, gather_reach.h), and a uniform density on the strip reads
+   uniform across it, as the single rim's reflection does up to one rim. Narrower than this (of the
+   radius), a strip's images would be too many for the gather and its probes too few to place it:
+   it keeps the covered share. */
+#define PM_STRIP_MIN_WIDTH 0.2f
+/* The search for the strip's normal: turns of PM_STRIP_STEP within PM_STRIP_STEPS steps either side
+   of the covered probes' minor axis (a strip's covered probes spread along it), then of
+   PM_STRIP_FINE_STEP about the best (3 and 1 degrees). */
+#define PM_STRIP_STEPS 4
+#define PM_STRIP_STEP 0.0523599f
+#define PM_STRIP_FINE_STEPS 2
+#define PM_STRIP_FINE_STEP 0.0174533f
 
-/* Bisection steps for the rim's distance within the probes' gap (a few tenths of the radius wide:
-   1/1024 of it at most). */
-#define PM_RIM_OFFSET_STEPS 10
-
-/* The distance t from the centre of the rim m . q <= t that keeps `share` of the kernel mass the
-   cut keeps (footprint_rim_kept, which grows with t), by bisection within [lo, hi], the gap that
-   the probes leave between the covered ones and the uncovered ones along m (the share's answer
-   clamped to it). */
-PM_DEVICE float footprint_rim_offset(const FootprintCut* cut, float mu, float mv, float share, float lo, float hi,
-                                     uint shape)
+/* The band along the unit normal (mx, my) that the covered probes of the kept ones span, band[0]
+   to band[1], and the nearest uncovered probe beyond either end, band[2] below and band[3] above
+   (-2 and 2 where none is). Returns the narrower of the two gaps: negative where an uncovered
+   probe lies within the band, or none beyond one of its ends (a single rim, or none). */
+PM_DEVICE float footprint_strip_gap(const float* x, const float* y, uint kept_lo, uint kept_hi, uint covered_lo,
+                                    uint covered_hi, float mx, float my, float* band)
 {
-  for (int step = 0; step < PM_RIM_OFFSET_STEPS; ++step) {
-    float mid = 0.5f * (lo + hi);
-    if (footprint_rim_kept(cut, mu, mv, mid, shape) < share) lo = mid;
-    else hi = mid;
+  band[0] = 2.0f;
+  band[1] = -2.0f;
+  band[2] = -2.0f;
+  band[3] = 2.0f;
+  for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q) {
+    if (!footprint_rim_bit(kept_lo, kept_hi, q) || !footprint_rim_bit(covered_lo, covered_hi, q)) continue;
+    float along = mx * x[q] + my * y[q];
+    band[0] = pm_fminf(band[0], along);
+    band[1] = pm_fmaxf(band[1], along);
   }
-  return 0.5f * (lo + hi);
+  for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q) {
+    if (!footprint_rim_bit(kept_lo, kept_hi, q) || footprint_rim_bit(covered_lo, covered_hi, q)) continue;
+    float along = mx * x[q] + my * y[q];
+    if (along > band[1]) band[3] = pm_fminf(band[3], along);
+    else if (along < band[0]) band[2] = pm_fmaxf(band[2], along);
+    else return -1.0f;
+  }
+  if (!(band[2] > -2.0f) || !(band[3] < 2.0f)) return -1.0f;
+  return pm_fminf(band[3] - band[1], band[0] - band[2]);
 }
 
-/* The rim of the footprint stashed at k (launch 5, after the second pattern), whose covered share
-   is `share`: its unit normal (mu, mv) in disc coordinates and distance t. Returns whether a
-   straight rim explains the probes (see the top of this file) and the cut's second slot is free
-   for it. */
+/* The best turn about `centre` in `steps` steps of `step` either side: the widest of the strip's
+   narrower gaps. */
+PM_DEVICE float footprint_strip_widest(const float* x, const float* y, uint kept_lo, uint kept_hi, uint covered_lo,
+                                       uint covered_hi, float centre, int steps, float step, float* widest)
+{
+  float best = centre, band[4];
+  for (int i = -steps; i <= steps; ++i) {
+    float a = centre + step * (float)i, s, c;
+    pm_sincosf(a, &s, &c);
+    float gap = footprint_strip_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, c, s, band);
+    if (gap > *widest) {
+      *widest = gap;
+      best = a;
+    }
+  }
+  return best;
+}
+
+/* The strip that explains the probes of an uncut footprint (no wall: the strip takes both of its
+   sides): its rims' unit normal (mu, mv), the near rim's distance t and its width w, each rim
+   halfway across its gap (footprint_stashed_rim says why). Returns whether one does. */
+PM_DEVICE int footprint_probed_strip(const float* x, const float* y, uint kept_lo, uint kept_hi, uint covered_lo,
+                                     uint covered_hi, float* mu, float* mv, float* t, float* w)
+{
+  /* The covered probes' minor axis: a strip's covered probes spread along the strip. */
+  float n = 0.0f, sx = 0.0f, sy = 0.0f, sxx = 0.0f, syy = 0.0f, sxy = 0.0f;
+  for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q) {
+    if (!footprint_rim_bit(kept_lo, kept_hi, q) || !footprint_rim_bit(covered_lo, covered_hi, q)) continue;
+    n += 1.0f;
+    sx += x[q];
+    sy += y[q];
+    sxx += x[q] * x[q];
+    syy += y[q] * y[q];
+    sxy += x[q] * y[q];
+  }
+  if (!(n > 2.0f)) return 0;
+  float cxx = sxx / n - (sx / n) * (sx / n), cyy = syy / n - (sy / n) * (sy / n), cxy = sxy / n - (sx / n) * (sy / n);
+  float angle = 0.5f * pm_atan2f(2.0f * cxy, cxx - cyy) + 1.5707963f;
+  float widest = 0.0f, band[4];
+  angle = footprint_strip_widest(x, y, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_STRIP_STEPS,
+                                 PM_STRIP_STEP, &widest);
+  angle = footprint_strip_widest(x, y, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_STRIP_FINE_STEPS,
+                                 PM_STRIP_FINE_STEP, &widest);
+  if (!(widest > 0.0f)) return 0;
+  pm_sincosf(angle, mv, mu);
+  footprint_strip_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, *mu, *mv, band);
+  /* The photon's own hit lies on the strip: the covered band reaches the centre either way. */
+  float near_hi = pm_fmaxf(band[1], 0.0f), far_hi = pm_fminf(band[3], 1.0f);
+  float near_lo = pm_fminf(band[0], 0.0f), far_lo = pm_fmaxf(band[2], -1.0f);
+  if (!(far_hi > near_hi) || !(near_lo > far_lo)) return 0;
+  *t = 0.5f * (near_hi + far_hi);
+  *w = *t - 0.5f * (near_lo + far_lo);
+  return *w >= PM_STRIP_MIN_WIDTH;
+}
+
+/* The rim, or the strip's two, of the footprint stashed at k (launch 5, after the second pattern),
+   whose covered share is `share`: the rims' unit normal (mu, mv) in disc coordinates, the near
+   rim's distance t and the strip's width w (0 for a single rim). Returns whether a straight rim
+   or a strip explains the probes (see the top of this file and footprint_probed_strip) and the
+   cut's second slot is free for it. */
 PM_DEVICE int footprint_stashed_rim(const KernelGlobals* kg, const LaunchParams* p, uint k, float share, float* mu,
-                                    float* mv, float* t)
+                                    float* mv, float* t, float* width)
 {
   if (!footprint_stashed_at_edge(kg, k)) return 0; /* no second pattern */
   FootprintCut cut = footprint_stashed_cut(kg, k);
@@ -161,21 +229,27 @@ PM_DEVICE int footprint_stashed_rim(const KernelGlobals* kg, const LaunchParams*
     open += (float)(1u - bit);
   }
   if (!(covered > 0.0f) || !(open > 0.0f)) return 0;
+  *width = 0.0f;
   float widest = 0.0f;
   float angle = pm_atan2f(uy / open - cy / covered, ux / open - cx / covered);
   angle = footprint_rim_widest(x, y, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_RIM_COARSE_STEPS,
                                PM_RIM_COARSE_STEP, &widest);
   angle = footprint_rim_widest(x, y, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_RIM_FINE_STEPS,
                                PM_RIM_FINE_STEP, &widest);
-  if (!(widest > 0.0f)) return 0;
-  /* Within the gap, and no nearer the centre than through it: the photon's own hit lies on the
-     surface (a hit on the rim itself reads a share of a half within the probes' noise). */
+  if (!(widest > 0.0f))
+    return !(cut.t[0] < 1.0f) && footprint_probed_strip(x, y, kept_lo, kept_hi, covered_lo, covered_hi, mu, mv, t,
+                                                        width);
+  /* Halfway across the gap, and no nearer the centre than through it: the photon's own hit lies
+     on the surface. Halfway, not where a straight cut keeps the measured covered share: that
+     share reads a few hundredths of the radius beyond the rim (a strip's two rims, placed by it,
+     read 0.94 of a uniform density on a strip 0.8 radii wide, halfway 1.00; a single rim 0.948
+     at the rim and 1.004 a quarter of a radius in, halfway 0.952 and 0.999). */
   float far, near;
   pm_sincosf(angle, mv, mu);
   footprint_rim_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, *mu, *mv, &far, &near);
   far = pm_fmaxf(far, 0.0f);
   if (!(near > far)) return 0;
-  *t = footprint_rim_offset(&cut, *mu, *mv, share, far, pm_fminf(near, 1.0f), p->kernel_shape);
+  *t = 0.5f * (far + pm_fminf(near, 1.0f));
   return 1;
 }
 

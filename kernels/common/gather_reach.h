@@ -110,14 +110,30 @@ PM_DEVICE float footprint_kept_about(const KernelGlobals* kg, uint k, float4 c, 
   return pm_fmaxf(kept, PM_GATHER_MIN_KEPT);
 }
 
-/* The squared ellipsoid radius of the mirror image across the rim m . q = t of the shading point
-   at disc coordinates (at_u, at_v) and squared radius r2: q' = q - 2 s m with s = m . q - t, so
-   |q'|^2 = |q|^2 - 4 s t (the normal coordinate unchanged). The gather weighs a folded footprint
-   by K(r2) + K(this) (footprint_gather_weight). */
-PM_DEVICE float footprint_rim_mirror_r2(float mu, float mv, float t, float at_u, float at_v, float r2)
+/* Most images of a shading point that a strip's fold sums, per family (a strip of
+   PM_STRIP_MIN_WIDTH of the radius has at most 6 of each within the unit disc). */
+#define PM_FOLD_MAX_IMAGES 8
+
+/* The kernel at the images of the shading point at disc coordinates (at_u, at_v) and squared
+   radius r2 across the rim m . q = t (rim = (mu, mv, t, w), map_cut; footprint_rim.h): its mirror
+   image q' = q - 2 s m with s = m . q - t, so |q'|^2 = |q|^2 - 4 s t (the normal coordinate
+   unchanged); for a strip w wide (w > 0) the images across both rims, 2 t - s + 2 j w and s + 2 j w
+   (j != 0) along m for s = m . q, those within the unit disc. The gather weighs a folded footprint
+   by K(r2) plus this (footprint_gather_weight). */
+PM_DEVICE float footprint_fold_weight(uint shape, float4 rim, float at_u, float at_v, float r2)
 {
-  float s = mu * at_u + mv * at_v - t;
-  return r2 - 4.0f * s * t;
+  float s = rim.x * at_u + rim.y * at_v;
+  if (!(rim.w > 0.0f)) return gather_kernel_weight(shape, r2 - 4.0f * (s - rim.z) * rim.z);
+  float across2 = r2 - s * s, period = 2.0f * rim.w, weight = 0.0f;
+  /* The mirror family a + j period from its first image at or beyond -1, then the translated one. */
+  float a = 2.0f * rim.z - s;
+  float image = a - period * pm_floorf((a + 1.0f) / period);
+  for (int j = 0; j < PM_FOLD_MAX_IMAGES && image <= 1.0f; ++j, image += period)
+    weight += gather_kernel_weight(shape, across2 + image * image);
+  image = s - period * pm_floorf((s + 1.0f) / period);
+  for (int j = 0; j < PM_FOLD_MAX_IMAGES && image <= 1.0f; ++j, image += period)
+    if (pm_fabsf(image - s) > 0.5f * period) weight += gather_kernel_weight(shape, across2 + image * image);
+  return weight;
 }
 
 /* The gather's weight of photon k's footprint at a shading point where footprint_reaches_at
@@ -128,10 +144,7 @@ PM_DEVICE float footprint_gather_weight(const KernelGlobals* kg, uint k, float4 
                                         uint shape)
 {
   float weight = gather_kernel_weight(shape, r2);
-  if (PM_AS_UINT(c.w) & PM_HIT_RIM) {
-    float4 rim = PM_LOAD(&kg->map_cut[k]);
-    weight += gather_kernel_weight(shape, footprint_rim_mirror_r2(rim.x, rim.y, rim.z, at_u, at_v, r2));
-  }
+  if (PM_AS_UINT(c.w) & PM_HIT_RIM) weight += footprint_fold_weight(shape, PM_LOAD(&kg->map_cut[k]), at_u, at_v, r2);
   return weight / footprint_kept_about(kg, k, c, at_u, at_v, shape);
 }
 

@@ -111,8 +111,8 @@ PM_DEVICE void kernel_photon_footprint_store(const KernelGlobals* kg, const Laun
   float coverage = probed ? footprint_stashed_share(kg, p, k) : 1.0f;
   /* A footprint over a straight rim folds at it (footprint_rim.h): its flux is spread over the
      whole ellipse, the overhang folded back onto the surface by the gather. */
-  float rim_mu = 0.0f, rim_mv = 0.0f, rim_t = 0.0f;
-  int folded = probed && footprint_stashed_rim(kg, p, k, coverage, &rim_mu, &rim_mv, &rim_t);
+  float rim_mu = 0.0f, rim_mv = 0.0f, rim_t = 0.0f, strip_width = 0.0f;
+  int folded = probed && footprint_stashed_rim(kg, p, k, coverage, &rim_mu, &rim_mv, &rim_t, &strip_width);
   Vec3 lo, hi;
   footprint_bounds(f, center, &lo, &hi);
   /* The footprint's area on the surface (T_auto, the histogram); the flux is divided by the
@@ -143,8 +143,9 @@ PM_DEVICE void kernel_photon_footprint_store(const KernelGlobals* kg, const Laun
   kg->map_row_v[k] = vec3_to_float4(vec3_scale(c_nu, inv_det), kg->map_row_v[k].w);
   kg->map_row_n[k] = vec3_to_float4(vec3_scale(c_uv, inv_det), kg->map_row_n[k].w);
   if (folded) {
-    /* The rim in the second slot, which footprint_stashed_rim found free (footprint_rim.h). */
-    kg->map_cut[k] = PM_MAKE_FLOAT4(rim_mu, rim_mv, rim_t, 0.0f);
+    /* The rim in the second slot, which footprint_stashed_rim found free, and a strip's width
+       (footprint_rim.h). */
+    kg->map_cut[k] = PM_MAKE_FLOAT4(rim_mu, rim_mv, rim_t, strip_width);
     kg->map_center[k].w = PM_UINT_AS_FLOAT(PM_AS_UINT(kg->map_center[k].w) | PM_HIT_RIM);
   } else {
     kg->map_cut[k].w = 0.0f;

@@ -141,10 +141,25 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
         double w = kernel(r2);
         if (PM_AS_UINT(center[k].w) & PM_HIT_RIM) {
           // Folded at its rim m . q = t (map_cut, footprint_rim.h): the kernel at x's mirror image
-          // q' = q - 2 (m . q - t) m across the rim as well, the normal coordinate unchanged.
+          // q' = q - 2 (m . q - t) m across the rim as well, the normal coordinate unchanged. A
+          // strip (map_cut's w, its width, > 0) also reflects across its far rim m . q = t - w:
+          // every image that alternate reflections across the two reach, eight each way.
           double s = cut[k].x * lu + cut[k].y * lv - cut[k].z;
           double qu = lu - 2.0 * s * cut[k].x, qv = lv - 2.0 * s * cut[k].y;
           w += kernel(qu * qu + qv * qv + ln * ln);
+          if (cut[k].w > 0.0f) {
+            const double near = cut[k].z, far = double(cut[k].z) - cut[k].w, along = s + cut[k].z;
+            for (int first = 0; first < 2; ++first) {
+              double image = along;
+              for (int reflections = 1; reflections <= 16; ++reflections) {
+                const double line = (reflections + first) % 2 ? near : far;
+                image = 2.0 * line - image;
+                if (reflections == 1 && first == 0) continue;  // the near rim's mirror, counted above
+                const double du = (image - along) * cut[k].x, dv = (image - along) * cut[k].y;
+                w += kernel((lu + du) * (lu + du) + (lv + dv) * (lv + dv) + ln * ln);
+              }
+            }
+          }
         }
         // Divided by the kept kernel mass of the footprint moved to the shading point: each cut
         // line m . q <= t is t - m . (lu, lv) from it (gather_reach.h), floored as the gather floors it.

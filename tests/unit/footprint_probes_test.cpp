@@ -150,6 +150,7 @@ int expect_same_rims(Stash& a, Stash& b, LaunchParams p) {
     EXPECT_EQ(a.cut[k].x, b.cut[k].x) << "footprint " << k;
     EXPECT_EQ(a.cut[k].y, b.cut[k].y) << "footprint " << k;
     EXPECT_EQ(a.cut[k].z, b.cut[k].z) << "footprint " << k;
+    EXPECT_EQ(a.cut[k].w, b.cut[k].w) << "footprint " << k;
     folded += (PM_AS_UINT(a.center[k].w) & PM_HIT_RIM) != 0u;
   }
   return folded;
@@ -255,13 +256,14 @@ double gathered_weight(const Stash& s, size_t count, Vec3 x, Vec3 n) {
   return sum;
 }
 
-// A ledge: the floor y = 0 over x > 0, ending in the air at x = 0; with `wall`, a wall across the
-// rim in the plane z = 0, standing on the ledge and reaching below it.
-Scene ledge(bool wall = false) {
+// A ledge: the floor y = 0 over 0 < x < width, ending in the air at x = 0 (and at x = width: a
+// strip); with `wall`, a wall across the rim in the plane z = 0, standing on the ledge and reaching
+// below it.
+Scene ledge(bool wall = false, float width = 6.0f) {
   Scene s;
   s.name = "ledge";
   s.materials = {MaterialDesc{}};
-  test::add_quad(s, {0, 0, -4}, {0, 0, 4}, {6, 0, 4}, {6, 0, -4});
+  test::add_quad(s, {0, 0, -4}, {0, 0, 4}, {width, 0, 4}, {width, 0, -4});
   if (wall) test::add_quad(s, {-2, -1, 0}, {6, -1, 0}, {6, 1, 0}, {-2, 1, 0});
   return s;
 }
@@ -274,11 +276,13 @@ struct LedgeDensity {
   test::HostScene scene;
   Stash s;
   std::vector<Case> photons;
-  int folded = 0, folded_at_walls = 0;
+  int folded = 0, folded_at_walls = 0, strips = 0;
   static constexpr float kSpacing = 0.05f;
 
-  LedgeDensity(uint coverage, bool wall = false) : scene(ledge(wall)) {
-    for (float x = kSpacing / 2; x < 4.0f; x += kSpacing)
+  // strip_width > 0: a strip that wide instead of the ledge, photons across all of it.
+  LedgeDensity(uint coverage, bool wall = false, float strip_width = 0.0f)
+      : scene(ledge(wall, strip_width > 0.0f ? strip_width : 6.0f)) {
+    for (float x = kSpacing / 2; x < (strip_width > 0.0f ? strip_width : 4.0f); x += kSpacing)
       for (float z = wall ? -3.0f : -1.25f; z < (wall ? 0.0f : 1.25f); z += kSpacing) {
         Case c;
         c.normal = vec3(0, 1, 0);
@@ -296,6 +300,7 @@ struct LedgeDensity {
       if (PM_AS_UINT(s.center[k].w) & PM_HIT_RIM) {
         ++folded;
         if (photons[k].cut.t[0] < 1.0f) ++folded_at_walls;
+        if (s.cut[k].w > 0.0f) ++strips;
       }
   }
 
@@ -380,6 +385,33 @@ TEST(FootprintProbes, FootprintsCutByAWallFoldAtTheRimToo) {
                 beside, rim, in, far, open.at(0.05f), open.at(0.5f));
     EXPECT_NEAR(rim / far, open.at(0.05f) / open.at(2.0f), 0.03) << beside << " radii from the wall, at the rim";
     EXPECT_NEAR(in / far, 1.0, 0.03) << beside << " radii from the wall, half a radius in";
+  }
+}
+
+TEST(FootprintProbes, UniformPhotonsOnAStripKeepTheirDensityAcrossIt) {
+  // A strip narrower than a footprint (a lintel's face, a soffit, a moulding): footprints in its
+  // middle hang over both rims, and fold at both (footprint_rim.h), so a uniform density reads
+  // uniform across the strip and its light is what its photons brought (one per radius of width).
+  // Divided by their covered share instead (a first build, which folded only at single rims), a
+  // strip 1.2 radii wide read 0.82 at its rims and 1.12 in its middle, one 1.6 wide 0.91 and 1.02.
+  const LedgeDensity open(1u);
+  const double far = open.at(2.0f);
+  for (float width : {1.6f, 1.2f, 0.8f}) {
+    const LedgeDensity strip(1u, false, width);
+    double flux = 0;
+    const int steps = 40;
+    for (int i = 0; i < steps; ++i) flux += strip.at((float(i) + 0.5f) * width / float(steps)) * width / steps;
+    std::printf("strip %.1f radii wide: %d of %zu footprints folded, %d at both rims; light %.4f of %.4f\n", width,
+                strip.folded, strip.photons.size(), strip.strips, flux / far, double(width));
+    for (float at : {0.02f, 0.15f, 0.3f, 0.5f}) {
+      const double density = strip.at(at * width) / far;
+      std::printf("  density %.2f of the width across: %.4f\n", at, density);
+      EXPECT_NEAR(density, 1.0, at < 0.1f ? 0.08 : 0.03) << width << " radii wide, " << at << " across";
+    }
+    int crossing_both = 0;  // footprints (unit discs) over both rims
+    for (const Case& c : strip.photons) crossing_both += c.center.x < 1.0f && c.center.x > width - 1.0f;
+    EXPECT_GT(3 * strip.strips, 2 * crossing_both) << width << " radii wide";
+    EXPECT_NEAR(flux / far, width, 0.02 * width) << width << " radii wide: the photons' light kept";
   }
 }
 
