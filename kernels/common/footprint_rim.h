@@ -149,9 +149,10 @@ PM_DEVICE float footprint_strip_widest(const float* x, const float* y, uint kept
   return best;
 }
 
-/* The strip that explains the probes of an uncut footprint (no wall: the strip takes both of its
-   sides): its rims' unit normal (mu, mv), the near rim's distance t and its width w, each rim
-   halfway across its gap (footprint_stashed_rim says why). Returns whether one does. */
+/* The strip that explains the kept probes (a wall's cut, a soffit's end at a jamb, stays in the
+   first slot, normalised about the shading point): its rims' unit normal (mu, mv), the near rim's
+   distance t and its width w, each rim halfway across its gap (footprint_stashed_rim says why).
+   Returns whether one does. */
 PM_DEVICE int footprint_probed_strip(const float* x, const float* y, uint kept_lo, uint kept_hi, uint covered_lo,
                                      uint covered_hi, float* mu, float* mv, float* t, float* w)
 {
@@ -237,8 +238,7 @@ PM_DEVICE int footprint_stashed_rim(const KernelGlobals* kg, const LaunchParams*
   angle = footprint_rim_widest(x, y, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_RIM_FINE_STEPS,
                                PM_RIM_FINE_STEP, &widest);
   if (!(widest > 0.0f))
-    return !(cut.t[0] < 1.0f) && footprint_probed_strip(x, y, kept_lo, kept_hi, covered_lo, covered_hi, mu, mv, t,
-                                                        width);
+    return footprint_probed_strip(x, y, kept_lo, kept_hi, covered_lo, covered_hi, mu, mv, t, width);
   /* Halfway across the gap, and no nearer the centre than through it: the photon's own hit lies
      on the surface. Halfway, not where a straight cut keeps the measured covered share: that
      share reads a few hundredths of the radius beyond the rim (a strip's two rims, placed by it,

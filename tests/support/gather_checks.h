@@ -218,7 +218,12 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
     }
   }
   EXPECT_GT(nonzero, pixels);  // most pixels receive indirect light
-  std::printf("gather vs brute force over %zu hits: worst relative difference %.3g\n", n, worst);
+  size_t rims = 0, strips = 0;  // footprints folded at one rim, and at a strip's two
+  for (size_t k = 0; k < n; ++k)
+    if (PM_AS_UINT(center[k].w) & PM_HIT_RIM) ++(cut[k].w > 0.0f ? strips : rims);
+  std::printf("gather vs brute force over %zu hits (%zu folded at a rim, %zu at a strip's two): worst relative "
+              "difference %.3g\n",
+              n, rims, strips, worst);
 }
 
 }  // namespace pm::test
