@@ -184,7 +184,7 @@ std::shared_ptr<MethodOptions> add_photon_options(CLI::App* cmd) {
                   "its solution) read at their hits (less blur, more time; 0: off; docs/final-gathering.md)")
       ->transform(any_unsigned32())->capture_default_str()->group(group);
   cmd->add_option("--alpha", o->alpha,
-                  "shrink: r_i^2 = r_(i-1)^2 (i + alpha) / (i + 1), 0 < alpha < 1; auto: 0.3 for pd, 2/3 for "
+                  "shrink: r_i^2 = r_(i-1)^2 (i + alpha) / (i + 1), 0 < alpha < 1; auto: 0.2 for pd, 2/3 for "
                   "knn, radius and final gathering (docs/progressive.md)")
       ->capture_default_str()->group(group);
   cmd->add_option("--tile-gather", o->tile_gather,

@@ -281,7 +281,7 @@ Run add_tradeoff_command(CLI::App& app) {
   cmd->add_option("--progressive", o->grid.progressive, "How photon passes combine: average, shrink or "
                                                         "average,shrink (shrink only where passes > 1)")
       ->capture_default_str()->group(grid);
-  cmd->add_option("--alpha", o->grid.alpha, "Shrink's alpha, 0 < alpha < 1; 0: the renderer's defaults (0.3 for pd, 2/3 for "
+  cmd->add_option("--alpha", o->grid.alpha, "Shrink's alpha, 0 < alpha < 1; 0: the renderer's defaults (0.2 for pd, 2/3 for "
                                                "the others; docs/progressive.md)")
       ->transform(finite_float())->capture_default_str()->group(grid);
   cmd->add_option("--spp", o->grid.spp, "Paths per pixel and pass of the path tracer")->capture_default_str()->group(grid);

@@ -105,7 +105,7 @@ TEST(ProgressiveSettings, ShrinkFollowsKnausZwicker) {
 }
 
 // pd's shrinking passes have their own defaults (docs/accuracy.md, "Shrink that converges"): a
-// first pass at half of one pass's footprint area (overlap 50), alpha 0.3 and facet weighting;
+// first pass at half of one pass's footprint area (overlap 50), alpha 0.2 and facet weighting;
 // averaged passes and the other estimators keep theirs, final gathering's map its overlap 200;
 // values given are kept.
 TEST(ProgressiveSettings, PdShrinkingPassesHaveTheirOwnDefaults) {
