@@ -111,10 +111,10 @@ PM_DEVICE float footprint_rim_widest(const float* x, const float* y, uint kept_l
 /* The band along the unit normal (mx, my) that the covered probes of the kept ones span, band[0]
    to band[1], and the nearest uncovered probe beyond either end, band[2] below and band[3] above
    (-2 and 2 where none is). Returns the narrower of the two gaps, or where there is none, minus
-   the number of uncovered probes within the band (-1 where none lies beyond one of its ends: a
-   single rim, or none). */
+   the number of uncovered probes within the band, counted up to the first beyond `inside_max`
+   (-1 where none lies beyond one of its ends: a single rim, or none). */
 PM_DEVICE float footprint_strip_gap(const float* x, const float* y, uint kept_lo, uint kept_hi, uint covered_lo,
-                                    uint covered_hi, float mx, float my, float* band)
+                                    uint covered_hi, float mx, float my, float inside_max, float* band)
 {
   band[0] = 2.0f;
   band[1] = -2.0f;
@@ -132,7 +132,7 @@ PM_DEVICE float footprint_strip_gap(const float* x, const float* y, uint kept_lo
     float along = mx * x[q] + my * y[q];
     if (along > band[1]) band[3] = pm_fminf(band[3], along);
     else if (along < band[0]) band[2] = pm_fmaxf(band[2], along);
-    else inside += 1.0f;
+    else if ((inside += 1.0f) > inside_max) break;
   }
   if (inside > 0.0f) return -inside;
   if (!(band[2] > -2.0f) || !(band[3] < 2.0f)) return -1.0f;
@@ -148,7 +148,7 @@ PM_DEVICE float footprint_strip_widest(const float* x, const float* y, uint kept
   for (int i = -steps; i <= steps; ++i) {
     float a = centre + step * (float)i, s, c;
     pm_sincosf(a, &s, &c);
-    float gap = footprint_strip_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, c, s, band);
+    float gap = footprint_strip_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, c, s, 0.0f, band);
     if (gap > *widest) {
       *widest = gap;
       best = a;
@@ -180,14 +180,16 @@ PM_DEVICE int footprint_probed_strip(const float* x, const float* y, uint kept_l
   float angle = 0.5f * pm_atan2f(2.0f * cxy, cxx - cyy) + 1.5707963f;
   float widest = 0.0f, band[4], s, c;
   pm_sincosf(angle, &s, &c);
-  if (footprint_strip_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, c, s, band) < -PM_STRIP_INSIDE_MAX) return 0;
+  if (footprint_strip_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, c, s, PM_STRIP_INSIDE_MAX, band) <
+      -PM_STRIP_INSIDE_MAX)
+    return 0;
   angle = footprint_strip_widest(x, y, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_STRIP_STEPS,
                                  PM_STRIP_STEP, &widest);
   angle = footprint_strip_widest(x, y, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_STRIP_FINE_STEPS,
                                  PM_STRIP_FINE_STEP, &widest);
   if (!(widest > 0.0f)) return 0;
   pm_sincosf(angle, mv, mu);
-  footprint_strip_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, *mu, *mv, band);
+  footprint_strip_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, *mu, *mv, 0.0f, band);
   /* The photon's own hit lies on the strip: the covered band reaches the centre either way. */
   float near_hi = pm_fmaxf(band[1], 0.0f), far_hi = pm_fminf(band[3], 1.0f);
   float near_lo = pm_fminf(band[0], 0.0f), far_lo = pm_fmaxf(band[2], -1.0f);

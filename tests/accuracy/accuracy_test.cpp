@@ -102,11 +102,10 @@ TEST_P(SceneAccuracy, PhotonMappingAtItsDefaultsIsWithinOneAndAHalfPercent) {
 }
 
 // pd's consistent mode (`--progressive shrink`, the default under a budget) with its own
-// defaults (overlap 50, alpha 0.3, facet weighting; docs/accuracy.md "Shrink that converges") on
+// defaults (overlap 50, alpha 0.2, facet weighting; docs/accuracy.md "Shrink that converges") on
 // the benchmark scenes, whose creases, bends and rims the closed boxes lack (the boxes'
 // shrinking passes: tests/opencl/progressive_test.cpp). Eight passes, 22-28 s a scene on PoCL
-// (2 cores): Sponza -0.42, Sibenik -0.51, Conference -0.16 %; 16 passes took 42-52 s and read
-// -0.33, -0.34, -0.03 %.
+// (2 cores): Sponza -0.39, Sibenik -0.33, Conference -0.24 % (alpha 0.3: -0.61, -0.44, -0.26 %).
 class ShrinkAccuracy : public testing::TestWithParam<const char*> {};
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(ShrinkAccuracy);
 
