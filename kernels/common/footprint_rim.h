@@ -99,22 +99,16 @@ PM_DEVICE float footprint_rim_widest(const float* x, const float* y, uint kept_l
    of the covered probes' minor axis (a strip's covered probes spread along it), then of
    PM_STRIP_FINE_STEP about the best (3 and 1 degrees). */
 #define PM_STRIP_STEPS 4
-/* Most uncovered probes within the covered band across the minor axis for the search to go on: a
-   strip's axis lies within a few degrees of it, so a few probes at most; a corner, a hole or a
-   ragged edge leaves many (their search would cost the footprint stage 6-7 %: docs/benchmarks.md,
-   "Strips folded at both rims: the cost"). */
-#define PM_STRIP_INSIDE_MAX 4.0f
 #define PM_STRIP_STEP 0.0523599f
 #define PM_STRIP_FINE_STEPS 2
 #define PM_STRIP_FINE_STEP 0.0174533f
 
 /* The band along the unit normal (mx, my) that the covered probes of the kept ones span, band[0]
    to band[1], and the nearest uncovered probe beyond either end, band[2] below and band[3] above
-   (-2 and 2 where none is). Returns the narrower of the two gaps, or where there is none, minus
-   the number of uncovered probes within the band, counted up to the first beyond `inside_max`
-   (-1 where none lies beyond one of its ends: a single rim, or none). */
+   (-2 and 2 where none is). Returns the narrower of the two gaps: negative where an uncovered
+   probe lies within the band, or none beyond one of its ends (a single rim, or none). */
 PM_DEVICE float footprint_strip_gap(const float* x, const float* y, uint kept_lo, uint kept_hi, uint covered_lo,
-                                    uint covered_hi, float mx, float my, float inside_max, float* band)
+                                    uint covered_hi, float mx, float my, float* band)
 {
   band[0] = 2.0f;
   band[1] = -2.0f;
@@ -126,15 +120,13 @@ PM_DEVICE float footprint_strip_gap(const float* x, const float* y, uint kept_lo
     band[0] = pm_fminf(band[0], along);
     band[1] = pm_fmaxf(band[1], along);
   }
-  float inside = 0.0f;
   for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q) {
     if (!footprint_rim_bit(kept_lo, kept_hi, q) || footprint_rim_bit(covered_lo, covered_hi, q)) continue;
     float along = mx * x[q] + my * y[q];
     if (along > band[1]) band[3] = pm_fminf(band[3], along);
     else if (along < band[0]) band[2] = pm_fmaxf(band[2], along);
-    else if ((inside += 1.0f) > inside_max) break;
+    else return -1.0f;
   }
-  if (inside > 0.0f) return -inside;
   if (!(band[2] > -2.0f) || !(band[3] < 2.0f)) return -1.0f;
   return pm_fminf(band[3] - band[1], band[0] - band[2]);
 }
@@ -148,7 +140,7 @@ PM_DEVICE float footprint_strip_widest(const float* x, const float* y, uint kept
   for (int i = -steps; i <= steps; ++i) {
     float a = centre + step * (float)i, s, c;
     pm_sincosf(a, &s, &c);
-    float gap = footprint_strip_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, c, s, 0.0f, band);
+    float gap = footprint_strip_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, c, s, band);
     if (gap > *widest) {
       *widest = gap;
       best = a;
@@ -178,18 +170,14 @@ PM_DEVICE int footprint_probed_strip(const float* x, const float* y, uint kept_l
   if (!(n > 2.0f)) return 0;
   float cxx = sxx / n - (sx / n) * (sx / n), cyy = syy / n - (sy / n) * (sy / n), cxy = sxy / n - (sx / n) * (sy / n);
   float angle = 0.5f * pm_atan2f(2.0f * cxy, cxx - cyy) + 1.5707963f;
-  float widest = 0.0f, band[4], s, c;
-  pm_sincosf(angle, &s, &c);
-  if (footprint_strip_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, c, s, PM_STRIP_INSIDE_MAX, band) <
-      -PM_STRIP_INSIDE_MAX)
-    return 0;
+  float widest = 0.0f, band[4];
   angle = footprint_strip_widest(x, y, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_STRIP_STEPS,
                                  PM_STRIP_STEP, &widest);
   angle = footprint_strip_widest(x, y, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_STRIP_FINE_STEPS,
                                  PM_STRIP_FINE_STEP, &widest);
   if (!(widest > 0.0f)) return 0;
   pm_sincosf(angle, mv, mu);
-  footprint_strip_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, *mu, *mv, 0.0f, band);
+  footprint_strip_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, *mu, *mv, band);
   /* The photon's own hit lies on the strip: the covered band reaches the centre either way. */
   float near_hi = pm_fmaxf(band[1], 0.0f), far_hi = pm_fminf(band[3], 1.0f);
   float near_lo = pm_fminf(band[0], 0.0f), far_lo = pm_fmaxf(band[2], -1.0f);
