@@ -109,8 +109,9 @@ PM_DEVICE void kernel_photon_footprint_store(const KernelGlobals* kg, const Laun
   float kept = kg->map_cut[k].w;
   int probed = p->footprint_coverage && p->estimator != PM_ESTIMATOR_KNN;
   float coverage = probed ? footprint_stashed_share(kg, p, k) : 1.0f;
-  /* A footprint over a straight rim folds at it (footprint_rim.h): its flux is spread over the
-     whole ellipse, the overhang folded back onto the surface by the gather. */
+  /* A footprint over a straight rim, or over a strip's two, folds there (footprint_rim.h): its
+     flux is spread over the whole ellipse, the overhang folded back onto the surface by the
+     gather. */
   float rim_mu = 0.0f, rim_mv = 0.0f, rim_t = 0.0f, strip_width = 0.0f;
   int folded = probed && footprint_stashed_rim(kg, p, k, coverage, &rim_mu, &rim_mv, &rim_t, &strip_width);
   Vec3 lo, hi;

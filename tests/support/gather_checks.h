@@ -143,7 +143,8 @@ inline void check_gather_equals_brute_force(Device& device, const Scene& scene, 
           // Folded at its rim m . q = t (map_cut, footprint_rim.h): the kernel at x's mirror image
           // q' = q - 2 (m . q - t) m across the rim as well, the normal coordinate unchanged. A
           // strip (map_cut's w, its width, > 0) also reflects across its far rim m . q = t - w:
-          // every image that alternate reflections across the two reach, eight each way.
+          // every image that up to sixteen alternate reflections across the two reach, starting
+          // with either rim.
           double s = cut[k].x * lu + cut[k].y * lv - cut[k].z;
           double qu = lu - 2.0 * s * cut[k].x, qv = lv - 2.0 * s * cut[k].y;
           w += kernel(qu * qu + qv * qv + ln * ln);
