@@ -14,13 +14,15 @@
       lanes all work on footprints at edges: its 64 probes taken in the order of their angles,
       lane j tracing those of rank j, j + 16, j + 32, j + 48 (round r a quarter of the disc, whose
       probes mostly lie on one side of the edge) and keeping their weighted sum;
-   5. photon_footprint_store (photon_footprint.h): the share from those sums, the gather data.
+   5. photon_footprint_rim (footprint_rim.h): over the list, the share from those sums and the
+      rim the footprint folds at, left in its probes' values;
+   6. photon_footprint_store (photon_footprint.h): the gather data.
    On devices whose work items do not run in lockstep (CPUs: PoCL) one work item per footprint
    runs launches 2 to 4 for it (photon_footprint_coverage), the same functions in the same order:
    there the probes' own launches only added work items (PoCL, Sponza: the footprint stage 20-40 %
    slower).
 
-   What launch 1 stashes at k, in the gather arrays that launch 5 then overwrites:
+   What launch 1 stashes at k, in the gather arrays that launch 6 then overwrites:
      map_row_u, map_row_v, map_row_n: (a_u, mu_0), (a_v, mv_0), (a_n, t_0), the scaled semiaxes
        (their w are the first cut's, as stored for the gather);
      map_cut: (mu_1, mv_1, t_1, the kept fraction);  map_center: as stored for the gather;
@@ -192,7 +194,8 @@ PM_DEVICE void kernel_photon_footprint_edge_probe(const KernelGlobals* kg, const
 }
 
 /* Work item = hit k, on devices whose work items do not run in lockstep: launches 2 to 4 for the
-   footprint at k in one work item, one probe or lane after another, leaving what they leave. */
+   footprint at k in one work item, one probe or lane after another, leaving what they leave (a
+   footprint at an edge joins the list once its second pattern is summed). */
 PM_DEVICE void kernel_photon_footprint_coverage(const KernelGlobals* kg, const LaunchParams* p, uint k)
 {
   Footprint f = footprint_stashed(kg, k);
@@ -202,8 +205,9 @@ PM_DEVICE void kernel_photon_footprint_coverage(const KernelGlobals* kg, const L
     float w;
     values[j] = footprint_stashed_probe(kg, p, &f, &cut, k, j, PM_FOOTPRINT_PROBES, &w);
   }
-  if (footprint_first_pattern_sums(kg, p, k))
-    for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) values[j] = footprint_edge_lane_sum(kg, p, k, j);
+  if (!footprint_first_pattern_sums(kg, p, k)) return;
+  for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) values[j] = footprint_edge_lane_sum(kg, p, k, j);
+  PM_FOOTPRINT_EDGE_LIST(kg, p)[pm_atomic_add_u32(&kg->hit_record_count[0], 1u)] = k;
 }
 
 /* Whether launch 3 found the footprint at k partly covered (and launch 4 traced its second

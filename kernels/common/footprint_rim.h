@@ -253,4 +253,53 @@ PM_DEVICE int footprint_stashed_rim(const KernelGlobals* kg, const LaunchParams*
   return 1;
 }
 
+/* What the edge fit (launch 5 of footprint_probes.h) leaves of a footprint at an edge, in the
+   probes' values at k, which it is the last to read: the covered share, whether the footprint
+   folds, and its rim (mu, mv, t, the strip's width). */
+#define PM_EDGE_FIT_SHARE 0
+#define PM_EDGE_FIT_FOLDED 1
+#define PM_EDGE_FIT_RIM 2
+
+/* Work item = entry e of the list of footprints at edges (items past its end do nothing: the
+   launch is sized for every hit): its covered share and its rim. Done here, not in the store
+   (launch 6) that runs over every hit, so that a warp's lanes all fit rims: in the store the
+   fit's 64 probe positions left every lane with 2.4 KB of spills and most lanes waiting on the few
+   at edges (docs/benchmarks.md, "The edge fit in a launch of its own"). */
+PM_DEVICE void kernel_photon_footprint_rim(const KernelGlobals* kg, const LaunchParams* p, uint e)
+{
+  if (e >= kg->hit_record_count[0]) return;
+  uint k = PM_FOOTPRINT_EDGE_LIST(kg, p)[e];
+  float share = footprint_stashed_share(kg, p, k);
+  float mu = 0.0f, mv = 0.0f, t = 0.0f, width = 0.0f;
+  int folded = footprint_stashed_rim(kg, p, k, share, &mu, &mv, &t, &width);
+  PM_GLOBAL float* fit = PM_FOOTPRINT_PROBE_VALUES(kg, k);
+  fit[PM_EDGE_FIT_SHARE] = share;
+  fit[PM_EDGE_FIT_FOLDED] = folded ? 1.0f : 0.0f;
+  fit[PM_EDGE_FIT_RIM + 0] = mu;
+  fit[PM_EDGE_FIT_RIM + 1] = mv;
+  fit[PM_EDGE_FIT_RIM + 2] = t;
+  fit[PM_EDGE_FIT_RIM + 3] = width;
+}
+
+/* The covered share of the footprint at k after the edge fit, and whether it folds at the rim it
+   returns in (mu, mv, t, width): at an edge, the fit's; else the first pattern's share, no fold. */
+PM_DEVICE int footprint_fitted_edge(const KernelGlobals* kg, uint k, float* share, float* mu, float* mv, float* t,
+                                    float* width)
+{
+  *mu = *mv = *t = *width = 0.0f;
+  if (!footprint_stashed_at_edge(kg, k)) {
+    float4 first = kg->map_hi[k];
+    *share = footprint_share_of(first.x, first.y, PM_AS_UINT(first.z));
+    return 0;
+  }
+  PM_GLOBAL const float* fit = PM_FOOTPRINT_PROBE_VALUES(kg, k);
+  *share = fit[PM_EDGE_FIT_SHARE];
+  if (!(fit[PM_EDGE_FIT_FOLDED] > 0.0f)) return 0;
+  *mu = fit[PM_EDGE_FIT_RIM + 0];
+  *mv = fit[PM_EDGE_FIT_RIM + 1];
+  *t = fit[PM_EDGE_FIT_RIM + 2];
+  *width = fit[PM_EDGE_FIT_RIM + 3];
+  return 1;
+}
+
 #endif

@@ -13,6 +13,7 @@
   K(photon_footprint_pattern)    /* S3: coverage, the first pattern's sums; footprints at edges */ \
   K(photon_footprint_edge_probe) /* S3: coverage, the second pattern of footprints at edges */   \
   K(photon_footprint_coverage)   /* S3: coverage, both patterns of a footprint in one work item (CPUs) */ \
+  K(photon_footprint_rim)        /* S3: coverage, the share and rim of footprints at edges */    \
   K(photon_footprint_store)      /* S3: AABBs, gather data and area of the sorted hits */       \
   K(photon_reduce)     /* S4: per-tile hit bounds and count (Morton bounds, compaction) */  \
   K(photon_morton)     /* S4: 30-bit Morton keys (empty slots sort last) */                  \

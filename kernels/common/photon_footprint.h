@@ -108,12 +108,11 @@ PM_DEVICE void kernel_photon_footprint_store(const KernelGlobals* kg, const Laun
   Vec3 center = vec3_from_float4(kg->map_center[k]);
   float kept = kg->map_cut[k].w;
   int probed = p->footprint_coverage && p->estimator != PM_ESTIMATOR_KNN;
-  float coverage = probed ? footprint_stashed_share(kg, p, k) : 1.0f;
-  /* A footprint over a straight rim, or over a strip's two, folds there (footprint_rim.h): its
-     flux is spread over the whole ellipse, the overhang folded back onto the surface by the
-     gather. */
-  float rim_mu = 0.0f, rim_mv = 0.0f, rim_t = 0.0f, strip_width = 0.0f;
-  int folded = probed && footprint_stashed_rim(kg, p, k, coverage, &rim_mu, &rim_mv, &rim_t, &strip_width);
+  /* A footprint over a straight rim, or over a strip's two, folds there (footprint_rim.h, which
+     the edge fit has found): its flux is spread over the whole ellipse, the overhang folded back
+     onto the surface by the gather. */
+  float coverage = 1.0f, rim_mu = 0.0f, rim_mv = 0.0f, rim_t = 0.0f, strip_width = 0.0f;
+  int folded = probed && footprint_fitted_edge(kg, k, &coverage, &rim_mu, &rim_mv, &rim_t, &strip_width);
   Vec3 lo, hi;
   footprint_bounds(f, center, &lo, &hi);
   /* The footprint's area on the surface (T_auto, the histogram); the flux is divided by the
@@ -144,7 +143,7 @@ PM_DEVICE void kernel_photon_footprint_store(const KernelGlobals* kg, const Laun
   kg->map_row_v[k] = vec3_to_float4(vec3_scale(c_nu, inv_det), kg->map_row_v[k].w);
   kg->map_row_n[k] = vec3_to_float4(vec3_scale(c_uv, inv_det), kg->map_row_n[k].w);
   if (folded) {
-    /* The rim in the second slot, which footprint_stashed_rim found free, and a strip's width
+    /* The rim in the second slot, which the edge fit found free, and a strip's width
        (footprint_rim.h). */
     kg->map_cut[k] = PM_MAKE_FLOAT4(rim_mu, rim_mv, rim_t, strip_width);
     kg->map_center[k].w = PM_UINT_AS_FLOAT(PM_AS_UINT(kg->map_center[k].w) | PM_HIT_RIM);

@@ -42,24 +42,27 @@ std::vector<uint32_t> share_photons_by_power(const std::vector<LightDesc>& light
 
 // S3 over the sorted hits (kernels/common/footprint_probes.h): the footprints, their coverage with
 // a work item per probe (in launches of at most 2^31 items; on devices without lockstep lanes a
-// work item per footprint), then the gather data. The records' counter, read since the trace,
-// counts the footprints at edges.
+// work item per footprint), the fit of the footprints at edges, then the gather data. The records'
+// counter, read since the trace, counts the footprints at edges.
 static void launch_footprints(Device& device, DeviceBuffer& counter, LaunchParams params, uint32_t hits) {
   device.launch(KernelId::photon_footprint, hits, params);
-  const bool coverage = params.footprint_coverage && params.estimator != PM_ESTIMATOR_KNN;
-  if (coverage && !device.info().lockstep_lanes) {
-    device.launch(KernelId::photon_footprint_coverage, hits, params);
-  } else if (coverage) {
-    const uint32_t zero = 0;
+  if (params.footprint_coverage && params.estimator != PM_ESTIMATOR_KNN) {
+    const uint32_t zero = 0;  // the list of footprints at edges starts empty
     device.upload(counter, &zero, sizeof(zero));
-    const uint32_t hits_per_launch = (1u << 31) / PM_FOOTPRINT_PROBES;
-    for (const KernelId probes : {KernelId::photon_footprint_probe, KernelId::photon_footprint_edge_probe}) {
-      for (uint32_t first = 0; first < hits; first += hits_per_launch) {
-        params.batch_first = first;
-        device.launch(probes, std::min(hits - first, hits_per_launch) * PM_FOOTPRINT_PROBES, params);
+    if (device.info().lockstep_lanes) {
+      const uint32_t hits_per_launch = (1u << 31) / PM_FOOTPRINT_PROBES;
+      for (const KernelId probes : {KernelId::photon_footprint_probe, KernelId::photon_footprint_edge_probe}) {
+        for (uint32_t first = 0; first < hits; first += hits_per_launch) {
+          params.batch_first = first;
+          device.launch(probes, std::min(hits - first, hits_per_launch) * PM_FOOTPRINT_PROBES, params);
+        }
+        if (probes == KernelId::photon_footprint_probe) device.launch(KernelId::photon_footprint_pattern, hits, params);
       }
-      if (probes == KernelId::photon_footprint_probe) device.launch(KernelId::photon_footprint_pattern, hits, params);
+    } else {
+      device.launch(KernelId::photon_footprint_coverage, hits, params);
     }
+    params.batch_first = 0;
+    device.launch(KernelId::photon_footprint_rim, hits, params);
   }
   device.launch(KernelId::photon_footprint_store, hits, params);
 }

@@ -137,11 +137,18 @@ void run_probes(const KernelGlobals* kg, LaunchParams p, uint hits) {
   }
 }
 
-// The gather data of every footprint stashed in a and in b (footprint_probes.h's launches run on
-// each), stored as launch 5 stores it: the same rims (footprint_rim.h: the flag, and the rim in
-// the second slot). Returns how many folded.
+// Launch 5 of footprint_probes.h, the edge fit, over every hit as the host sizes it.
+void run_edge_fit(const KernelGlobals* kg, const LaunchParams& p, uint hits) {
+  shuffled(hits, 17u, [&](uint e) { kernel_photon_footprint_rim(kg, &p, e); });
+}
+
+// The gather data of every footprint stashed in a and in b (footprint_probes.h's launches 2 to 4
+// run on each), fitted and stored as launches 5 and 6 do: the same shares and rims
+// (footprint_rim.h: the flag, and the rim in the second slot). Returns how many folded.
 int expect_same_rims(Stash& a, Stash& b, LaunchParams p) {
   p.footprint_coverage = 1u;
+  run_edge_fit(&a.kg, p, p.hit_count);
+  run_edge_fit(&b.kg, p, p.hit_count);
   int folded = 0;
   for (uint k = 0; k < p.hit_count; ++k) {
     kernel_photon_footprint_store(&a.kg, &p, k);
@@ -151,6 +158,7 @@ int expect_same_rims(Stash& a, Stash& b, LaunchParams p) {
     EXPECT_EQ(a.cut[k].y, b.cut[k].y) << "footprint " << k;
     EXPECT_EQ(a.cut[k].z, b.cut[k].z) << "footprint " << k;
     EXPECT_EQ(a.cut[k].w, b.cut[k].w) << "footprint " << k;
+    EXPECT_EQ(a.power[k].x, b.power[k].x) << "footprint " << k;  // the flux over the same share
     folded += (PM_AS_UINT(a.center[k].w) & PM_HIT_RIM) != 0u;
   }
   return folded;
@@ -193,6 +201,7 @@ void expect_shares_match(uint shape, int facet_weighting) {
     (PM_AS_UINT(s.hi[k].w) ? at_edge : whole)++;
   }
   EXPECT_EQ(s.counter[0], uint(at_edge));  // each footprint at an edge listed once
+  EXPECT_EQ(one_item.counter[0], uint(at_edge));  // by either way of probing
   expect_same_rims(s, one_item, p);
   // The line crosses the shelf's rim, the bend and the floor: both kinds of footprint are there.
   EXPECT_GE(at_edge, 3);
@@ -241,6 +250,7 @@ void store_footprints(Stash& s, const KernelGlobals& scene, const std::vector<Ca
   p.ray_epsilon = kRayEpsilon;
   p.hit_count = uint(photons.size());
   run_probes(&s.kg, p, p.hit_count);
+  if (coverage) run_edge_fit(&s.kg, p, p.hit_count);
   for (uint k = 0; k < p.hit_count; ++k) kernel_photon_footprint_store(&s.kg, &p, k);
 }
 
