@@ -34,10 +34,13 @@ constexpr double kAutoSmoothingOverlap = 100.0;
 // (no diffuse hits: s then sizes nothing).
 float auto_smoothing(double area_at_s1, double scene_area, double overlap = kAutoSmoothingOverlap);
 
+// The batch's area at s = 1 from the photon_footprint_scale tiles' sums, added in tile order.
+double footprint_scale_tile_sum(const float* tile_sums, uint32_t tiles);
+
 // Runs the photon_footprint_scale reduction over the batch's hit records (params as for the
-// footprint stage, `tiles` tiles of PM_PHOTON_MAP_BOUNDS_TILE slots, partials bound to
-// map_partials) and returns the batch's automatic s. *area_at_s1 (if not null) gets A1.
-float batch_auto_smoothing(Device& device, const DeviceBuffer& partials, const LaunchParams& params, uint32_t tiles,
+// footprint stage, partials bound to map_partials, which holds a float per tile) and returns the
+// batch's automatic s. *area_at_s1 (if not null) gets A1.
+float batch_auto_smoothing(Device& device, const DeviceBuffer& partials, const LaunchParams& params,
                            double scene_area, double overlap = kAutoSmoothingOverlap, double* area_at_s1 = nullptr);
 
 }  // namespace pm

@@ -333,8 +333,8 @@ void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
     }
     if (!(settings_.smoothing > 0)) {
       StageScope scope(timer, "footprints");
-      params.smoothing = batch_auto_smoothing(device_, buffers_[BufferSlot::map_partials], traced, tiles, scene_area_,
-                                               settings_.overlap);
+      params.smoothing =
+          batch_auto_smoothing(device_, buffers_[BufferSlot::map_partials], traced, scene_area_, settings_.overlap);
     }
     // Bounds and count of the valid hits, per tile, and the records the trace took: one small
     // read-back per pass.

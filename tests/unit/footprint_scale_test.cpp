@@ -51,6 +51,7 @@ struct HostHits {
       records[PM_RECORD_FLOAT4S * r + PM_RECORD_DP_U] = dp_u[r];
       records[PM_RECORD_FLOAT4S * r + PM_RECORD_DP_V] = dp_v[r];
     }
+    // As the photon map allocates it: two float4 per tile of the bounds reduction.
     partials.resize(2 * ((slots + PM_PHOTON_MAP_BOUNDS_TILE - 1) / PM_PHOTON_MAP_BOUNDS_TILE));
     params.photon_count = photons;
     params.hit_slots_per_photon = slots_per_photon;
@@ -59,14 +60,12 @@ struct HostHits {
     kg.map_partials = partials.data();
   }
 
-  // The batch's s = 1 area as the host sums the kernel's tiles.
+  // The batch's s = 1 area as the host sums the kernel's tiles, which fit in the partials.
   double kernel_area() {
-    double sum = 0;
-    for (uint32_t t = 0; t < partials.size() / 2; ++t) {
-      kernel_photon_footprint_scale(&kg, &params, t);
-      sum += partials[2 * t].x;
-    }
-    return sum;
+    const uint32_t tiles = footprint_scale_tile_count(uint32_t(slot_words.size()));
+    EXPECT_LE(tiles, 4 * partials.size());
+    for (uint32_t t = 0; t < tiles; ++t) kernel_photon_footprint_scale(&kg, &params, t);
+    return footprint_scale_tile_sum(reinterpret_cast<const float*>(partials.data()), tiles);
   }
 
   // Independent: pi Delta^2 |dp_u|^(1/4) |dp_v|^(1/4) sin(angle) over valid diffuse hits, in double.
@@ -101,7 +100,7 @@ struct HostHits {
 };
 
 TEST(AutoSmoothing, TileReductionMatchesAnIndependentSum) {
-  HostHits hits(700, 4, 1, 0.3f);  // 2800 slots: 11 tiles, the last one partial
+  HostHits hits(700, 4, 1, 0.3f);  // 2800 slots: 88 tiles, the last one partial
   EXPECT_NEAR(hits.kernel_area() / hits.reference_area(), 1.0, 1e-5);
 }
 
