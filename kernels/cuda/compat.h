@@ -7,6 +7,9 @@
 
 #define PM_CUDA_BACKEND 1
 #define PM_DEVICE static __device__ __forceinline__
+/* A device function kept out of line, with registers of its own (scene_traverse.h says where and
+   why). */
+#define PM_DEVICE_CALLED static __device__ __noinline__
 #define PM_GLOBAL
 #define PM_CONSTANT const
 #define PM_RESTRICT __restrict__

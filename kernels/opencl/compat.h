@@ -6,6 +6,13 @@
 
 #define PM_OPENCL_BACKEND 1
 #define PM_DEVICE static inline
+/* Out of line on NVIDIA's OpenCL, as on CUDA (scene_traverse.h says why); PoCL inlines it: a CPU's
+   work items do not share a register file. */
+#if defined(cl_nv_pragma_unroll)
+#define PM_DEVICE_CALLED static __attribute__((noinline))
+#else
+#define PM_DEVICE_CALLED static inline
+#endif
 #define PM_GLOBAL __global
 #define PM_CONSTANT __constant
 #define PM_RESTRICT restrict

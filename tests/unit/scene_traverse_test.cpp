@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "render/kernel_abi.h"
 #include "render/scene_bvh.h"
@@ -178,6 +179,65 @@ TEST(SceneTraverse, ClosestHitEqualsBruteForce) {
     EXPECT_EQ(any.triangle >= 0, brute.triangle >= 0);
   }
   EXPECT_GT(hits, 500);
+}
+
+// The textbook traversal in one loop, a node's leaf children intersected as soon as they are met:
+// the order scene_trace_from's two loops must keep.
+SceneHit one_loop_trace(const KernelGlobals& kg, const Ray& ray, float t_max, bool any_hit) {
+  SceneHit hit{t_max, -1};
+  std::vector<int> stack;
+  int node = 0;
+  for (;;) {
+    const float4* n = &kg.scene_nodes[4 * node];
+    const int child[2] = {PM_AS_INT(n[3].x), PM_AS_INT(n[3].y)}, count[2] = {PM_AS_INT(n[3].z), PM_AS_INT(n[3].w)};
+    const float t[2] = {ray_box_entry(&ray, vec3(n[0].x, n[0].z, n[2].x), vec3(n[0].y, n[0].w, n[2].y), hit.t),
+                        ray_box_entry(&ray, vec3(n[1].x, n[1].z, n[2].z), vec3(n[1].y, n[1].w, n[2].w), hit.t)};
+    bool visit[2];
+    for (int c = 0; c < 2; ++c) {
+      visit[c] = t[c] < 1e38f && child[c] >= 0;
+      if (visit[c] && count[c] > 0) {
+        if (scene_intersect_leaf(&kg, &ray, child[c], count[c], 0.0f, &hit) && any_hit) return hit;
+        visit[c] = false;
+      }
+    }
+    for (int c = 0; c < 2; ++c) visit[c] = visit[c] && t[c] < hit.t;
+    if (visit[0] && visit[1]) {
+      const int near_side = t[0] <= t[1] ? 0 : 1;
+      stack.push_back(child[1 - near_side]);
+      node = child[near_side];
+    } else if (visit[0] || visit[1]) {
+      node = child[visit[0] ? 0 : 1];
+    } else {
+      if (stack.empty()) break;
+      node = stack.back();
+      stack.pop_back();
+    }
+  }
+  return hit;
+}
+
+TEST(SceneTraverse, LeavesTogetherVisitInTheOrderOfOneLoop) {
+  // scene_trace_from walks inner nodes until one has a leaf to intersect (scene_traverse.h): the
+  // same closest hit to the bit as one loop and, for shadow rays, the same first hit: the triangle
+  // an any-hit traversal returns is the first it meets, so it tells the order of the leaves.
+  Scene scene = random_soup(3000, 8);
+  SceneBvh bvh = build_scene_bvh(scene);
+  const KernelGlobals kg = geometry_of(bvh);
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> pos(-12.0f, 12.0f);
+  int hits = 0, first_hit_not_closest = 0;
+  for (int i = 0; i < 3000; ++i) {
+    Ray ray = ray_make(vec3(pos(rng), pos(rng), pos(rng)), random_unit(rng));
+    const SceneHit closest = scene_trace(&kg, &ray, 0.0f, 1e30f, 0), expected = one_loop_trace(kg, ray, 1e30f, false);
+    ASSERT_EQ(closest.triangle, expected.triangle) << "ray " << i;
+    EXPECT_EQ(closest.t, expected.t) << "ray " << i;
+    const SceneHit first = scene_trace(&kg, &ray, 0.0f, 1e30f, 1);
+    ASSERT_EQ(first.triangle, one_loop_trace(kg, ray, 1e30f, true).triangle) << "ray " << i;
+    hits += closest.triangle >= 0;
+    first_hit_not_closest += first.triangle != closest.triangle;
+  }
+  EXPECT_GT(hits, 500);
+  EXPECT_GT(first_hit_not_closest, 20);  // shadow rays that stop before the closest hit: the order shows
 }
 
 TEST(SceneTraverse, ShortRaysFindFromTheNodeHoldingTheirBoxWhatTheyFindFromTheRoot) {
