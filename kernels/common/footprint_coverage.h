@@ -86,7 +86,8 @@ PM_DEVICE float footprint_probe_covered(const KernelGlobals* kg, int root, const
   float t_min = 0.0f;
   float gap = pm_fmaxf(1.0e-3f * reach, offset);
   for (int k = 0; k < PM_FOOTPRINT_PROBE_HITS; ++k) {
-    SceneHit hit = scene_trace_from(kg, root, &ray, t_min, 2.0f * reach, 0);
+    /* Inlined: a probe kernel does little but trace (scene_trace_from says why others call it). */
+    SceneHit hit = scene_traverse(kg, root, &ray, t_min, 2.0f * reach, 0);
     if (hit.triangle < 0) return 0.0f;
     /* Triangles are two-sided: either side may face the gather's shading point. */
     Vec3 surface_normal = scene_triangle_normal(kg->triangles, hit.triangle);

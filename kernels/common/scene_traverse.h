@@ -67,14 +67,11 @@ PM_DEVICE int scene_next_node(int visit_left, int visit_right, float t_left, flo
    leaves. A ray visits the same nodes and triangles in the same order as with one loop doing
    both (tests/unit/scene_traverse_test.cpp), so the hits are the same bits; but a warp's lanes now
    intersect their leaves together, once each has found one, instead of the few that found one at
-   this step while the others wait. A function of its own on CUDA (PM_DEVICE_CALLED), with its own
-   registers: inlined, it shares the 64 registers of kernels that do much else (the final gathers,
-   the path tracer) and spills into their loops. Measured on an H200 (docs/benchmarks.md, "Leaves
-   intersected together"): the photon trace 28 %, the coverage probes 28-34 %, the path tracer 36 %
-   and the final gathers 12-26 % faster than one inlined loop; inlined, the two loops had made the
-   final gather over photons 12-16 % slower. */
-PM_DEVICE_CALLED SceneHit scene_trace_from(const KernelGlobals* kg, int root, const Ray* ray, float t_min,
-                                           float t_max, int any_hit)
+   this step while the others wait. Measured on an H200 (docs/benchmarks.md, "Leaves intersected
+   together"): the photon trace 28 %, the coverage probes 28-34 %, the path tracer 36 % and the
+   final gathers 12-26 % faster than one loop. scene_trace_from is the same traversal out of line. */
+PM_DEVICE SceneHit scene_traverse(const KernelGlobals* kg, int root, const Ray* ray, float t_min, float t_max,
+                                  int any_hit)
 {
   PM_GLOBAL const float4* nodes = kg->scene_nodes;
   SceneHit hit;
@@ -119,6 +116,17 @@ PM_DEVICE_CALLED SceneHit scene_trace_from(const KernelGlobals* kg, int root, co
     node = scene_next_node(visit_left, visit_right, t_left, t_right, hit.t, child[0], child[1], stack, &sp);
   }
   return hit;
+}
+
+/* scene_traverse as a function of its own on CUDA and NVIDIA's OpenCL (PM_DEVICE_CALLED), with its
+   own registers: inlined, it shares the 64 registers of kernels that do much else (the camera
+   pass, the photon trace, the path tracer, the final gathers) and spills into their loops; inlined
+   there, the two loops made the final gather over photons 12-16 % slower than one loop, out of line
+   12-16 % faster. The coverage probes, which do little but trace, inline it (footprint_coverage.h). */
+PM_DEVICE_CALLED SceneHit scene_trace_from(const KernelGlobals* kg, int root, const Ray* ray, float t_min,
+                                           float t_max, int any_hit)
+{
+  return scene_traverse(kg, root, ray, t_min, t_max, any_hit);
 }
 
 PM_DEVICE SceneHit scene_trace(const KernelGlobals* kg, const Ray* ray, float t_min, float t_max, int any_hit)
