@@ -11,6 +11,7 @@
 #define PM_HOST_BACKEND 1
 #define PM_DEVICE static inline
 #define PM_DEVICE_CALLED static inline
+#define PM_TRAVERSE_LEAVES_TOGETHER 1 /* the GPUs' schedule, which the host tests check */
 #define PM_GLOBAL
 #define PM_CONSTANT const
 #define PM_RESTRICT __restrict__

@@ -62,14 +62,18 @@ PM_DEVICE int scene_next_node(int visit_left, int visit_right, float t_left, flo
 /* Closest hit in (t_min, t_max), or with any_hit set the first one found (shadow rays), among the
    triangles under inner node `root` (0: the whole scene; scene_node_holding).
 
-   Two loops, after Aila & Laine 2009 ("while-while"): the inner one walks inner nodes until it
-   reaches a node with a leaf child that the ray enters, the outer one intersects that node's
-   leaves. A ray visits the same nodes and triangles in the same order as with one loop doing
-   both (tests/unit/scene_traverse_test.cpp), so the hits are the same bits; but a warp's lanes now
+   Where PM_TRAVERSE_LEAVES_TOGETHER (compat.h: CUDA and NVIDIA's OpenCL), two loops, after Aila &
+   Laine 2009 ("while-while"): the inner one walks inner nodes until it reaches a node with a leaf
+   child that the ray enters, the outer one intersects that node's leaves, so that a warp's lanes
    intersect their leaves together, once each has found one, instead of the few that found one at
    this step while the others wait. Measured on an H200 (docs/benchmarks.md, "Leaves intersected
    together"): the photon trace 28 %, the coverage probes 28-34 %, the path tracer 36 % and the
-   final gathers 12-26 % faster than one loop. scene_trace_from is the same traversal out of line. */
+   final gathers 12-26 % faster than one loop. Elsewhere (PoCL, CPUs) one loop that intersects a
+   node's leaf children as it meets them: there the two loops, or the one loop written with the
+   two loops' helpers, made the photon trace and the coverage probes 12-27 % slower on a
+   2-core CPU (docs/benchmarks.md, "Leaves intersected together on PoCL"). Both visit the same nodes and triangles in the same order
+   (tests/unit/scene_traverse_test.cpp checks the first against the second), so the hits are the
+   same bits. scene_trace_from is the same traversal out of line. */
 PM_DEVICE SceneHit scene_traverse(const KernelGlobals* kg, int root, const Ray* ray, float t_min, float t_max,
                                   int any_hit)
 {
@@ -80,6 +84,7 @@ PM_DEVICE SceneHit scene_traverse(const KernelGlobals* kg, int root, const Ray* 
   int stack[PM_TRAVERSAL_STACK];
   int sp = 0;
   int node = root;
+#if PM_TRAVERSE_LEAVES_TOGETHER
   while (node >= 0) {
     int child[2];
     int count[2];
@@ -115,6 +120,51 @@ PM_DEVICE SceneHit scene_traverse(const KernelGlobals* kg, int root, const Ray* 
     }
     node = scene_next_node(visit_left, visit_right, t_left, t_right, hit.t, child[0], child[1], stack, &sp);
   }
+#else
+  for (;;) {
+    float4 n0 = PM_LOAD(&nodes[4 * node + 0]);
+    float4 n1 = PM_LOAD(&nodes[4 * node + 1]);
+    float4 n2 = PM_LOAD(&nodes[4 * node + 2]);
+    float4 n3 = PM_LOAD(&nodes[4 * node + 3]);
+    int child[2];
+    int count[2];
+    child[0] = PM_AS_INT(n3.x);
+    child[1] = PM_AS_INT(n3.y);
+    count[0] = PM_AS_INT(n3.z);
+    count[1] = PM_AS_INT(n3.w);
+    float t_left = ray_box_entry(ray, vec3(n0.x, n0.z, n2.x), vec3(n0.y, n0.w, n2.y), hit.t);
+    float t_right = ray_box_entry(ray, vec3(n1.x, n1.z, n2.z), vec3(n1.y, n1.w, n2.w), hit.t);
+    int visit_left = t_left < 1e38f && child[0] >= 0;
+    int visit_right = t_right < 1e38f && child[1] >= 0;
+
+    /* Leaves are intersected at once; only inner nodes go on the stack. */
+    if (visit_left && count[0] > 0) {
+      if (scene_intersect_leaf(kg, ray, child[0], count[0], t_min, &hit) && any_hit) return hit;
+      visit_left = 0;
+    }
+    if (visit_right && count[1] > 0) {
+      if (scene_intersect_leaf(kg, ray, child[1], count[1], t_min, &hit) && any_hit) return hit;
+      visit_right = 0;
+    }
+    /* A leaf hit may have shortened the ray past an inner child's entry. */
+    visit_left = visit_left && t_left < hit.t;
+    visit_right = visit_right && t_right < hit.t;
+
+    if (visit_left && visit_right) {
+      int near_child = t_left <= t_right ? child[0] : child[1];
+      int far_child = t_left <= t_right ? child[1] : child[0];
+      stack[sp++] = far_child;
+      node = near_child;
+    } else if (visit_left) {
+      node = child[0];
+    } else if (visit_right) {
+      node = child[1];
+    } else {
+      if (sp == 0) break;
+      node = stack[--sp];
+    }
+  }
+#endif
   return hit;
 }
 

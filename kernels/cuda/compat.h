@@ -10,6 +10,8 @@
 /* A device function kept out of line, with registers of its own (scene_traverse.h says where and
    why). */
 #define PM_DEVICE_CALLED static __device__ __noinline__
+/* The scene traversal's form (scene_traverse.h): a node's leaves intersected together. */
+#define PM_TRAVERSE_LEAVES_TOGETHER 1
 #define PM_GLOBAL
 #define PM_CONSTANT const
 #define PM_RESTRICT __restrict__

@@ -13,6 +13,14 @@
 #else
 #define PM_DEVICE_CALLED static inline
 #endif
+/* The scene traversal's form (scene_traverse.h): a node's leaves intersected together where work
+   items run in lockstep (NVIDIA); one loop on PoCL, where the two loops made the photon trace and
+   the coverage probes 12-17 % slower (docs/benchmarks.md, "Leaves intersected together on PoCL"). */
+#if defined(cl_nv_pragma_unroll)
+#define PM_TRAVERSE_LEAVES_TOGETHER 1
+#else
+#define PM_TRAVERSE_LEAVES_TOGETHER 0
+#endif
 #define PM_GLOBAL __global
 #define PM_CONSTANT __constant
 #define PM_RESTRICT restrict
