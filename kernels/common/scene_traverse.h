@@ -69,11 +69,12 @@ PM_DEVICE int scene_next_node(int visit_left, int visit_right, float t_left, flo
    this step while the others wait. Measured on an H200 (docs/benchmarks.md, "Leaves intersected
    together"): the photon trace 28 %, the coverage probes 28-34 %, the path tracer 36 % and the
    final gathers 12-26 % faster than one loop. Elsewhere (PoCL, CPUs) one loop that intersects a
-   node's leaf children as it meets them: there the two loops, or the one loop written with the
-   two loops' helpers, made the photon trace and the coverage probes 12-27 % slower on a
-   2-core CPU (docs/benchmarks.md, "Leaves intersected together on PoCL"). Both visit the same nodes and triangles in the same order
-   (tests/unit/scene_traverse_test.cpp checks the first against the second), so the hits are the
-   same bits. scene_trace_from is the same traversal out of line. */
+   node's leaf children as it meets them: there the two loops, or one loop written with shared
+   helpers, made the photon trace and the coverage probes 10-27 % slower on a 2-core CPU
+   (docs/benchmarks.md, "Leaves intersected together on PoCL"); the two forms are kept apart, each
+   as measured. Both visit the same nodes and triangles in the same order
+   (tests/unit/scene_traverse_test.cpp checks the first against one loop), so the hits are the same
+   bits. scene_trace_from is the same traversal out of line. */
 PM_DEVICE SceneHit scene_traverse(const KernelGlobals* kg, int root, const Ray* ray, float t_min, float t_max,
                                   int any_hit)
 {

@@ -6,19 +6,15 @@
 
 #define PM_OPENCL_BACKEND 1
 #define PM_DEVICE static inline
-/* Out of line on NVIDIA's OpenCL, as on CUDA (scene_traverse.h says why); PoCL inlines it: a CPU's
-   work items do not share a register file. */
+/* The scene traversal (scene_traverse.h) on NVIDIA's OpenCL as on CUDA: out of line, a node's leaves
+   intersected together. PoCL inlines it (a CPU's work items do not share a register file) and keeps
+   one loop, where the two loops made the photon trace and the coverage probes 10-21 % slower
+   (docs/benchmarks.md, "Leaves intersected together on PoCL"). */
 #if defined(cl_nv_pragma_unroll)
 #define PM_DEVICE_CALLED static __attribute__((noinline))
-#else
-#define PM_DEVICE_CALLED static inline
-#endif
-/* The scene traversal's form (scene_traverse.h): a node's leaves intersected together where work
-   items run in lockstep (NVIDIA); one loop on PoCL, where the two loops made the photon trace and
-   the coverage probes 12-17 % slower (docs/benchmarks.md, "Leaves intersected together on PoCL"). */
-#if defined(cl_nv_pragma_unroll)
 #define PM_TRAVERSE_LEAVES_TOGETHER 1
 #else
+#define PM_DEVICE_CALLED static inline
 #define PM_TRAVERSE_LEAVES_TOGETHER 0
 #endif
 #define PM_GLOBAL __global

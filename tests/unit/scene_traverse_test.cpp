@@ -226,7 +226,6 @@ TEST(SceneTraverse, ClosestHitEqualsBruteForceInTheOrderOfOneLoop) {
   EXPECT_GT(first_hit_not_closest, 20);  // shadow rays that stop before the closest hit: the order shows
 }
 
-
 TEST(SceneTraverse, ShortRaysFindFromTheNodeHoldingTheirBoxWhatTheyFindFromTheRoot) {
   // Segments of random direction inside small boxes about random points of a dense soup: traced
   // from scene_node_holding's node, the closest hit is the root's, bit for bit, and the node is
