@@ -25,6 +25,8 @@ usage: progressive_suite.sh [options]
                         whole suite then fits a 10-minute call on the GPU machine, 393 s on an H200)
   --resolution WxH      image size (default: 1920x1080)
   --photons N           photons per pass (default: 1048576)
+  --reference-photons N photons per pass of the Cornell box's reference (default: 4194304; fewer
+                        where a pass takes long, as on a CPU, so that its time holds many passes)
   --estimator E         pd, knn or radius (default: pd)
   --progressive MODE    average or shrink (default: shrink)
   --pmrender PATH       the pmrender binary (default: build/pmrender, or the bundle's bin/pmrender)
@@ -34,7 +36,7 @@ USAGE
 
 suite_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 backends=cuda out="" scenes="sponza cornell-box" times="1 10 60" reference_times="20 40" resolution=1920x1080
-photons=1048576 estimator=pd mode=shrink pmrender=""
+photons=1048576 reference_photons=4194304 estimator=pd mode=shrink pmrender=""
 while [ $# -gt 0 ]; do
   case $1 in
     --backend) backends=$2; shift 2 ;;
@@ -44,6 +46,7 @@ while [ $# -gt 0 ]; do
     --reference-time) reference_times=${2//,/ }; shift 2 ;;
     --resolution) resolution=$2; shift 2 ;;
     --photons) photons=$2; shift 2 ;;
+    --reference-photons) reference_photons=$2; shift 2 ;;
     --estimator) estimator=$2; shift 2 ;;
     --progressive) mode=$2; shift 2 ;;
     --pmrender) pmrender=$2; shift 2 ;;
@@ -51,7 +54,10 @@ while [ $# -gt 0 ]; do
     *) echo "progressive_suite.sh: unknown option '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
-[[ $photons =~ ^[1-9][0-9]*$ ]] || { echo "progressive_suite.sh: --photons: expected a positive number, got '$photons'" >&2; exit 2; }
+for option in photons reference_photons; do
+  [[ ${!option} =~ ^[1-9][0-9]*$ ]] ||
+    { echo "progressive_suite.sh: --${option//_/-}: expected a positive number, got '${!option}'" >&2; exit 2; }
+done
 for t in $times $reference_times; do
   [[ $t =~ ^[0-9]+([.][0-9]+)?$ ]] || { echo "progressive_suite.sh: expected seconds, got '$t'" >&2; exit 2; }
 done
@@ -78,7 +84,7 @@ scene_args() {
 reference_args() {
   case $1 in
     sponza) echo "--method path --spp 4" ;;
-    cornell-box) echo "--method photon --estimator radius --radius 0.02 --progressive shrink --alpha 0.5 --photons 4194304" ;;
+    cornell-box) echo "--method photon --estimator radius --radius 0.02 --progressive shrink --alpha 0.5 --photons $reference_photons" ;;
   esac
 }
 for s in "${scene_list[@]}"; do
