@@ -9,6 +9,7 @@
 #include <CL/cl_ext.h>
 
 #include <array>
+#include <cstdlib>
 #include <cstdio>
 #include <cstring>
 #include <mutex>
@@ -56,6 +57,12 @@ std::string gib_text(uint64_t bytes) {
   char text[32];
   std::snprintf(text, sizeof(text), "%.1f GiB", double(bytes) / double(uint64_t(1) << 30));
   return text;
+}
+
+// The major version of a PoCL device's driver ("3.1+debian": 3); 0 for other platforms.
+int pocl_major_version(const DeviceInfo& info) {
+  if (info.platform.find("Portable Computing Language") == std::string::npos) return 0;
+  return std::atoi(info.driver.c_str());
 }
 
 DeviceInfo describe(const DeviceEntry& entry, int index) {
@@ -199,16 +206,20 @@ class OpenclDevice final : public Device {
 
   void build_program() {
     // No -cl-fast-relaxed-math: it implies finite-math-only, and the slab tests rely on IEEE
-    // infinities for axis-parallel rays. The device's index makes each device's program its own:
-    // PoCL 5 shares one compiled library between identical programs of two of its CPU devices and
-    // then releases it twice (an assertion in pocl_release_dlhandle_cache aborted the process).
+    // infinities for axis-parallel rays.
     OpenclProgramRequest request;
     request.context = context_;
     request.device = device_;
     request.platform = platform_;
     request.source = kOpenclKernelSource;
     request.source_size = kOpenclKernelSourceSize;
-    request.options = "-cl-std=CL1.2 -cl-mad-enable -D PM_OPENCL_DEVICE_INDEX=" + std::to_string(info_.index);
+    request.options = "-cl-std=CL1.2 -cl-mad-enable";
+    // PoCL 5 shares one compiled library between identical programs of two of its CPU devices and
+    // then releases it twice (an assertion in pocl_release_dlhandle_cache aborted the process):
+    // there the device's index makes each device's program its own. PoCL 3 (Debian 12's) runs two
+    // devices on one program (tests/opencl/multi_device_cli_test.cpp), which it then compiles once
+    // rather than once per device (about 30 s on 2 cores when its kernel cache is cold).
+    if (pocl_major_version(info_) >= 4) request.options += " -D PM_OPENCL_DEVICE_INDEX=" + std::to_string(info_.index);
     // As on CUDA, the tracing kernels are faster with more resident warps than registers: capped
     // at 64 registers for the whole program, the path tracer's pass ran 31 % and the 1080p photon
     // frames 4.6-13.9 % faster on an H100 (docs/benchmarks.md, "Registers against occupancy";
