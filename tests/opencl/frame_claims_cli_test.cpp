@@ -136,7 +136,7 @@ TEST_F(FrameClaimsCli, WaitingRendersEndOnlyWhenEveryFrameIsComplete) {
 }
 
 TEST_F(FrameClaimsCli, KilledRunLeavesAStaleClaimThatTheNextRunTakesOver) {
-  const pid_t killed = test::start_pmrender(render_args("0-23"), dir_ / "a");
+  const pid_t killed = test::start_pmrender(render_args("0-7"), dir_ / "a");
   ASSERT_GT(killed, 0);
   // Kill it while it renders frame 2 with frames 0 and 1 done: frame 2 claimed, frame 1's file in
   // place and its claim released (a frame's file is written while the next one renders, so for a
@@ -155,7 +155,7 @@ TEST_F(FrameClaimsCli, KilledRunLeavesAStaleClaimThatTheNextRunTakesOver) {
   EXPECT_FALSE(fs::exists(frame_path(claimed)));
   expect_all_complete(0, 1);
 
-  ProcessResult r = pmrender("frames check -o " + pattern() + " --frames 0-23");
+  ProcessResult r = pmrender("frames check -o " + pattern() + " --frames 0-7");
   EXPECT_EQ(r.exit_code, 1);
   const std::string stale_line = "frame " + std::to_string(claimed) + ": " + frame_path(claimed) +
                                  ": stale claim (missing, no such file; pid " + std::to_string(killed) + " on ";
@@ -166,7 +166,7 @@ TEST_F(FrameClaimsCli, KilledRunLeavesAStaleClaimThatTheNextRunTakesOver) {
   // What a kill between a frame's rename and its claim's removal leaves: a complete frame with a
   // stale claim. --resume keeps the frame and removes the claim.
   fs::copy_file(claim_path_for(frame_path(claimed)), claim_path_for(frame_path(0)));
-  r = pmrender(render_args("0-23") + " --resume -v");
+  r = pmrender(render_args("0-7") + " --resume -v");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(test::written_frames(r.out).count(0), 0u) << r.out;
   EXPECT_NE(r.out.find("removed stale claim " + claim_path_for(frame_path(0)) + ": pid " + std::to_string(killed)),
@@ -177,7 +177,7 @@ TEST_F(FrameClaimsCli, KilledRunLeavesAStaleClaimThatTheNextRunTakesOver) {
             std::string::npos)
       << r.out;
   EXPECT_EQ(test::written_frames(r.out).count(claimed), 1u) << r.out;
-  expect_all_complete(0, 23);
+  expect_all_complete(0, 7);
   EXPECT_TRUE(claim_files().empty());
 }
 
