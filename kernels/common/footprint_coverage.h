@@ -8,18 +8,19 @@
    columns, cornices) that is 10-20 % of the indirect light, a bias that no photon count removes
    while the footprints keep their size.
 
-   The covered share is measured with probes: PM_FOOTPRINT_PROBES points spread evenly over the
-   unit disc (Vogel's spiral: each point in the middle of an equal-area cell, the pattern turned
-   by an angle drawn per hit so that its error does not line up between footprints), each
-   weighted by the kernel at its radius. A probe that the cuts exclude does not count at all (the
+   The covered share is measured with probes: PM_FOOTPRINT_EDGE_PROBES points spread evenly over
+   the unit disc (Vogel's spiral: each point in the middle of an equal-area cell, the pattern
+   turned by an angle drawn per hit so that its error does not line up between footprints), each
+   weighted by the kernel at its radius. A footprint traces PM_FOOTPRINT_PROBES of them first (the
+   first pattern, below); only one that they find partly covered traces the others. A probe that the cuts exclude does not count at all (the
    clip's kept fraction accounts for it exactly). A kept probe is covered when a ray along -n
    through the ellipsoid's thickness there finds a surface the gather would accept
    (footprint_probe_covered). The footprint's area is multiplied by the covered share of the kept
    kernel mass, so each photon's flux integrates to itself over the shading points it reaches.
 
    A footprint whose probes all miss still covers its own hit: it counts as half a probe's cell,
-   so the flux never divides by zero. Cost: up to PM_FOOTPRINT_PROBES short rays per footprint,
-   O(photons), not O(gathers). */
+   so the flux never divides by zero. Cost: PM_FOOTPRINT_PROBES short rays per footprint, and
+   PM_FOOTPRINT_EDGE_PROBES in all at an edge: O(photons), not O(gathers). */
 #ifndef PM_FOOTPRINT_COVERAGE_H
 #define PM_FOOTPRINT_COVERAGE_H
 
@@ -30,9 +31,9 @@
 #include "rng.h"
 #include "scene_traverse.h"
 
-/* Probes per footprint: PM_FOOTPRINT_PROBES (types.h), 16, puts the share's quantisation at about
-   6 % of a footprint, which averages out over the tens to hundreds of footprints of a gather;
-   PM_FOOTPRINT_EDGE_PROBES more for footprints that the first pattern finds partly covered. */
+/* Probes per footprint (types.h): the first pattern's PM_FOOTPRINT_PROBES (16) tell whether the
+   surface ends inside the footprint; where it does, all PM_FOOTPRINT_EDGE_PROBES (64) measure
+   the covered share, whose quantisation is then about 1.6 % of a footprint. */
 /* The golden angle, pi (3 - sqrt(5)). */
 #define PM_GOLDEN_ANGLE 2.39996323f
 /* Random stream of the probe pattern's turn per hit. */
@@ -123,28 +124,58 @@ PM_DEVICE void footprint_probe_bounds(const Footprint* f, Vec3 center, Vec3 n, f
   *hi = vec3_add(center, ext);
 }
 
-/* Whether the cuts keep probe j of a `count`-probe pattern turned by `turn`; if so its disc point
-   (x, y) and its kernel weight w. */
-PM_DEVICE int footprint_probe_kept(const FootprintCut* cut, uint j, uint count, float turn, uint shape, float* x,
-                                   float* y, float* w)
+/* The first pattern is 16 of the 64 probes, so that a footprint at an edge traces the other 48
+   and not 64 more: probes 5, 8, 11, 12, 14, 15, 30, 31, 37, 41, 42, 46, 47, 53, 56 and 57, chosen
+   (bench/first_probe_subset.py) for what a pattern of 16 must do, tell an edge: of random
+   straight rims, convex and concave corners and holes in a footprint about a covered centre, the
+   kernel mass left uncovered where all 16 probes are covered is at most what a 16-point spiral of
+   its own leaves (0.83 to 0.95 of it by kind, constant and Epanechnikov kernels;
+   tests/unit/footprint_first_pattern_test.cpp). Probe j of the first pattern is byte j % 4 of
+   word j / 4; the mask has bit q set for each (bit q % 32 of word q / 32). */
+#define PM_FIRST_PROBES_0 0x0c0b0805u /* 5, 8, 11, 12 */
+#define PM_FIRST_PROBES_1 0x1f1e0f0eu /* 14, 15, 30, 31 */
+#define PM_FIRST_PROBES_2 0x2e2a2925u /* 37, 41, 42, 46 */
+#define PM_FIRST_PROBES_3 0x3938352fu /* 47, 53, 56, 57 */
+#define PM_FIRST_PROBE_MASK_LO 0xc000d920u
+#define PM_FIRST_PROBE_MASK_HI 0x0320c620u
+
+/* Probe j (< PM_FOOTPRINT_PROBES) of the first pattern, as a probe of the whole pattern. */
+PM_DEVICE uint footprint_first_probe(uint j)
 {
-  footprint_probe_point(j, count, turn, x, y);
+  uint word = j < 8u ? (j < 4u ? PM_FIRST_PROBES_0 : PM_FIRST_PROBES_1) : (j < 12u ? PM_FIRST_PROBES_2 : PM_FIRST_PROBES_3);
+  return (word >> (8u * (j & 3u))) & 0xffu;
+}
+
+/* Whether probe q of the whole pattern belongs to the first. */
+PM_DEVICE uint footprint_probe_in_first(uint q)
+{
+  return ((q < 32u ? PM_FIRST_PROBE_MASK_LO : PM_FIRST_PROBE_MASK_HI) >> (q & 31u)) & 1u;
+}
+
+/* Whether the cuts keep probe q of the whole pattern turned by `turn`; if so its disc point (x, y)
+   and its kernel weight w. */
+PM_DEVICE int footprint_probe_kept(const FootprintCut* cut, uint q, float turn, uint shape, float* x, float* y,
+                                   float* w)
+{
+  footprint_probe_point(q, PM_FOOTPRINT_EDGE_PROBES, turn, x, y);
   if (!footprint_cut_keeps(cut, *x, *y)) return 0;
   *w = shape == PM_KERNEL_EPANECHNIKOV ? kernel_epanechnikov(*x * *x + *y * *y) : 1.0f;
   return 1;
 }
 
-/* Covered and kept kernel weights of a `count`-probe pattern (see footprint_covered_share). */
+/* Adds to *kept, *covered and *kept_probes the kept and covered kernel weights of the first
+   pattern's probes (`rest` 0), or of the others of the whole pattern (`rest` 1; see
+   footprint_covered_share). */
 PM_DEVICE void footprint_probe_pattern(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut, Vec3 center,
                                        Vec3 n, float offset, float turn, uint shape, uint area_mode, Vec3 wi,
-                                       uint count, float* kept, float* covered, uint* kept_probes)
+                                       uint rest, float* kept, float* covered, uint* kept_probes)
 {
-  *kept = 0.0f;
-  *covered = 0.0f;
-  *kept_probes = 0u;
-  for (uint j = 0; j < count; ++j) {
+  uint count = rest ? PM_FOOTPRINT_EDGE_PROBES : PM_FOOTPRINT_PROBES;
+  for (uint i = 0; i < count; ++i) {
+    uint q = rest ? i : footprint_first_probe(i);
+    if (rest && footprint_probe_in_first(q)) continue;
     float x, y, w;
-    if (!footprint_probe_kept(cut, j, count, turn, shape, &x, &y, &w)) continue;
+    if (!footprint_probe_kept(cut, q, turn, shape, &x, &y, &w)) continue;
     *kept += w;
     ++*kept_probes;
     *covered += w * footprint_probe_covered(kg, 0, f, center, n, offset, x, y, area_mode, wi);
@@ -164,24 +195,25 @@ PM_DEVICE float footprint_share_of(float kept, float covered, uint kept_probes)
 
 /* Share of the kernel mass kept by `cut` that lies over accepted surface, in (0, 1] (with an area
    mode, footprint_probe_covered: that surface's area over the kept disc's, up to 2).
-   turn: the pattern's angle for this hit. A footprint that its PM_FOOTPRINT_PROBES probes find
-   partly covered (or, with an area mode, tilted) is measured again with PM_FOOTPRINT_EDGE_PROBES: the flux is divided by the share, and
-   1 / share is convex, so its noise is a bias (+1.0 % in Sponza's first bounce with 16 probes
-   throughout, at the smallest footprints measured; docs/accuracy.md). Footprints wholly on a surface,
-   most of them, cost the first pattern only. One work item measures the whole pattern here (the
+   turn: the pattern's angle for this hit. A footprint that its first pattern finds partly covered
+   (or, with an area mode, tilted) is measured with all PM_FOOTPRINT_EDGE_PROBES, the first
+   pattern's and the others: the flux is divided by the share, and 1 / share is convex, so its
+   noise is a bias (+1.0 % in Sponza's first bounce with 16 probes throughout, at the smallest
+   footprints measured; docs/accuracy.md). Footprints wholly on a surface, most of them, cost the
+   first pattern only. One work item measures the whole pattern here (the
    knn gather's region about a shading point); the photon map's footprints spread theirs over a
    work item per probe (footprint_probes.h). */
 PM_DEVICE float footprint_covered_share(const KernelGlobals* kg, const Footprint* f, const FootprintCut* cut,
                                         Vec3 center, Vec3 n, float offset, float turn, uint shape, uint area_mode,
                                         Vec3 wi)
 {
-  float kept, covered;
-  uint kept_probes;
-  footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, area_mode, wi, PM_FOOTPRINT_PROBES, &kept,
-                          &covered, &kept_probes);
+  float kept = 0.0f, covered = 0.0f;
+  uint kept_probes = 0u;
+  footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, area_mode, wi, 0u, &kept, &covered,
+                          &kept_probes);
   if (footprint_pattern_at_edge(kept, covered))
-    footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, area_mode, wi, PM_FOOTPRINT_EDGE_PROBES, &kept,
-                            &covered, &kept_probes);
+    footprint_probe_pattern(kg, f, cut, center, n, offset, turn, shape, area_mode, wi, 1u, &kept, &covered,
+                            &kept_probes);
   return footprint_share_of(kept, covered, kept_probes);
 }
 

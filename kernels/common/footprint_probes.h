@@ -7,13 +7,14 @@
 
    The stage's launches over the sorted hits (render/photon/photon_mapping.cpp runs them):
    1. photon_footprint (photon_footprint.h): the footprint and its cuts, stashed at k;
-   2. photon_footprint_probe: probe j of hit k's first pattern, its covered weight kept;
+   2. photon_footprint_probe: probe j of hit k's first pattern, its covered value kept;
    3. photon_footprint_pattern: the first pattern's sums, and whether the footprint is at an edge:
       those that are join a list (in any order: each writes only its own values);
-   4. photon_footprint_edge_probe: the second pattern of the listed footprints, so that a warp's
-      lanes all work on footprints at edges: its 64 probes taken in the order of their angles,
-      lane j tracing those of rank j, j + 16, j + 32, j + 48 (round r a quarter of the disc, whose
-      probes mostly lie on one side of the edge) and keeping their weighted sum;
+   4. photon_footprint_edge_probe: the second pattern of the listed footprints, the 48 probes of
+      the whole pattern that the first did not trace, so that a warp's lanes all work on
+      footprints at edges: taken in the order of their angles, lane j tracing those of rank j,
+      j + 16, j + 32 (round r a third of the disc, whose probes mostly lie on one side of the
+      edge) and keeping their weighted sum with the first pattern's probe j;
    5. photon_footprint_rim (footprint_rim.h): over the list, the share from those sums and the
       rim the footprint folds at, left in its probes' values;
    6. photon_footprint_store (photon_footprint.h): the gather data.
@@ -41,20 +42,21 @@
 #include "kernel_globals.h"
 #include "ray.h"
 
-/* Rounds of PM_FOOTPRINT_PROBES lanes that trace the second pattern. */
-#define PM_FOOTPRINT_EDGE_ROUNDS (PM_FOOTPRINT_EDGE_PROBES / PM_FOOTPRINT_PROBES)
+/* Rounds of PM_FOOTPRINT_PROBES lanes that trace the second pattern: the whole pattern less the
+   first. */
+#define PM_FOOTPRINT_EDGE_ROUNDS ((PM_FOOTPRINT_EDGE_PROBES - PM_FOOTPRINT_PROBES) / PM_FOOTPRINT_PROBES)
 /* The probes' values of hit k. */
 #define PM_FOOTPRINT_PROBE_VALUES(kg, k) ((PM_GLOBAL float*)(kg)->hit_records + PM_FOOTPRINT_PROBES * (k))
 
 /* The list of footprints at edges, after the probes' values of hit_count hits. */
 #define PM_FOOTPRINT_EDGE_LIST(kg, p) ((PM_GLOBAL uint*)(kg)->hit_records + PM_FOOTPRINT_PROBES * (p)->hit_count)
 
-/* The bits of hit k's second-pattern probes that found a surface (bit q % 32 of word q / 32), after
-   the list. */
+/* The bits of hit k's probes of the whole pattern that found a surface (bit q % 32 of word q / 32),
+   after the list. */
 #define PM_FOOTPRINT_EDGE_MASK(kg, p, k) \
   ((PM_GLOBAL uint*)(kg)->hit_records + (PM_FOOTPRINT_PROBES + 1u) * (p)->hit_count + 2u * (k))
 
-/* The probe after probe q of the second pattern in the order of their angles about the centre
+/* The probe after probe q of the whole pattern in the order of their angles about the centre
    (golden angle * q, turned alike for every probe). By the three-distance theorem the angles of
    q golden-angle steps leave between neighbours the gaps of 55, 34 and 21 steps (Fibonacci
    numbers, 21 + 34 = 55): the next angle is that of q + 55, else q - 34, else q + 21, the first
@@ -65,14 +67,13 @@ PM_DEVICE uint footprint_edge_probe_next(uint q)
   return q + 55u < PM_FOOTPRINT_EDGE_PROBES ? q + 55u : (q >= 34u ? q - 34u : q + 21u);
 }
 
-/* The second pattern's probes in the order of their angles, from probe 0's: order[rank]. */
-PM_DEVICE void footprint_edge_probe_order(uint* order)
+/* The second pattern's probe after probe q in the order of their angles: the next that the first
+   pattern did not trace. Probe 0, the first by angle, is not in the first pattern. */
+PM_DEVICE uint footprint_second_probe_next(uint q)
 {
-  uint q = 0u;
-  for (uint rank = 0; rank < PM_FOOTPRINT_EDGE_PROBES; ++rank) {
-    order[rank] = q;
-    q = footprint_edge_probe_next(q);
-  }
+  do q = footprint_edge_probe_next(q);
+  while (footprint_probe_in_first(q));
+  return q;
 }
 
 /* The footprint stashed at k by photon_footprint. */
@@ -100,15 +101,15 @@ PM_DEVICE FootprintCut footprint_stashed_cut(const KernelGlobals* kg, uint k)
   return cut;
 }
 
-/* Covered weight of probe j of a `count`-probe pattern of the footprint stashed at k
+/* Covered value of probe q of the whole pattern of the footprint stashed at k
    (footprint_probe_covered), and in w its kernel weight; both 0 where the cuts drop it. */
 PM_DEVICE float footprint_stashed_probe(const KernelGlobals* kg, const LaunchParams* p, const Footprint* f,
-                                        const FootprintCut* cut, uint k, uint j, uint count, float* w)
+                                        const FootprintCut* cut, uint k, uint q, float* w)
 {
   float4 normal_turn = kg->map_lo[k];
   float x, y;
   *w = 0.0f;
-  if (!footprint_probe_kept(cut, j, count, normal_turn.w, p->kernel_shape, &x, &y, w)) return 0.0f;
+  if (!footprint_probe_kept(cut, q, normal_turn.w, p->kernel_shape, &x, &y, w)) return 0.0f;
   Vec3 center = vec3_from_float4(kg->map_center[k]);
   return footprint_probe_covered(kg, (int)PM_AS_UINT(kg->map_power[k].w), f, center, vec3_from_float4(normal_turn),
                                  ray_offset_distance(center, 0.0f, p->ray_epsilon), x, y,
@@ -117,14 +118,14 @@ PM_DEVICE float footprint_stashed_probe(const KernelGlobals* kg, const LaunchPar
 }
 
 /* Work item = PM_FOOTPRINT_PROBES * (k - batch_first) + j: probe j of hit k's first pattern. Its
-   covered weight alone is kept (launch 3 weighs it, in the order of footprint_probe_pattern). */
+   covered value alone is kept (launch 3 weighs it, in the order of footprint_probe_pattern). */
 PM_DEVICE void kernel_photon_footprint_probe(const KernelGlobals* kg, const LaunchParams* p, uint index)
 {
   uint k = p->batch_first + index / PM_FOOTPRINT_PROBES, j = index % PM_FOOTPRINT_PROBES;
   Footprint f = footprint_stashed(kg, k);
   FootprintCut cut = footprint_stashed_cut(kg, k);
   float w;
-  PM_FOOTPRINT_PROBE_VALUES(kg, k)[j] = footprint_stashed_probe(kg, p, &f, &cut, k, j, PM_FOOTPRINT_PROBES, &w);
+  PM_FOOTPRINT_PROBE_VALUES(kg, k)[j] = footprint_stashed_probe(kg, p, &f, &cut, k, footprint_first_probe(j), &w);
 }
 
 /* The first pattern's kept and covered weights of the footprint at k, summed in
@@ -139,7 +140,7 @@ PM_DEVICE uint footprint_first_pattern_sums(const KernelGlobals* kg, const Launc
   uint kept_probes = 0u;
   for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) {
     float x, y, w;
-    if (!footprint_probe_kept(&cut, j, PM_FOOTPRINT_PROBES, turn, p->kernel_shape, &x, &y, &w)) continue;
+    if (!footprint_probe_kept(&cut, footprint_first_probe(j), turn, p->kernel_shape, &x, &y, &w)) continue;
     kept += w;
     ++kept_probes;
     covered += w * values[j];
@@ -162,22 +163,32 @@ PM_DEVICE void kernel_photon_footprint_pattern(const KernelGlobals* kg, const La
     PM_FOOTPRINT_EDGE_LIST(kg, p)[pm_atomic_add_u32(&kg->hit_record_count[0], 1u)] = k;
 }
 
-/* The weighted covered sum of lane j's second-pattern probes for the footprint at k: those of
-   rank j + PM_FOOTPRINT_PROBES r, r < PM_FOOTPRINT_EDGE_ROUNDS, in the order of their angles. The
-   probes that find a surface set their bits in the footprint's mask. */
+/* Sets bit q of the mask of the footprint at k: probe q of the whole pattern found a surface. */
+PM_DEVICE void footprint_mark_covered(const KernelGlobals* kg, const LaunchParams* p, uint k, uint q)
+{
+  pm_atomic_or_u32(PM_FOOTPRINT_EDGE_MASK(kg, p, k) + (q >> 5), 1u << (q & 31u));
+}
+
+/* Lane j's weighted covered sum for the footprint at k: the first pattern's probe j, whose value
+   launch 2 left in the lane's slot, and the second pattern's probes of rank j + PM_FOOTPRINT_PROBES
+   r, r < PM_FOOTPRINT_EDGE_ROUNDS, in the order of their angles. The probes that find a surface
+   set their bits in the footprint's mask. */
 PM_DEVICE float footprint_edge_lane_sum(const KernelGlobals* kg, const LaunchParams* p, uint k, uint j)
 {
   Footprint f = footprint_stashed(kg, k);
   FootprintCut cut = footprint_stashed_cut(kg, k);
+  uint first = footprint_first_probe(j);
+  float x, y, w;
+  float covered = 0.0f, value = PM_FOOTPRINT_PROBE_VALUES(kg, k)[j];
+  if (footprint_probe_kept(&cut, first, kg->map_lo[k].w, p->kernel_shape, &x, &y, &w)) covered = w * value;
+  if (value > 0.0f) footprint_mark_covered(kg, p, k, first);
   uint q = 0u;
-  for (uint step = 0; step < j; ++step) q = footprint_edge_probe_next(q);
-  float covered = 0.0f;
+  for (uint step = 0; step < j; ++step) q = footprint_second_probe_next(q);
   for (uint r = 0; r < PM_FOOTPRINT_EDGE_ROUNDS; ++r) {
-    float w;
-    float c = footprint_stashed_probe(kg, p, &f, &cut, k, q, PM_FOOTPRINT_EDGE_PROBES, &w);
+    float c = footprint_stashed_probe(kg, p, &f, &cut, k, q, &w);
     covered += w * c; /* a dropped probe adds 0 */
-    if (c > 0.0f) pm_atomic_or_u32(PM_FOOTPRINT_EDGE_MASK(kg, p, k) + (q >> 5), 1u << (q & 31u));
-    for (uint step = 0; step < PM_FOOTPRINT_PROBES; ++step) q = footprint_edge_probe_next(q);
+    if (c > 0.0f) footprint_mark_covered(kg, p, k, q);
+    for (uint step = 0; step < PM_FOOTPRINT_PROBES; ++step) q = footprint_second_probe_next(q);
   }
   return covered;
 }
@@ -203,7 +214,7 @@ PM_DEVICE void kernel_photon_footprint_coverage(const KernelGlobals* kg, const L
   PM_GLOBAL float* values = PM_FOOTPRINT_PROBE_VALUES(kg, k);
   for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) {
     float w;
-    values[j] = footprint_stashed_probe(kg, p, &f, &cut, k, j, PM_FOOTPRINT_PROBES, &w);
+    values[j] = footprint_stashed_probe(kg, p, &f, &cut, k, footprint_first_probe(j), &w);
   }
   if (!footprint_first_pattern_sums(kg, p, k)) return;
   for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) values[j] = footprint_edge_lane_sum(kg, p, k, j);
@@ -215,7 +226,7 @@ PM_DEVICE void kernel_photon_footprint_coverage(const KernelGlobals* kg, const L
 PM_DEVICE int footprint_stashed_at_edge(const KernelGlobals* kg, uint k) { return PM_AS_UINT(kg->map_hi[k].w) != 0u; }
 
 /* The covered share of the footprint at k from launches 3 and 4 (footprint_covered_share's
-   answer; at an edge the second pattern's weights are summed per lane, then over the lanes). */
+   answer; at an edge the whole pattern's weights are summed per lane, then over the lanes). */
 PM_DEVICE float footprint_stashed_share(const KernelGlobals* kg, const LaunchParams* p, uint k)
 {
   float4 first = kg->map_hi[k];
@@ -225,24 +236,16 @@ PM_DEVICE float footprint_stashed_share(const KernelGlobals* kg, const LaunchPar
     FootprintCut cut = footprint_stashed_cut(kg, k);
     float turn = kg->map_lo[k].w;
     PM_GLOBAL const float* values = PM_FOOTPRINT_PROBE_VALUES(kg, k);
-    uint order[PM_FOOTPRINT_EDGE_PROBES];
-    footprint_edge_probe_order(order);
     kept = 0.0f;
     covered = 0.0f;
     kept_probes = 0u;
-    for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) {
-      float lane_kept = 0.0f;
-      for (uint r = 0; r < PM_FOOTPRINT_EDGE_ROUNDS; ++r) {
-        float x, y, w;
-        if (!footprint_probe_kept(&cut, order[j + PM_FOOTPRINT_PROBES * r], PM_FOOTPRINT_EDGE_PROBES, turn,
-                                  p->kernel_shape, &x, &y, &w))
-          continue;
-        lane_kept += w;
-        ++kept_probes;
-      }
-      kept += lane_kept;
-      covered += values[j];
+    for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q) {
+      float x, y, w;
+      if (!footprint_probe_kept(&cut, q, turn, p->kernel_shape, &x, &y, &w)) continue;
+      kept += w;
+      ++kept_probes;
     }
+    for (uint j = 0; j < PM_FOOTPRINT_PROBES; ++j) covered += values[j];
   }
   return footprint_share_of(kept, covered, kept_probes);
 }

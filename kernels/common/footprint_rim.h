@@ -18,7 +18,7 @@
    sliver that their first 16 probes miss do not fold: 0.95 at the rim on a ledge of uniform
    photons, tests/unit/footprint_probes_test.cpp).
 
-   The line comes from the second pattern of coverage probes (64, footprint_probes.h), which every
+   The line comes from the whole pattern of coverage probes (64, footprint_probes.h), which every
    footprint at an edge traces: of the lines that separate its covered probes from the uncovered
    ones, the one with the widest gap between them, placed halfway across that gap. It is
    accepted only where such a line exists and every covered probe lies on a surface of the
@@ -204,7 +204,7 @@ PM_DEVICE int footprint_stashed_rim(const KernelGlobals* kg, const LaunchParams*
   float x[PM_FOOTPRINT_EDGE_PROBES], y[PM_FOOTPRINT_EDGE_PROBES], w[PM_FOOTPRINT_EDGE_PROBES];
   for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q) {
     w[q] = 0.0f;
-    if (footprint_probe_kept(&cut, q, PM_FOOTPRINT_EDGE_PROBES, turn, p->kernel_shape, &x[q], &y[q], &w[q])) {
+    if (footprint_probe_kept(&cut, q, turn, p->kernel_shape, &x[q], &y[q], &w[q])) {
       if (q < 32u) kept_lo |= 1u << q;
       else kept_hi |= 1u << (q - 32u);
     }

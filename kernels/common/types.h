@@ -86,9 +86,10 @@ typedef struct CameraParams {
 #define PM_RECORD_DP_V 3u     /* w = flux blue */
 #define PM_RECORD_POSITION 4u /* xyz where the photon hit, w = 0 */
 
-/* Coverage probes per footprint (footprint_coverage.h): the first pattern, and the second for
-   footprints that the first finds partly covered. The photon map's footprints trace the first
-   with a work item per probe (footprint_probes.h), and the host sizes those launches by it. */
+/* Coverage probes per footprint (footprint_coverage.h): the first pattern, and the whole pattern,
+   which holds the first, for footprints that the first finds partly covered. The photon map's
+   footprints trace the first with a work item per probe (footprint_probes.h), and the host sizes
+   those launches by it. */
 #define PM_FOOTPRINT_PROBES 16u
 #define PM_FOOTPRINT_EDGE_PROBES 64u
 

@@ -208,22 +208,43 @@ void expect_shares_match(uint shape, int facet_weighting) {
   EXPECT_GE(whole, 3);
 }
 
-TEST(FootprintProbes, TheSecondPatternsOrderVisitsEveryProbeOnceByAngle) {
-  uint order[PM_FOOTPRINT_EDGE_PROBES];
-  footprint_edge_probe_order(order);
+// Probe q's angle about the centre, in [0, 2 pi).
+double probe_angle(uint q) {
+  float x, y;
+  footprint_probe_point(q, PM_FOOTPRINT_EDGE_PROBES, 0.0f, &x, &y);
+  const double angle = std::atan2(double(y), double(x));
+  return angle < 0 ? angle + 2 * M_PI : angle;
+}
+
+// Walking `next` from probe 0 `count` times visits distinct probes by increasing angle; returns them.
+template <typename Next>
+std::vector<uint> walk_by_angle(Next next, uint count) {
+  std::vector<uint> order;
   std::vector<int> seen(PM_FOOTPRINT_EDGE_PROBES, 0);
+  uint q = 0u;
   double last = -1.0;
-  for (uint rank = 0; rank < PM_FOOTPRINT_EDGE_PROBES; ++rank) {
-    ASSERT_LT(order[rank], PM_FOOTPRINT_EDGE_PROBES);
-    ++seen[order[rank]];
-    float x, y;
-    footprint_probe_point(order[rank], PM_FOOTPRINT_EDGE_PROBES, 0.0f, &x, &y);
-    double angle = std::atan2(double(y), double(x));
-    if (angle < 0) angle += 2 * M_PI;
-    EXPECT_GT(angle, last) << "rank " << rank << ", probe " << order[rank];
-    last = angle;
+  for (uint rank = 0; rank < count; ++rank) {
+    EXPECT_LT(q, PM_FOOTPRINT_EDGE_PROBES);
+    if (q >= PM_FOOTPRINT_EDGE_PROBES) break;
+    EXPECT_EQ(seen[q]++, 0) << "probe " << q << " visited twice";
+    EXPECT_GT(probe_angle(q), last) << "rank " << rank << ", probe " << q;
+    last = probe_angle(q);
+    order.push_back(q);
+    q = next(q);
   }
-  for (int count : seen) EXPECT_EQ(count, 1);
+  return order;
+}
+
+TEST(FootprintProbes, TheWholePatternsOrderVisitsEveryProbeOnceByAngle) {
+  EXPECT_EQ(walk_by_angle(footprint_edge_probe_next, PM_FOOTPRINT_EDGE_PROBES).size(), PM_FOOTPRINT_EDGE_PROBES);
+}
+
+// The second pattern's lanes trace, by angle, every probe the first pattern did not, once each.
+TEST(FootprintProbes, TheSecondPatternsOrderVisitsTheOthersOnceByAngle) {
+  const std::vector<uint> order = walk_by_angle(footprint_second_probe_next, PM_FOOTPRINT_EDGE_PROBES - PM_FOOTPRINT_PROBES);
+  ASSERT_EQ(order.size(), PM_FOOTPRINT_EDGE_PROBES - PM_FOOTPRINT_PROBES);
+  for (uint q : order) EXPECT_EQ(footprint_probe_in_first(q), 0u) << "probe " << q;
+  EXPECT_EQ(order.size(), size_t(PM_FOOTPRINT_EDGE_ROUNDS * PM_FOOTPRINT_PROBES));
 }
 
 TEST(FootprintProbes, AWorkItemPerProbeGivesTheShareOfOneItemPerFootprint) {
