@@ -129,7 +129,7 @@ PM_DEVICE void footprint_probe_bounds(const Footprint* f, Vec3 center, Vec3 n, f
    (bench/first_probe_subset.py) for what a pattern of 16 must do, tell an edge: of random
    straight rims, convex and concave corners and holes in a footprint about a covered centre, the
    kernel mass left uncovered where all 16 probes are covered is at most what a 16-point spiral of
-   its own leaves (0.83 to 0.95 of it by kind, constant and Epanechnikov kernels;
+   its own leaves (0.83 to 0.96 of it by kind, constant and Epanechnikov kernels;
    tests/unit/footprint_first_pattern_test.cpp). Probe j of the first pattern is byte j % 4 of
    word j / 4; the mask has bit q set for each (bit q % 32 of word q / 32). */
 #define PM_FIRST_PROBES_0 0x0c0b0805u /* 5, 8, 11, 12 */
