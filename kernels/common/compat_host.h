@@ -12,6 +12,7 @@
 #define PM_DEVICE static inline
 #define PM_DEVICE_CALLED static inline
 #define PM_TRAVERSE_LEAVES_TOGETHER 1 /* the GPUs' schedule, which the host tests check */
+#define PM_RIM_POINTS_RECOMPUTED 1    /* likewise the GPUs' edge fit (footprint_rim.h) */
 #define PM_GLOBAL
 #define PM_CONSTANT const
 #define PM_RESTRICT __restrict__

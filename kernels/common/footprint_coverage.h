@@ -12,11 +12,12 @@
    the unit disc (Vogel's spiral: each point in the middle of an equal-area cell, the pattern
    turned by an angle drawn per hit so that its error does not line up between footprints), each
    weighted by the kernel at its radius. A footprint traces PM_FOOTPRINT_PROBES of them first (the
-   first pattern, below); only one that they find partly covered traces the others. A probe that the cuts exclude does not count at all (the
-   clip's kept fraction accounts for it exactly). A kept probe is covered when a ray along -n
-   through the ellipsoid's thickness there finds a surface the gather would accept
-   (footprint_probe_covered). The footprint's area is multiplied by the covered share of the kept
-   kernel mass, so each photon's flux integrates to itself over the shading points it reaches.
+   first pattern, below); only one that they find partly covered traces the others. A probe that
+   the cuts exclude does not count at all (the clip's kept fraction accounts for it exactly). A
+   kept probe is covered when a ray along -n through the ellipsoid's thickness there finds a
+   surface the gather would accept (footprint_probe_covered). The footprint's area is multiplied
+   by the covered share of the kept kernel mass, so each photon's flux integrates to itself over
+   the shading points it reaches.
 
    A footprint whose probes all miss still covers its own hit: it counts as half a probe's cell,
    so the flux never divides by zero. Cost: PM_FOOTPRINT_PROBES short rays per footprint, and
@@ -142,7 +143,8 @@ PM_DEVICE void footprint_probe_bounds(const Footprint* f, Vec3 center, Vec3 n, f
 /* Probe j (< PM_FOOTPRINT_PROBES) of the first pattern, as a probe of the whole pattern. */
 PM_DEVICE uint footprint_first_probe(uint j)
 {
-  uint word = j < 8u ? (j < 4u ? PM_FIRST_PROBES_0 : PM_FIRST_PROBES_1) : (j < 12u ? PM_FIRST_PROBES_2 : PM_FIRST_PROBES_3);
+  uint word = j < 8u ? (j < 4u ? PM_FIRST_PROBES_0 : PM_FIRST_PROBES_1)
+                     : (j < 12u ? PM_FIRST_PROBES_2 : PM_FIRST_PROBES_3);
   return (word >> (8u * (j & 3u))) & 0xffu;
 }
 

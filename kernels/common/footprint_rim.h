@@ -50,18 +50,64 @@
 /* Whether bit q of the 64-bit mask (lo, hi) is set. */
 PM_DEVICE uint footprint_rim_bit(uint lo, uint hi, uint q) { return ((q < 32u ? lo : hi) >> (q & 31u)) & 1u; }
 
+/* The whole pattern's probe points (turned by `turn`) as the edge fit reads them. On GPUs
+   (PM_RIM_POINTS_RECOMPUTED, compat.h) the fit computes each point again where it needs it
+   (footprint_probe_point, as the probes were traced): kept in arrays, the 64 points lived in
+   local memory, 1.2 KB of stack a lane, and the launch took a third longer (docs/benchmarks.md,
+   "The edge fit without its arrays"). On CPUs (PoCL) the arrays stay in cache and computing the
+   points again made the footprint stage 40 % slower, so there they are kept. */
+typedef struct {
+  float turn;
+#if !PM_RIM_POINTS_RECOMPUTED
+  float x[PM_FOOTPRINT_EDGE_PROBES], y[PM_FOOTPRINT_EDGE_PROBES];
+#endif
+} RimPoints;
+
+/* Keeps point q at (x, y) where the points are kept. */
+PM_DEVICE void rim_point_keep(RimPoints* points, uint q, float x, float y)
+{
+#if PM_RIM_POINTS_RECOMPUTED
+  (void)points;
+  (void)q;
+  (void)x;
+  (void)y;
+#else
+  points->x[q] = x;
+  points->y[q] = y;
+#endif
+}
+
+/* Point q of the pattern. */
+PM_DEVICE void rim_point(const RimPoints* points, uint q, float* x, float* y)
+{
+#if PM_RIM_POINTS_RECOMPUTED
+  footprint_probe_point(q, PM_FOOTPRINT_EDGE_PROBES, points->turn, x, y);
+#else
+  *x = points->x[q];
+  *y = points->y[q];
+#endif
+}
+
+/* Where probe q lies along the unit normal (mx, my). */
+PM_DEVICE float footprint_rim_along(const RimPoints* points, uint q, float mx, float my)
+{
+  float x, y;
+  rim_point(points, q, &x, &y);
+  return mx * x + my * y;
+}
+
 /* The gap along the unit normal (mx, my) between the farthest covered probe and the nearest
-   uncovered one of the kept probes (bits `kept`) at (x, y), covered bits `covered`: positive where
-   a line of that normal separates them (the uncovered beyond); their projections in *covered_far
-   and *open_near. */
-PM_DEVICE float footprint_rim_gap(const float* x, const float* y, uint kept_lo, uint kept_hi, uint covered_lo,
+   uncovered one of the kept probes (bits `kept`) of the pattern at `points`, covered bits
+   `covered`: positive where a line of that normal separates them (the uncovered beyond); their
+   projections in *covered_far and *open_near. */
+PM_DEVICE float footprint_rim_gap(const RimPoints* points, uint kept_lo, uint kept_hi, uint covered_lo,
                                   uint covered_hi, float mx, float my, float* covered_far, float* open_near)
 {
   *covered_far = -2.0f;
   *open_near = 2.0f;
   for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q) {
     if (!footprint_rim_bit(kept_lo, kept_hi, q)) continue;
-    float along = mx * x[q] + my * y[q];
+    float along = footprint_rim_along(points, q, mx, my);
     if (footprint_rim_bit(covered_lo, covered_hi, q)) *covered_far = pm_fmaxf(*covered_far, along);
     else *open_near = pm_fminf(*open_near, along);
   }
@@ -69,14 +115,14 @@ PM_DEVICE float footprint_rim_gap(const float* x, const float* y, uint kept_lo, 
 }
 
 /* The best turn about `centre` in `steps` steps of `step` either side: the widest gap. */
-PM_DEVICE float footprint_rim_widest(const float* x, const float* y, uint kept_lo, uint kept_hi, uint covered_lo,
+PM_DEVICE float footprint_rim_widest(const RimPoints* points, uint kept_lo, uint kept_hi, uint covered_lo,
                                      uint covered_hi, float centre, int steps, float step, float* widest)
 {
   float best = centre;
   for (int i = -steps; i <= steps; ++i) {
     float a = centre + step * (float)i, s, c, far, near;
     pm_sincosf(a, &s, &c);
-    float gap = footprint_rim_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, c, s, &far, &near);
+    float gap = footprint_rim_gap(points, kept_lo, kept_hi, covered_lo, covered_hi, c, s, &far, &near);
     if (gap > *widest) {
       *widest = gap;
       best = a;
@@ -107,7 +153,7 @@ PM_DEVICE float footprint_rim_widest(const float* x, const float* y, uint kept_l
    to band[1], and the nearest uncovered probe beyond either end, band[2] below and band[3] above
    (-2 and 2 where none is). Returns the narrower of the two gaps: negative where an uncovered
    probe lies within the band, or none beyond one of its ends (a single rim, or none). */
-PM_DEVICE float footprint_strip_gap(const float* x, const float* y, uint kept_lo, uint kept_hi, uint covered_lo,
+PM_DEVICE float footprint_strip_gap(const RimPoints* points, uint kept_lo, uint kept_hi, uint covered_lo,
                                     uint covered_hi, float mx, float my, float* band)
 {
   band[0] = 2.0f;
@@ -116,13 +162,13 @@ PM_DEVICE float footprint_strip_gap(const float* x, const float* y, uint kept_lo
   band[3] = 2.0f;
   for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q) {
     if (!footprint_rim_bit(kept_lo, kept_hi, q) || !footprint_rim_bit(covered_lo, covered_hi, q)) continue;
-    float along = mx * x[q] + my * y[q];
+    float along = footprint_rim_along(points, q, mx, my);
     band[0] = pm_fminf(band[0], along);
     band[1] = pm_fmaxf(band[1], along);
   }
   for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q) {
     if (!footprint_rim_bit(kept_lo, kept_hi, q) || footprint_rim_bit(covered_lo, covered_hi, q)) continue;
-    float along = mx * x[q] + my * y[q];
+    float along = footprint_rim_along(points, q, mx, my);
     if (along > band[1]) band[3] = pm_fminf(band[3], along);
     else if (along < band[0]) band[2] = pm_fmaxf(band[2], along);
     else return -1.0f;
@@ -133,14 +179,14 @@ PM_DEVICE float footprint_strip_gap(const float* x, const float* y, uint kept_lo
 
 /* The best turn about `centre` in `steps` steps of `step` either side: the widest of the strip's
    narrower gaps. */
-PM_DEVICE float footprint_strip_widest(const float* x, const float* y, uint kept_lo, uint kept_hi, uint covered_lo,
+PM_DEVICE float footprint_strip_widest(const RimPoints* points, uint kept_lo, uint kept_hi, uint covered_lo,
                                        uint covered_hi, float centre, int steps, float step, float* widest)
 {
   float best = centre, band[4];
   for (int i = -steps; i <= steps; ++i) {
     float a = centre + step * (float)i, s, c;
     pm_sincosf(a, &s, &c);
-    float gap = footprint_strip_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, c, s, band);
+    float gap = footprint_strip_gap(points, kept_lo, kept_hi, covered_lo, covered_hi, c, s, band);
     if (gap > *widest) {
       *widest = gap;
       best = a;
@@ -153,31 +199,33 @@ PM_DEVICE float footprint_strip_widest(const float* x, const float* y, uint kept
    first slot, normalised about the shading point): its rims' unit normal (mu, mv), the near rim's
    distance t and its width w, each rim halfway across its gap (footprint_stashed_rim says why).
    Returns whether one does. */
-PM_DEVICE int footprint_probed_strip(const float* x, const float* y, uint kept_lo, uint kept_hi, uint covered_lo,
+PM_DEVICE int footprint_probed_strip(const RimPoints* points, uint kept_lo, uint kept_hi, uint covered_lo,
                                      uint covered_hi, float* mu, float* mv, float* t, float* w)
 {
   /* The covered probes' minor axis: a strip's covered probes spread along the strip. */
   float n = 0.0f, sx = 0.0f, sy = 0.0f, sxx = 0.0f, syy = 0.0f, sxy = 0.0f;
   for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q) {
     if (!footprint_rim_bit(kept_lo, kept_hi, q) || !footprint_rim_bit(covered_lo, covered_hi, q)) continue;
+    float x, y;
+    rim_point(points, q, &x, &y);
     n += 1.0f;
-    sx += x[q];
-    sy += y[q];
-    sxx += x[q] * x[q];
-    syy += y[q] * y[q];
-    sxy += x[q] * y[q];
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    syy += y * y;
+    sxy += x * y;
   }
   if (!(n > 2.0f)) return 0;
   float cxx = sxx / n - (sx / n) * (sx / n), cyy = syy / n - (sy / n) * (sy / n), cxy = sxy / n - (sx / n) * (sy / n);
   float angle = 0.5f * pm_atan2f(2.0f * cxy, cxx - cyy) + 1.5707963f;
   float widest = 0.0f, band[4];
-  angle = footprint_strip_widest(x, y, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_STRIP_STEPS,
-                                 PM_STRIP_STEP, &widest);
-  angle = footprint_strip_widest(x, y, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_STRIP_FINE_STEPS,
+  angle = footprint_strip_widest(points, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_STRIP_STEPS, PM_STRIP_STEP,
+                                 &widest);
+  angle = footprint_strip_widest(points, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_STRIP_FINE_STEPS,
                                  PM_STRIP_FINE_STEP, &widest);
   if (!(widest > 0.0f)) return 0;
   pm_sincosf(angle, mv, mu);
-  footprint_strip_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, *mu, *mv, band);
+  footprint_strip_gap(points, kept_lo, kept_hi, covered_lo, covered_hi, *mu, *mv, band);
   /* The photon's own hit lies on the strip: the covered band reaches the centre either way. */
   float near_hi = pm_fmaxf(band[1], 0.0f), far_hi = pm_fminf(band[3], 1.0f);
   float near_lo = pm_fminf(band[0], 0.0f), far_lo = pm_fmaxf(band[2], -1.0f);
@@ -200,21 +248,22 @@ PM_DEVICE int footprint_stashed_rim(const KernelGlobals* kg, const LaunchParams*
   if (cut.t[1] < 1.0f || !(share > 0.0f) || !(share < 1.0f)) return 0;
   PM_GLOBAL const uint* mask = PM_FOOTPRINT_EDGE_MASK(kg, p, k);
   uint covered_lo = mask[0], covered_hi = mask[1], kept_lo = 0u, kept_hi = 0u;
-  float turn = kg->map_lo[k].w;
-  float x[PM_FOOTPRINT_EDGE_PROBES], y[PM_FOOTPRINT_EDGE_PROBES], w[PM_FOOTPRINT_EDGE_PROBES];
-  for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q) {
-    w[q] = 0.0f;
-    if (footprint_probe_kept(&cut, q, turn, p->kernel_shape, &x[q], &y[q], &w[q])) {
-      if (q < 32u) kept_lo |= 1u << q;
-      else kept_hi |= 1u << (q - 32u);
-    }
-  }
-  /* Every covered probe flat: the lanes' covered sums (each probe's weight times its value, which
-     is at least 1 where covered) no more than the covered probes' weights. */
-  PM_GLOBAL const float* values = PM_FOOTPRINT_PROBE_VALUES(kg, k);
+  RimPoints points;
+  points.turn = kg->map_lo[k].w;
+  /* The kept probes' bits, and every covered probe flat: the lanes' covered sums (each probe's
+     weight times its value, which is at least 1 where covered) no more than the covered probes'
+     weights. */
   float flat = 0.0f, measured = 0.0f;
-  for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q)
-    if (footprint_rim_bit(covered_lo, covered_hi, q)) flat += w[q];
+  for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q) {
+    float x, y, w;
+    int kept = footprint_probe_kept(&cut, q, points.turn, p->kernel_shape, &x, &y, &w);
+    rim_point_keep(&points, q, x, y);
+    if (!kept) continue;
+    if (q < 32u) kept_lo |= 1u << q;
+    else kept_hi |= 1u << (q - 32u);
+    if (footprint_rim_bit(covered_lo, covered_hi, q)) flat += w;
+  }
+  PM_GLOBAL const float* values = PM_FOOTPRINT_PROBE_VALUES(kg, k);
   for (uint lane = 0; lane < PM_FOOTPRINT_PROBES; ++lane) measured += values[lane];
   if (measured > PM_RIM_FLAT_PROBES * flat) return 0;
   /* The widest gap, from the centroids' direction. */
@@ -222,10 +271,12 @@ PM_DEVICE int footprint_stashed_rim(const KernelGlobals* kg, const LaunchParams*
   for (uint j = 0; j < PM_FOOTPRINT_EDGE_PROBES; ++j) {
     if (!footprint_rim_bit(kept_lo, kept_hi, j)) continue;
     uint bit = footprint_rim_bit(covered_lo, covered_hi, j);
-    cx += bit ? x[j] : 0.0f;
-    cy += bit ? y[j] : 0.0f;
-    ux += bit ? 0.0f : x[j];
-    uy += bit ? 0.0f : y[j];
+    float x, y;
+    rim_point(&points, j, &x, &y);
+    cx += bit ? x : 0.0f;
+    cy += bit ? y : 0.0f;
+    ux += bit ? 0.0f : x;
+    uy += bit ? 0.0f : y;
     covered += (float)bit;
     open += (float)(1u - bit);
   }
@@ -233,12 +284,12 @@ PM_DEVICE int footprint_stashed_rim(const KernelGlobals* kg, const LaunchParams*
   *width = 0.0f;
   float widest = 0.0f;
   float angle = pm_atan2f(uy / open - cy / covered, ux / open - cx / covered);
-  angle = footprint_rim_widest(x, y, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_RIM_COARSE_STEPS,
+  angle = footprint_rim_widest(&points, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_RIM_COARSE_STEPS,
                                PM_RIM_COARSE_STEP, &widest);
-  angle = footprint_rim_widest(x, y, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_RIM_FINE_STEPS,
+  angle = footprint_rim_widest(&points, kept_lo, kept_hi, covered_lo, covered_hi, angle, PM_RIM_FINE_STEPS,
                                PM_RIM_FINE_STEP, &widest);
   if (!(widest > 0.0f))
-    return footprint_probed_strip(x, y, kept_lo, kept_hi, covered_lo, covered_hi, mu, mv, t, width);
+    return footprint_probed_strip(&points, kept_lo, kept_hi, covered_lo, covered_hi, mu, mv, t, width);
   /* Halfway across the gap, and no nearer the centre than through it: the photon's own hit lies
      on the surface. Halfway, not where a straight cut keeps the measured covered share: that
      share reads a few hundredths of the radius beyond the rim (a strip's two rims, placed by it,
@@ -246,7 +297,7 @@ PM_DEVICE int footprint_stashed_rim(const KernelGlobals* kg, const LaunchParams*
      at the rim and 1.004 a quarter of a radius in, halfway 0.952 and 0.999). */
   float far, near;
   pm_sincosf(angle, mv, mu);
-  footprint_rim_gap(x, y, kept_lo, kept_hi, covered_lo, covered_hi, *mu, *mv, &far, &near);
+  footprint_rim_gap(&points, kept_lo, kept_hi, covered_lo, covered_hi, *mu, *mv, &far, &near);
   far = pm_fmaxf(far, 0.0f);
   if (!(near > far)) return 0;
   *t = 0.5f * (far + pm_fminf(near, 1.0f));

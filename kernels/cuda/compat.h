@@ -12,6 +12,9 @@
 #define PM_DEVICE_CALLED static __device__ __noinline__
 /* The scene traversal's form (scene_traverse.h): a node's leaves intersected together. */
 #define PM_TRAVERSE_LEAVES_TOGETHER 1
+/* The edge fit computes its probe points where it uses them (footprint_rim.h): arrays of them
+   would live in local memory. */
+#define PM_RIM_POINTS_RECOMPUTED 1
 #define PM_GLOBAL
 #define PM_CONSTANT const
 #define PM_RESTRICT __restrict__

@@ -13,9 +13,11 @@
 #if defined(cl_nv_pragma_unroll)
 #define PM_DEVICE_CALLED static __attribute__((noinline))
 #define PM_TRAVERSE_LEAVES_TOGETHER 1
+#define PM_RIM_POINTS_RECOMPUTED 1 /* footprint_rim.h: as on CUDA */
 #else
 #define PM_DEVICE_CALLED static inline
 #define PM_TRAVERSE_LEAVES_TOGETHER 0
+#define PM_RIM_POINTS_RECOMPUTED 0 /* footprint_rim.h: a CPU keeps the edge fit's points in cache */
 #endif
 #define PM_GLOBAL __global
 #define PM_CONSTANT __constant
