@@ -241,7 +241,8 @@ TEST(FootprintProbes, TheWholePatternsOrderVisitsEveryProbeOnceByAngle) {
 
 // The second pattern's lanes trace, by angle, every probe the first pattern did not, once each.
 TEST(FootprintProbes, TheSecondPatternsOrderVisitsTheOthersOnceByAngle) {
-  const std::vector<uint> order = walk_by_angle(footprint_second_probe_next, PM_FOOTPRINT_EDGE_PROBES - PM_FOOTPRINT_PROBES);
+  const std::vector<uint> order =
+      walk_by_angle(footprint_second_probe_next, PM_FOOTPRINT_EDGE_PROBES - PM_FOOTPRINT_PROBES);
   ASSERT_EQ(order.size(), PM_FOOTPRINT_EDGE_PROBES - PM_FOOTPRINT_PROBES);
   for (uint q : order) EXPECT_EQ(footprint_probe_in_first(q), 0u) << "probe " << q;
   EXPECT_EQ(order.size(), size_t(PM_FOOTPRINT_EDGE_ROUNDS * PM_FOOTPRINT_PROBES));
