@@ -148,10 +148,13 @@ PM_DEVICE uint footprint_first_probe(uint j)
   return (word >> (8u * (j & 3u))) & 0xffu;
 }
 
+/* Whether bit q of a mask of the whole pattern's probes, (lo, hi), is set. */
+PM_DEVICE uint footprint_probe_bit(uint lo, uint hi, uint q) { return ((q < 32u ? lo : hi) >> (q & 31u)) & 1u; }
+
 /* Whether probe q of the whole pattern belongs to the first. */
 PM_DEVICE uint footprint_probe_in_first(uint q)
 {
-  return ((q < 32u ? PM_FIRST_PROBE_MASK_LO : PM_FIRST_PROBE_MASK_HI) >> (q & 31u)) & 1u;
+  return footprint_probe_bit(PM_FIRST_PROBE_MASK_LO, PM_FIRST_PROBE_MASK_HI, q);
 }
 
 /* Whether the cuts keep probe q of the whole pattern turned by `turn`; if so its disc point (x, y)

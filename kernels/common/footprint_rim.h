@@ -47,15 +47,12 @@
 #define PM_RIM_FINE_STEPS 2
 #define PM_RIM_FINE_STEP 0.0349066f
 
-/* Whether bit q of the 64-bit mask (lo, hi) is set. */
-PM_DEVICE uint footprint_rim_bit(uint lo, uint hi, uint q) { return ((q < 32u ? lo : hi) >> (q & 31u)) & 1u; }
-
 /* The whole pattern's probe points (turned by `turn`) as the edge fit reads them. On GPUs
    (PM_RIM_POINTS_RECOMPUTED, compat.h) the fit computes each point again where it needs it
    (footprint_probe_point, as the probes were traced): kept in arrays, the 64 points lived in
    local memory, 1.2 KB of stack a lane, and the launch took a third longer (docs/benchmarks.md,
    "The edge fit without its arrays"). On CPUs (PoCL) the arrays stay in cache and computing the
-   points again made the footprint stage 40 % slower, so there they are kept. */
+   points again made the footprint stage 28-51 % slower, so there they are kept. */
 typedef struct {
   float turn;
 #if !PM_RIM_POINTS_RECOMPUTED
@@ -106,9 +103,9 @@ PM_DEVICE float footprint_rim_gap(const RimPoints* points, uint kept_lo, uint ke
   *covered_far = -2.0f;
   *open_near = 2.0f;
   for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q) {
-    if (!footprint_rim_bit(kept_lo, kept_hi, q)) continue;
+    if (!footprint_probe_bit(kept_lo, kept_hi, q)) continue;
     float along = footprint_rim_along(points, q, mx, my);
-    if (footprint_rim_bit(covered_lo, covered_hi, q)) *covered_far = pm_fmaxf(*covered_far, along);
+    if (footprint_probe_bit(covered_lo, covered_hi, q)) *covered_far = pm_fmaxf(*covered_far, along);
     else *open_near = pm_fminf(*open_near, along);
   }
   return *open_near - *covered_far;
@@ -161,13 +158,13 @@ PM_DEVICE float footprint_strip_gap(const RimPoints* points, uint kept_lo, uint 
   band[2] = -2.0f;
   band[3] = 2.0f;
   for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q) {
-    if (!footprint_rim_bit(kept_lo, kept_hi, q) || !footprint_rim_bit(covered_lo, covered_hi, q)) continue;
+    if (!footprint_probe_bit(kept_lo, kept_hi, q) || !footprint_probe_bit(covered_lo, covered_hi, q)) continue;
     float along = footprint_rim_along(points, q, mx, my);
     band[0] = pm_fminf(band[0], along);
     band[1] = pm_fmaxf(band[1], along);
   }
   for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q) {
-    if (!footprint_rim_bit(kept_lo, kept_hi, q) || footprint_rim_bit(covered_lo, covered_hi, q)) continue;
+    if (!footprint_probe_bit(kept_lo, kept_hi, q) || footprint_probe_bit(covered_lo, covered_hi, q)) continue;
     float along = footprint_rim_along(points, q, mx, my);
     if (along > band[1]) band[3] = pm_fminf(band[3], along);
     else if (along < band[0]) band[2] = pm_fmaxf(band[2], along);
@@ -205,7 +202,7 @@ PM_DEVICE int footprint_probed_strip(const RimPoints* points, uint kept_lo, uint
   /* The covered probes' minor axis: a strip's covered probes spread along the strip. */
   float n = 0.0f, sx = 0.0f, sy = 0.0f, sxx = 0.0f, syy = 0.0f, sxy = 0.0f;
   for (uint q = 0; q < PM_FOOTPRINT_EDGE_PROBES; ++q) {
-    if (!footprint_rim_bit(kept_lo, kept_hi, q) || !footprint_rim_bit(covered_lo, covered_hi, q)) continue;
+    if (!footprint_probe_bit(kept_lo, kept_hi, q) || !footprint_probe_bit(covered_lo, covered_hi, q)) continue;
     float x, y;
     rim_point(points, q, &x, &y);
     n += 1.0f;
@@ -261,7 +258,7 @@ PM_DEVICE int footprint_stashed_rim(const KernelGlobals* kg, const LaunchParams*
     if (!kept) continue;
     if (q < 32u) kept_lo |= 1u << q;
     else kept_hi |= 1u << (q - 32u);
-    if (footprint_rim_bit(covered_lo, covered_hi, q)) flat += w;
+    if (footprint_probe_bit(covered_lo, covered_hi, q)) flat += w;
   }
   PM_GLOBAL const float* values = PM_FOOTPRINT_PROBE_VALUES(kg, k);
   for (uint lane = 0; lane < PM_FOOTPRINT_PROBES; ++lane) measured += values[lane];
@@ -269,8 +266,8 @@ PM_DEVICE int footprint_stashed_rim(const KernelGlobals* kg, const LaunchParams*
   /* The widest gap, from the centroids' direction. */
   float cx = 0.0f, cy = 0.0f, ux = 0.0f, uy = 0.0f, covered = 0.0f, open = 0.0f;
   for (uint j = 0; j < PM_FOOTPRINT_EDGE_PROBES; ++j) {
-    if (!footprint_rim_bit(kept_lo, kept_hi, j)) continue;
-    uint bit = footprint_rim_bit(covered_lo, covered_hi, j);
+    if (!footprint_probe_bit(kept_lo, kept_hi, j)) continue;
+    uint bit = footprint_probe_bit(covered_lo, covered_hi, j);
     float x, y;
     rim_point(&points, j, &x, &y);
     cx += bit ? x : 0.0f;
