@@ -18,40 +18,64 @@
 #include "photon_map_query.h"
 #include "photon_trace.h"
 
-/* Radiance towards wo at x from the photon map, split into indirect and caustic parts; with
-   `facet_weighting` (a constant where the kernels inline it) each photon weighed by its tilt gain
-   there (gather_reach.h). The map is walked with the box [lo, hi] around x: x itself, or the box
-   of x's pixel tile (gather_tiles.h), whose candidates count only where their own box holds x
-   (`own_box`), so that either walk sums the same photons in the same order. */
+/* Photon k's light towards wo at x (its footprint holding x), added to the indirect or the caustic
+   sum (eq. 1); with `facet_weighting` (a constant where the kernels inline it) weighed by its tilt
+   gain there (gather_reach.h). */
+PM_DEVICE void gather_add_hit(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 x, Vec3 n,
+                              Vec3 wo, uint k, Vec3* indirect, Vec3* caustic, uint* accepted, int facet_weighting)
+{
+  float4 c = PM_LOAD(&kg->map_center[k]);
+  float r2, at_u, at_v;
+  if (!footprint_reaches_at(kg, k, c, x, n, &r2, &at_u, &at_v)) return;
+  Vec3 wi = vec3_from_float4(PM_LOAD(&kg->map_incident[k]));
+  if (vec3_dot(wi, n) <= 0.0f) return; /* arrived on the other side of this surface */
+  Vec3 f = brdf_eval(m, n, wi, wo);
+  float weight = footprint_gather_weight(kg, k, c, r2, at_u, at_v, p->kernel_shape);
+  if (facet_weighting) weight *= gather_tilt_gain(PM_LOAD(&kg->map_row_n[k]), wi, n);
+  Vec3 contribution = vec3_scale(vec3_mul(f, vec3_from_float4(PM_LOAD(&kg->map_power[k]))), weight);
+  if (PM_AS_UINT(c.w) & PM_HIT_CAUSTIC) *caustic = vec3_add(*caustic, contribution);
+  else *indirect = vec3_add(*indirect, contribution);
+  ++*accepted;
+}
+
+/* How many hits of a leaf interval have their boxes tested at x before any of them is evaluated,
+   so that their loads are in flight together (docs/benchmarks.md, "A leaf's hits tested at the
+   shading point"). At most 32. */
+#ifndef PM_GATHER_SCAN_STEP
+#define PM_GATHER_SCAN_STEP 2
+#endif
+
+/* Radiance towards wo at x from the photon map, split into indirect and caustic parts. The map is
+   walked with the box [lo, hi] around x: x itself, or the box of x's pixel tile (gather_tiles.h),
+   whose lanes walk the same nodes together. Either way each hit of a leaf interval counts only
+   where its own box holds x, so that either walk sums the same photons in the same order. The
+   hits are tested at x alone, not first against the walk's box: inside a tile's box, a hit that
+   holds x meets the box, and on Conference's 1080p frame three in four hits of the tiles' leaves
+   miss the box, each of which cost the warp both tests. */
 PM_DEVICE void gather_within(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 x, Vec3 n,
-                             Vec3 wo, Vec3 lo, Vec3 hi, int own_box, Vec3* indirect, Vec3* caustic, uint* accepted,
+                             Vec3 wo, Vec3 lo, Vec3 hi, Vec3* indirect, Vec3* caustic, uint* accepted,
                              int facet_weighting)
 {
   PhotonMapQuery q;
   photon_map_query_begin_box(&q, lo, hi, p->hit_count, PM_TRAVERSAL_STACK);
-  int k;
-  while ((k = photon_map_query_next(&q, PM_MAP_NODES(kg), kg->map_lo, kg->map_hi)) >= 0) {
-    if (own_box && !photon_map_box_contains(PM_LOAD(&kg->map_lo[k]), PM_LOAD(&kg->map_hi[k]), x)) continue;
-    float4 c = PM_LOAD(&kg->map_center[k]);
-    float r2, at_u, at_v;
-    if (!footprint_reaches_at(kg, k, c, x, n, &r2, &at_u, &at_v)) continue;
-    Vec3 wi = vec3_from_float4(PM_LOAD(&kg->map_incident[k]));
-    if (vec3_dot(wi, n) <= 0.0f) continue; /* arrived on the other side of this surface */
-    Vec3 f = brdf_eval(m, n, wi, wo);
-    float weight = footprint_gather_weight(kg, k, c, r2, at_u, at_v, p->kernel_shape);
-    if (facet_weighting) weight *= gather_tilt_gain(PM_LOAD(&kg->map_row_n[k]), wi, n);
-    Vec3 contribution = vec3_scale(vec3_mul(f, vec3_from_float4(PM_LOAD(&kg->map_power[k]))), weight);
-    if (PM_AS_UINT(c.w) & PM_HIT_CAUSTIC) *caustic = vec3_add(*caustic, contribution);
-    else *indirect = vec3_add(*indirect, contribution);
-    ++*accepted;
-  }
+  do {
+    for (uint k = q.cur; k < q.end; k += PM_GATHER_SCAN_STEP) {
+      uint held = 0u; /* bit j: hit k + j holds x */
+      for (uint j = 0; j < PM_GATHER_SCAN_STEP; ++j)
+        if (k + j < q.end && photon_map_box_contains(PM_LOAD(&kg->map_lo[k + j]), PM_LOAD(&kg->map_hi[k + j]), x))
+          held |= 1u << j;
+      for (; held != 0u; held &= held - 1u) /* in order, lowest bit first */
+        gather_add_hit(kg, p, m, x, n, wo, k + (uint)(31 - pm_clz(held & (0u - held))), indirect, caustic, accepted,
+                       facet_weighting);
+    }
+  } while (photon_map_query_advance(&q, PM_MAP_NODES(kg)));
 }
 
 /* The same, the map walked at x alone. */
 PM_DEVICE void gather_at(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 x, Vec3 n, Vec3 wo,
                          Vec3* indirect, Vec3* caustic, uint* accepted, int facet_weighting)
 {
-  gather_within(kg, p, m, x, n, wo, x, x, 0, indirect, caustic, accepted, facet_weighting);
+  gather_within(kg, p, m, x, n, wo, x, x, indirect, caustic, accepted, facet_weighting);
 }
 
 /* How gather_pixel reads the map: the footprint gather, the same with facet weighting, or the knn
@@ -82,7 +106,7 @@ PM_DEVICE void gather_pixel(const KernelGlobals* kg, const LaunchParams* p, uint
       knn_gather_at(kg, p, m, sp.position, sp.normal, sp.outgoing, knn_region_turn(p, pixel, depth), &point_indirect,
                     &point_caustic, &accepted);
     } else if (depth == 0u && gather_tile_box(kg, p, item, &tile_lo, &tile_hi)) {
-      gather_within(kg, p, m, sp.position, sp.normal, sp.outgoing, tile_lo, tile_hi, 1, &point_indirect,
+      gather_within(kg, p, m, sp.position, sp.normal, sp.outgoing, tile_lo, tile_hi, &point_indirect,
                     &point_caustic, &accepted, mode == PM_GATHER_FACETS);
       ++tiled;
     } else {

@@ -65,22 +65,17 @@ PM_DEVICE void photon_map_query_begin(PhotonMapQuery* q, Vec3 x, uint n, uint st
   photon_map_query_begin_box(q, x, x, n, stack_limit);
 }
 
-/* Next sorted position whose hit AABB meets the query's box (for a point query: contains the
-   point), or -1 when done. Each such hit is returned exactly once; the caller evaluates the
-   ellipsoid itself (section 6.3: accumulate the hits whose footprints overlap x). Read-only
-   inputs: nodes and sorted_lo/hi from step 5. */
-PM_DEVICE int photon_map_query_next(PhotonMapQuery* q, PM_GLOBAL const float4* nodes,
-                                    PM_GLOBAL const float4* sorted_lo, PM_GLOBAL const float4* sorted_hi)
+/* The traversal's next step: visits inner nodes until one has leaf children meeting the query's
+   box, and leaves their hits' sorted positions in [q->cur, q->end) (q->check: whether each hit's
+   own AABB must still be tested against the box: a fused leaf, or a subtree scanned because the
+   stack was full). Returns 0 when the tree is done. A caller may scan the interval itself
+   (gather_within, which tests each hit at its shading point) or through photon_map_query_next. */
+PM_DEVICE int photon_map_query_advance(PhotonMapQuery* q, PM_GLOBAL const float4* nodes)
 {
   for (;;) {
-    while (q->cur < q->end) {
-      uint k = q->cur++;
-      if (!q->check || photon_map_box_meets(PM_LOAD(&sorted_lo[k]), PM_LOAD(&sorted_hi[k]), q->lo, q->hi))
-        return (int)k;
-    }
     uint node = q->node;
     if (node == PM_PHOTON_MAP_NO_NODE) {
-      if (q->sp == 0) return -1;
+      if (q->sp == 0) return 0;
       node = q->stack[--q->sp];
     }
     q->node = PM_PHOTON_MAP_NO_NODE;
@@ -129,9 +124,29 @@ PM_DEVICE int photon_map_query_next(PhotonMapQuery* q, PM_GLOBAL const float4* n
         q->overflows++;
       }
     }
-    q->cur = begin;
-    q->end = end;
-    q->check = check;
+    if (begin < end) {
+      q->cur = begin;
+      q->end = end;
+      q->check = check;
+      return 1;
+    }
+  }
+}
+
+/* Next sorted position whose hit AABB meets the query's box (for a point query: contains the
+   point), or -1 when done. Each such hit is returned exactly once; the caller evaluates the
+   ellipsoid itself (section 6.3: accumulate the hits whose footprints overlap x). Read-only
+   inputs: nodes and sorted_lo/hi from step 5. */
+PM_DEVICE int photon_map_query_next(PhotonMapQuery* q, PM_GLOBAL const float4* nodes,
+                                    PM_GLOBAL const float4* sorted_lo, PM_GLOBAL const float4* sorted_hi)
+{
+  for (;;) {
+    while (q->cur < q->end) {
+      uint k = q->cur++;
+      if (!q->check || photon_map_box_meets(PM_LOAD(&sorted_lo[k]), PM_LOAD(&sorted_hi[k]), q->lo, q->hi))
+        return (int)k;
+    }
+    if (!photon_map_query_advance(q, nodes)) return -1;
   }
 }
 
