@@ -302,4 +302,20 @@ PM_DEVICE uint photon_map_auto_leaf_size(float total_footprint_area, float total
   return (uint)pm_floorf(t + 0.5f);
 }
 
+/* T_auto where the gather's pixel tiles walk the map together (gather_tiles.h): within [16, 32].
+   The paper's T_auto follows the footprints' overlap, the hits a point query scans; a tile's walk
+   scans the leaves meeting its box with every lane at once, and there the best fixed T measured
+   16 to 32 on all four benchmark scenes at the paper's and the production profile, whatever the
+   overlap, where T_auto read 8 (Sponza) to 214 (the Cornell box) and cost up to 12 % of the frame
+   (docs/algorithm.md, Table 1 with tiles). */
+#define PM_TILE_WALK_LEAF_MIN 16u
+#define PM_TILE_WALK_LEAF_MAX 32u
+
+PM_DEVICE uint photon_map_tile_walk_leaf_size(uint auto_leaf_size)
+{
+  return auto_leaf_size < PM_TILE_WALK_LEAF_MIN   ? PM_TILE_WALK_LEAF_MIN
+         : auto_leaf_size > PM_TILE_WALK_LEAF_MAX ? PM_TILE_WALK_LEAF_MAX
+                                                  : auto_leaf_size;
+}
+
 #endif

@@ -88,6 +88,9 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
                                                                                      : 0.0f;
   const bool tiles_apply = settings_.estimator != PM_ESTIMATOR_KNN && settings_.final_gather == 0;
   tile_gather_ = tiles_apply ? tile_gather : 0.0f;
+  // The leaves for tiles where tiles walk by default, whether or not this run's do: `--tile-gather`
+  // leaves the image's bits as they are (kernels/common/photon_map.h, photon_map_tile_walk_leaf_size).
+  tile_walk_leaves_ = tiles_apply && device_.info().lockstep_lanes;
   gather_tiles_ = pixel_work_items(uint32_t(context.width), uint32_t(context.height)) / (PM_TILE_W * PM_TILE_H);
   extents_.gather_tiles = tile_gather_ > 0 ? gather_tiles_ : 0;
   // The hit records start with room for half as many hits as photons (Sponza and Sibenik record
@@ -389,9 +392,12 @@ void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
   }
   device_.download(buffers_[BufferSlot::map_partials], partials.data(), 2 * size_t(map_tiles) * sizeof(float4));
   map_footprint_area_ = photon_map_combine_partials(partials.data(), map_tiles).area;
-  params.leaf_threshold = settings_.leaf_threshold > 0 ? uint32_t(settings_.leaf_threshold)
-                                                       : photon_map_auto_leaf_size(float(map_footprint_area_),
-                                                                                   float(scene_area_), settings_.leaf_c);
+  if (settings_.leaf_threshold > 0) {
+    params.leaf_threshold = uint32_t(settings_.leaf_threshold);
+  } else {
+    params.leaf_threshold = photon_map_auto_leaf_size(float(map_footprint_area_), float(scene_area_), settings_.leaf_c);
+    if (tile_walk_leaves_) params.leaf_threshold = photon_map_tile_walk_leaf_size(params.leaf_threshold);
+  }
   map_params_ = params;
   StageScope scope(timer, "map: tree");
   if (settings_.builder == kPhotonMapVvh) {

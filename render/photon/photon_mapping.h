@@ -75,6 +75,8 @@ class PhotonMapping final : public IndirectMethod {
   // The gather's tiles walk the map together when their first shading points lie within this
   // many mean footprint radii (PhotonSettings::tile_gather resolved for the device; 0: never).
   float tile_gather_ = 0;
+  // Whether T_auto is the tile walks' (photon_map_tile_walk_leaf_size): devices with lockstep lanes.
+  bool tile_walk_leaves_ = false;
   uint32_t gather_tiles_ = 0;  // pixel tiles of the film (pixel_order.h)
 
   Device& device_;

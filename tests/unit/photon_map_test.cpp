@@ -203,5 +203,14 @@ TEST(PhotonMapAutoLeafSize, RoundsRatioAndGuards)
   EXPECT_EQ(photon_map_auto_leaf_size(1e20f, 1.0f, 1.0f), 1u << 30);
 }
 
+TEST(PhotonMapAutoLeafSize, TileWalksKeepTheirLeavesBetweenSixteenAndThirtyTwo)
+{
+  EXPECT_EQ(photon_map_tile_walk_leaf_size(1u), 16u);
+  EXPECT_EQ(photon_map_tile_walk_leaf_size(9u), 16u);   // Sponza's T_auto at 1080p
+  EXPECT_EQ(photon_map_tile_walk_leaf_size(23u), 23u);  // Sibenik's
+  EXPECT_EQ(photon_map_tile_walk_leaf_size(120u), 32u); // Conference's
+  EXPECT_EQ(photon_map_tile_walk_leaf_size(1u << 30), 32u);
+}
+
 }  // namespace
 }  // namespace pm_photon_map_test
