@@ -88,9 +88,15 @@ PhotonMapping::PhotonMapping(const MethodContext& context, const PhotonSettings&
                                                                                      : 0.0f;
   const bool tiles_apply = settings_.estimator != PM_ESTIMATOR_KNN && settings_.final_gather == 0;
   tile_gather_ = tiles_apply ? tile_gather : 0.0f;
-  // The leaves for tiles where tiles walk by default, whether or not this run's do: `--tile-gather`
-  // leaves the image's bits as they are (kernels/common/photon_map.h, photon_map_tile_walk_leaf_size).
-  tile_walk_leaves_ = tiles_apply && device_.info().lockstep_lanes;
+  // T_auto's bounds for how the map is walked on GPUs (photon_map_leaf_size_within): the tiles'
+  // wherever tiles walk by default, whether or not this run's do, so that `--tile-gather` leaves the
+  // image's bits as they are; final gathering's at its rays' hits.
+  if (device_.info().lockstep_lanes && tiles_apply) {
+    leaf_least_ = PM_TILE_WALK_LEAF_MIN;
+    leaf_most_ = PM_TILE_WALK_LEAF_MAX;
+  } else if (device_.info().lockstep_lanes && settings_.final_gather > 0) {
+    leaf_least_ = PM_RAY_HIT_WALK_LEAF_MIN;
+  }
   gather_tiles_ = pixel_work_items(uint32_t(context.width), uint32_t(context.height)) / (PM_TILE_W * PM_TILE_H);
   extents_.gather_tiles = tile_gather_ > 0 ? gather_tiles_ : 0;
   // The hit records start with room for half as many hits as photons (Sponza and Sibenik record
@@ -396,7 +402,7 @@ void PhotonMapping::trace_and_build(LaunchParams params, StageTimer* timer) {
     params.leaf_threshold = uint32_t(settings_.leaf_threshold);
   } else {
     params.leaf_threshold = photon_map_auto_leaf_size(float(map_footprint_area_), float(scene_area_), settings_.leaf_c);
-    if (tile_walk_leaves_) params.leaf_threshold = photon_map_tile_walk_leaf_size(params.leaf_threshold);
+    params.leaf_threshold = photon_map_leaf_size_within(params.leaf_threshold, leaf_least_, leaf_most_);
   }
   map_params_ = params;
   StageScope scope(timer, "map: tree");

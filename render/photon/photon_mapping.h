@@ -75,8 +75,8 @@ class PhotonMapping final : public IndirectMethod {
   // The gather's tiles walk the map together when their first shading points lie within this
   // many mean footprint radii (PhotonSettings::tile_gather resolved for the device; 0: never).
   float tile_gather_ = 0;
-  // Whether T_auto is the tile walks' (photon_map_tile_walk_leaf_size): devices with lockstep lanes.
-  bool tile_walk_leaves_ = false;
+  // T_auto's bounds for how this device walks the map (photon_map_leaf_size_within).
+  uint32_t leaf_least_ = 1, leaf_most_ = 1u << 30;
   uint32_t gather_tiles_ = 0;  // pixel tiles of the film (pixel_order.h)
 
   Device& device_;

@@ -203,13 +203,16 @@ TEST(PhotonMapAutoLeafSize, RoundsRatioAndGuards)
   EXPECT_EQ(photon_map_auto_leaf_size(1e20f, 1.0f, 1.0f), 1u << 30);
 }
 
-TEST(PhotonMapAutoLeafSize, TileWalksKeepTheirLeavesBetweenSixteenAndThirtyTwo)
+TEST(PhotonMapAutoLeafSize, HeldWithinTheBoundsOfHowTheMapIsWalked)
 {
-  EXPECT_EQ(photon_map_tile_walk_leaf_size(1u), 16u);
-  EXPECT_EQ(photon_map_tile_walk_leaf_size(9u), 16u);   // Sponza's T_auto at 1080p
-  EXPECT_EQ(photon_map_tile_walk_leaf_size(23u), 23u);  // Sibenik's
-  EXPECT_EQ(photon_map_tile_walk_leaf_size(120u), 32u); // Conference's
-  EXPECT_EQ(photon_map_tile_walk_leaf_size(1u << 30), 32u);
+  const uint32_t most = 1u << 30;
+  EXPECT_EQ(photon_map_leaf_size_within(9u, PM_TILE_WALK_LEAF_MIN, PM_TILE_WALK_LEAF_MAX), 16u);   // Sponza, 1080p
+  EXPECT_EQ(photon_map_leaf_size_within(23u, PM_TILE_WALK_LEAF_MIN, PM_TILE_WALK_LEAF_MAX), 23u);  // Sibenik
+  EXPECT_EQ(photon_map_leaf_size_within(120u, PM_TILE_WALK_LEAF_MIN, PM_TILE_WALK_LEAF_MAX), 32u); // Conference
+  EXPECT_EQ(photon_map_leaf_size_within(most, PM_TILE_WALK_LEAF_MIN, PM_TILE_WALK_LEAF_MAX), 32u);
+  EXPECT_EQ(photon_map_leaf_size_within(1u, PM_RAY_HIT_WALK_LEAF_MIN, most), 8u);  // final gathering's map
+  EXPECT_EQ(photon_map_leaf_size_within(40u, PM_RAY_HIT_WALK_LEAF_MIN, most), 40u);
+  EXPECT_EQ(photon_map_leaf_size_within(1u, 1u, most), 1u);  // the paper's T_auto (CPUs)
 }
 
 }  // namespace
