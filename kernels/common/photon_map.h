@@ -303,14 +303,14 @@ PM_DEVICE uint photon_map_auto_leaf_size(float total_footprint_area, float total
 }
 
 /* T_auto held within [least, most]: on devices whose lanes run in lockstep (GPUs) the best T
-   follows how the map is walked more than the footprints' overlap (docs/algorithm.md, "T_auto").
+   follows how the map is walked more than the footprints' overlap (docs/algorithm.md, S4, T_auto).
    - Where the gather's pixel tiles walk the map together (gather_tiles.h), every lane scans the
      hits of the leaves meeting its tile's box at once: the best fixed T measured 16 to 32 on all
      four benchmark scenes at the paper's and the production profile, whatever the overlap, where
      T_auto read 8 (Sponza) to 214 (the Cornell box) and cost up to 19 % of the gather.
    - Final gathering reads its map at its rays' hits, each lane at a point of its own, with the
      map at an overlap of 3 (final_gather.h), where T_auto reads 1 and each hit costs a node
-     visit: the best T measured 4 to 8, the pass 5 to 8 % faster at 8 than at 1. */
+     visit: the best T measured 4 to 8, a pass 4 to 8 % faster at 8 than at 1. */
 #define PM_TILE_WALK_LEAF_MIN 16u
 #define PM_TILE_WALK_LEAF_MAX 32u
 #define PM_RAY_HIT_WALK_LEAF_MIN 8u
