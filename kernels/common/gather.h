@@ -50,8 +50,8 @@ PM_DEVICE void gather_add_hit(const KernelGlobals* kg, const LaunchParams* p, co
    whose lanes walk the same nodes together. Either way each hit of a leaf interval counts only
    where its own box holds x, so that either walk sums the same photons in the same order. The
    hits are tested at x alone, not first against the walk's box: inside a tile's box, a hit that
-   holds x meets the box, and on Conference's 1080p frame three in four hits of the tiles' leaves
-   miss the box, each of which cost the warp both tests. */
+   holds x meets the box. On Conference's 1080p frame three in four hits of the tiles' leaves
+   missed the box, and each hit that met it was tested twice. */
 PM_DEVICE void gather_within(const KernelGlobals* kg, const LaunchParams* p, const Material* m, Vec3 x, Vec3 n,
                              Vec3 wo, Vec3 lo, Vec3 hi, Vec3* indirect, Vec3* caustic, uint* accepted,
                              int facet_weighting)
